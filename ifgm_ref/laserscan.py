@@ -1,0 +1,132 @@
+"""The range scan a planner sees, in the ROS ``sensor_msgs/LaserScan`` convention.
+
+Angles are measured in the robot frame (REP-103: x forward, y left, counter-clockwise
+positive), so a ray at a positive angle looks to the robot's *left*. ``angle_max`` is
+inclusive: ``angle_max == angle_min + angle_increment * (len(ranges) - 1)``. Ranges follow
+REP 117: ``+inf`` means no return within ``range_max``, ``-inf`` a return nearer than
+``range_min``, ``nan`` a sensor error.
+
+The paper (section 4, Figure 2) splits the 135-degree field of view into three 45-degree
+beams. Its text gives the *left* beam as "-67.5 to -22.5 degrees" and the *right* one as
+"22.5 to 67.5 degrees", i.e. with clockwise-positive angles; with REP-103 signs the left beam
+is the positive one. See the errata table.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from enum import StrEnum
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+#: Half-width of the paper's front beam, radians (section 4: front beam from -22.5 to 22.5 deg).
+FRONT_HALF_WIDTH = math.radians(22.5)
+
+
+class Beam(StrEnum):
+    """The three named 45-degree beams of the paper's sensor (section 4, Figure 2)."""
+
+    RIGHT = "right"
+    FRONT = "front"
+    LEFT = "left"
+
+
+def beam_of(angle: float) -> Beam:
+    """Name the beam a robot-frame ray angle falls in (the borders +-22.5 deg are *front*).
+
+    >>> beam_of(math.radians(40.0)), beam_of(math.radians(-22.5)), beam_of(-1.0)
+    (<Beam.LEFT: 'left'>, <Beam.FRONT: 'front'>, <Beam.RIGHT: 'right'>)
+    """
+    if angle > FRONT_HALF_WIDTH:
+        return Beam.LEFT
+    if angle < -FRONT_HALF_WIDTH:
+        return Beam.RIGHT
+    return Beam.FRONT
+
+
+@dataclass(frozen=True, eq=False)
+class LaserScan:
+    """One sweep of the range sensor (fields as in ``sensor_msgs/LaserScan``).
+
+    ``ranges`` is a read-only float64 array, one value per ray, in ft.
+    """
+
+    angle_min: float
+    angle_max: float
+    angle_increment: float
+    range_min: float
+    range_max: float
+    ranges: NDArray[np.float64]
+
+    def __post_init__(self) -> None:
+        ranges = np.array(self.ranges, dtype=np.float64)
+        ranges.setflags(write=False)
+        object.__setattr__(self, "ranges", ranges)
+        expected = self.angle_min + self.angle_increment * (len(ranges) - 1)
+        if len(ranges) < 2 or not math.isclose(self.angle_max, expected, abs_tol=1e-9):
+            raise ValueError(
+                f"angle_max={self.angle_max!r}, but should be angle_min + angle_increment * "
+                f"(len(ranges) - 1) = {expected!r} for {len(ranges)} ranges"
+            )
+
+    def __eq__(self, other: object) -> bool:
+        if not isinstance(other, LaserScan):
+            return NotImplemented
+        return (
+            (self.angle_min, self.angle_max, self.angle_increment, self.range_min, self.range_max)
+            == (other.angle_min, other.angle_max, other.angle_increment, other.range_min,
+                other.range_max)
+            and np.array_equal(self.ranges, other.ranges, equal_nan=True)
+        )
+
+    __hash__ = None  # type: ignore[assignment]
+
+    @property
+    def angles(self) -> NDArray[np.float64]:
+        """Robot-frame angle of every ray, radians (``angle_min`` to ``angle_max`` inclusive)."""
+        return self.angle_min + self.angle_increment * np.arange(len(self.ranges))
+
+    @property
+    def beams(self) -> tuple[Beam, ...]:
+        """The paper's beam name of every ray."""
+        return tuple(beam_of(float(a)) for a in self.angles)
+
+    def to_message(self) -> dict[str, Any]:
+        """The scan as a JSON-ready mapping (the JSON-lines protocol's ``scan`` object).
+
+        JSON has no infinities: ``+inf`` (no return) and ``nan`` (error) become ``None``
+        (``null``); ``-inf`` (nearer than ``range_min``) becomes ``0.0``, the conservative reading.
+        """
+        return {
+            "angle_min": self.angle_min,
+            "angle_max": self.angle_max,
+            "angle_increment": self.angle_increment,
+            "range_min": self.range_min,
+            "range_max": self.range_max,
+            "ranges": [_range_to_json(float(r)) for r in self.ranges],
+        }
+
+    @classmethod
+    def from_message(cls, message: dict[str, Any]) -> LaserScan:
+        """Inverse of :meth:`to_message`; ``null`` ranges read back as ``+inf`` (no return)."""
+        ranges = [math.inf if r is None else float(r) for r in message["ranges"]]
+        return cls(
+            angle_min=float(message["angle_min"]),
+            angle_max=float(message["angle_max"]),
+            angle_increment=float(message["angle_increment"]),
+            range_min=float(message["range_min"]),
+            range_max=float(message["range_max"]),
+            ranges=np.asarray(ranges),
+        )
+
+
+def _range_to_json(value: float) -> float | None:
+    """One range as JSON: finite as is, ``-inf`` as 0, ``+inf`` and ``nan`` as ``None``."""
+    if math.isfinite(value):
+        return value
+    if value == -math.inf:
+        return 0.0
+    return None

@@ -1,0 +1,162 @@
+"""Robot, sensor and simulation parameters, with every default in one place.
+
+The paper (section 5.1) reports an obstacle-free run of 197 ft covered in 149 s; that fixes the
+default forward speed. It gives no robot size, turn rate, sensor range or resolution: the
+values below are our choices, each with its reason, and each can be overridden in a world
+file's ``robot`` and ``sensor`` blocks or on the command line.
+
+Units: feet, seconds, radians.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, fields
+from typing import Any, Self
+
+from ifgm_ref.errors import ParameterError
+
+#: Straight-line source-to-destination distance of the paper's Scenario 1, ft (section 5.1).
+PAPER_FREE_DISTANCE_FT = 197.0
+#: Time of the paper's obstacle-free run over that distance, s (section 5.1).
+PAPER_FREE_TIME_S = 149.0
+
+
+def _require(name: str, value: float, *, positive: bool = False, non_negative: bool = False) -> None:
+    """Raise :class:`ParameterError` unless ``value`` is a finite number in its domain."""
+    if isinstance(value, bool) or not isinstance(value, int | float):
+        raise ParameterError(f"`{name}` must be a number, got {value!r}")
+    if not math.isfinite(value):
+        raise ParameterError(f"`{name}` must be finite, got {value!r}")
+    if positive and value <= 0:
+        raise ParameterError(f"`{name}` must be > 0, got {value!r}")
+    if non_negative and value < 0:
+        raise ParameterError(f"`{name}` must be >= 0, got {value!r}")
+
+
+class _Block:
+    """Mixin: build a parameter block from a JSON mapping and write it back."""
+
+    @classmethod
+    def from_mapping(cls, data: dict[str, Any], *, where: str) -> Self:
+        """Build the block from ``data``, overriding defaults; unknown keys are an error."""
+        if not isinstance(data, dict):
+            raise ParameterError(f"{where}: must be an object, got {type(data).__name__}")
+        names = {f.name for f in fields(cls)}  # type: ignore[arg-type]
+        unknown = sorted(set(data) - names)
+        if unknown:
+            raise ParameterError(
+                f"{where}: unknown field(s) {', '.join(unknown)}; allowed: {', '.join(sorted(names))}"
+            )
+        try:
+            return cls(**data)
+        except ParameterError as err:
+            raise ParameterError(f"{where}: {err}") from None
+
+    def to_mapping(self) -> dict[str, Any]:
+        """The block as a JSON-ready mapping (every field, defaults included)."""
+        return {f.name: getattr(self, f.name) for f in fields(self)}  # type: ignore[arg-type]
+
+
+@dataclass(frozen=True)
+class RobotParams(_Block):
+    """A disc robot with unicycle kinematics (section 4: "cylindrical shaped robot").
+
+    Parameters
+    ----------
+    radius : float, default 1.0
+        Disc radius r in ft. The paper gives none; 1 ft is a small indoor platform, well below
+        the gaps of its figures, and makes ``d_th`` > 2 r easy to read.
+    speed : float, default 197/149
+        Constant forward speed v in ft/s: the paper's 197 ft obstacle-free run in 149 s.
+    max_turn_rate : float, default pi/2
+        Largest heading change per second, rad/s. The paper's stepper-motor platform turns in
+        45-degree steps (section 4, Case-3); 90 deg/s lets one such step take half a second.
+    """
+
+    radius: float = 1.0
+    speed: float = PAPER_FREE_DISTANCE_FT / PAPER_FREE_TIME_S
+    max_turn_rate: float = math.pi / 2
+
+    def __post_init__(self) -> None:
+        _require("radius", self.radius, positive=True)
+        _require("speed", self.speed, positive=True)
+        _require("max_turn_rate", self.max_turn_rate, positive=True)
+
+
+@dataclass(frozen=True)
+class SensorParams(_Block):
+    """The paper's IR range sensor on a stepper motor (section 4, Figure 2).
+
+    Parameters
+    ----------
+    fov : float, default 3 pi / 4
+        Field of view in radians, centred on the heading: 135 degrees, from -67.5 to +67.5
+        degrees (section 4).
+    rays : int, default 76
+        Number of rays over the field of view, both ends included, so the angular resolution
+        is ``fov / (rays - 1)``: 1.8 degrees by default, one full step of a common 200-step
+        stepper motor. 76 rays put rays exactly on the beam borders at +-22.5 degrees.
+    range_max : float, default 15.0
+        Maximum range in ft. The paper's "single long range IR" is not specified; long-range IR
+        rangers reach about 5 m (16 ft).
+    range_min : float, default 0.0
+        Minimum range in ft; nearer returns read ``-inf`` (REP 117).
+    noise_std : float, default 0.0
+        Standard deviation of additive Gaussian range noise in ft (off by default).
+    seed : int, default 0
+        Seed of the noise generator, so noisy runs are reproducible.
+    """
+
+    fov: float = 3.0 * math.pi / 4.0
+    rays: int = 76
+    range_max: float = 15.0
+    range_min: float = 0.0
+    noise_std: float = 0.0
+    seed: int = 0
+
+    def __post_init__(self) -> None:
+        _require("fov", self.fov, positive=True)
+        if self.fov >= 2.0 * math.pi:
+            raise ParameterError(f"`fov` must be < 2 pi, got {self.fov!r}")
+        if isinstance(self.rays, bool) or not isinstance(self.rays, int) or self.rays < 2:
+            raise ParameterError(f"`rays` must be an integer >= 2, got {self.rays!r}")
+        _require("range_max", self.range_max, positive=True)
+        _require("range_min", self.range_min, non_negative=True)
+        if self.range_min >= self.range_max:
+            raise ParameterError(
+                f"`range_min` must be < `range_max`, got {self.range_min!r} >= {self.range_max!r}"
+            )
+        _require("noise_std", self.noise_std, non_negative=True)
+        if isinstance(self.seed, bool) or not isinstance(self.seed, int) or self.seed < 0:
+            raise ParameterError(f"`seed` must be an integer >= 0, got {self.seed!r}")
+
+    @property
+    def angle_increment(self) -> float:
+        """Angle between consecutive rays, radians."""
+        return self.fov / (self.rays - 1)
+
+
+@dataclass(frozen=True)
+class SimParams:
+    """How a simulation is run.
+
+    Parameters
+    ----------
+    dt : float, default 0.1
+        Fixed time step in s: the robot moves 0.13 ft per step at the default speed, far below
+        the robot radius, so the decision rate does not limit safety.
+    max_time : float, default 600.0
+        Time limit in s: four times the paper's longest reported run (205 s for Dist-Bug).
+    goal_tolerance : float, default 0.5
+        The goal counts as reached when the robot's centre is this close, in ft.
+    """
+
+    dt: float = 0.1
+    max_time: float = 600.0
+    goal_tolerance: float = 0.5
+
+    def __post_init__(self) -> None:
+        _require("dt", self.dt, positive=True)
+        _require("max_time", self.max_time, positive=True)
+        _require("goal_tolerance", self.goal_tolerance, positive=True)
