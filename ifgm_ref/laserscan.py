@@ -76,11 +76,18 @@ class LaserScan:
         if not isinstance(other, LaserScan):
             return NotImplemented
         return (
-            (self.angle_min, self.angle_max, self.angle_increment, self.range_min, self.range_max)
-            == (other.angle_min, other.angle_max, other.angle_increment, other.range_min,
-                other.range_max)
-            and np.array_equal(self.ranges, other.ranges, equal_nan=True)
-        )
+            self.angle_min,
+            self.angle_max,
+            self.angle_increment,
+            self.range_min,
+            self.range_max,
+        ) == (
+            other.angle_min,
+            other.angle_max,
+            other.angle_increment,
+            other.range_min,
+            other.range_max,
+        ) and np.array_equal(self.ranges, other.ranges, equal_nan=True)
 
     __hash__ = None  # type: ignore[assignment]
 

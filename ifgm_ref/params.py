@@ -22,7 +22,9 @@ PAPER_FREE_DISTANCE_FT = 197.0
 PAPER_FREE_TIME_S = 149.0
 
 
-def _require(name: str, value: float, *, positive: bool = False, non_negative: bool = False) -> None:
+def _require(
+    name: str, value: float, *, positive: bool = False, non_negative: bool = False
+) -> None:
     """Raise :class:`ParameterError` unless ``value`` is a finite number in its domain."""
     if isinstance(value, bool) or not isinstance(value, int | float):
         raise ParameterError(f"`{name}` must be a number, got {value!r}")
@@ -46,7 +48,8 @@ class _Block:
         unknown = sorted(set(data) - names)
         if unknown:
             raise ParameterError(
-                f"{where}: unknown field(s) {', '.join(unknown)}; allowed: {', '.join(sorted(names))}"
+                f"{where}: unknown field(s) {', '.join(unknown)}; "
+                f"allowed: {', '.join(sorted(names))}"
             )
         try:
             return cls(**data)

@@ -17,7 +17,7 @@ class Point(NamedTuple):
 
 
 class Pose(NamedTuple):
-    """A robot pose: position in feet and heading ``theta`` in radians, counter-clockwise from +x."""
+    """A robot pose: position in feet, heading ``theta`` in radians counter-clockwise from +x."""
 
     x: float
     y: float

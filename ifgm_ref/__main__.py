@@ -1,0 +1,8 @@
+"""``python -m ifgm_ref`` runs the command line."""
+
+import sys
+
+from ifgm_ref.cli import main
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,43 @@
+"""The planners, by the names the command line uses.
+
+Planners see only what :class:`ifgm_ref.protocol.Observation` carries (pose, goal, scan): no
+module in this package imports the world, the sensor or the simulator (section 3 of the paper:
+"No priori information or map of the environment is required"); a test enforces it.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+
+from ifgm_ref.errors import PlannerError
+from ifgm_ref.planners.straight import StraightPlanner
+from ifgm_ref.protocol import Planner
+
+
+@dataclass(frozen=True)
+class PlannerInfo:
+    """A registered planner: its factory, a one-line description and its parameters."""
+
+    factory: Callable[[], Planner]
+    description: str
+    parameters: tuple[str, ...] = ()
+
+
+PLANNERS: dict[str, PlannerInfo] = {
+    "straight": PlannerInfo(StraightPlanner, "steer straight at the goal; no avoidance"),
+}
+
+
+def make_planner(name: str) -> Planner:
+    """A new planner of the registered ``name``.
+
+    >>> make_planner("straight").name
+    'straight'
+    """
+    try:
+        info = PLANNERS[name]
+    except KeyError:
+        known = ", ".join(sorted(PLANNERS))
+        raise PlannerError(f"unknown planner {name!r}; known planners: {known}") from None
+    return info.factory()

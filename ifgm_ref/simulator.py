@@ -1,0 +1,230 @@
+"""Run a planner in a world: sense, decide, move, check, until the episode ends.
+
+Each step the sensor scans from the current pose, the planner answers a command from that
+observation alone (no map), the robot moves by one time step (:func:`ifgm_ref.robot.advance`)
+and the disc swept between the two poses is checked for collision exactly
+(:class:`ifgm_ref.collision.ClearanceChecker`). An episode ends when the robot's centre is
+within ``goal_tolerance`` of the goal, the swept disc meets an obstacle, the robot's centre
+leaves the world's bounds, the planner sends an invalid command or asks to stop, or the time
+limit passes.
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import json
+import math
+from dataclasses import asdict, dataclass, field
+from enum import StrEnum
+from typing import Any
+
+from tqdm import tqdm
+
+from ifgm_ref.collision import ClearanceChecker
+from ifgm_ref.params import SimParams
+from ifgm_ref.pose import Pose, distance
+from ifgm_ref.protocol import Command, EpisodeParams, Observation, Planner
+from ifgm_ref.robot import advance
+from ifgm_ref.sensor import IRSensor
+from ifgm_ref.world import World
+
+
+class StopReason(StrEnum):
+    """Why the simulator ended an episode (a planner may also stop with its own reason)."""
+
+    GOAL_REACHED = "goal_reached"
+    COLLISION = "collision"
+    TIME_LIMIT = "time_limit"
+    OUT_OF_BOUNDS = "out_of_bounds"
+    INVALID_COMMAND = "invalid_command"
+
+
+@dataclass(frozen=True)
+class TraceStep:
+    """One sample of an episode: the state at time ``t`` and the command decided there.
+
+    The last sample of a trace has no command (its command fields are ``None``).
+    ``clearance`` is that of the disc swept from this sample to the next (or standing here,
+    for the last sample), in ft.
+    """
+
+    t: float
+    x: float
+    y: float
+    theta: float
+    heading_cmd: float | None
+    speed_cmd: float | None
+    behaviour: str | None
+    branch: str | None
+    clearance: float
+
+
+TRACE_FIELDS = tuple(TraceStep.__dataclass_fields__)
+
+
+@dataclass(frozen=True)
+class Result:
+    """The outcome of one episode (the fields of ``ifgm-ref simulate --json``).
+
+    ``min_clearance`` is ``None`` in JSON (``inf`` here) when the world has no obstacle;
+    ``detail`` explains an ``invalid_command`` stop.
+    """
+
+    planner: str
+    world: str | None
+    reached: bool
+    collided: bool
+    stop_reason: str
+    time_s: float
+    path_length: float
+    min_clearance: float
+    steps: int
+    detail: str | None = None
+
+    def to_json_dict(self) -> dict[str, Any]:
+        """The result as a JSON-ready mapping (infinite clearance as ``None``)."""
+        data = asdict(self)
+        if not math.isfinite(self.min_clearance):
+            data["min_clearance"] = None
+        return data
+
+
+@dataclass
+class Run:
+    """A finished episode: its result and its trace."""
+
+    result: Result
+    trace: list[TraceStep] = field(default_factory=list)
+
+    def trace_csv(self) -> str:
+        """The trace as CSV text, one row per sample, empty cells for missing values."""
+        out = io.StringIO()
+        writer = csv.writer(out, lineterminator="\n")
+        writer.writerow(TRACE_FIELDS)
+        for step in self.trace:
+            writer.writerow(["" if v is None else v for v in asdict(step).values()])
+        return out.getvalue()
+
+    def trace_json(self) -> str:
+        """The result and the trace as one JSON document (``{"result": ..., "trace": [...]}``)."""
+        rows = []
+        for step in self.trace:
+            row = asdict(step)
+            if not math.isfinite(row["clearance"]):
+                row["clearance"] = None
+            rows.append(row)
+        return json.dumps({"result": self.result.to_json_dict(), "trace": rows}, indent=1)
+
+
+def simulate(
+    world: World,
+    planner: Planner,
+    sim: SimParams | None = None,
+    *,
+    params: dict[str, Any] | None = None,
+    progress: bool | None = False,
+) -> Run:
+    """Run ``planner`` in ``world`` until the episode ends; return the result and trace.
+
+    Parameters
+    ----------
+    world : World
+        The obstacles, start, goal, robot and sensor.
+    planner : Planner
+        Any object with ``name``, ``reset`` and ``step`` (see :mod:`ifgm_ref.protocol`).
+    sim : SimParams, optional
+        Time step, time limit and goal tolerance (defaults of :class:`SimParams`).
+    params : dict, optional
+        Planner-specific settings handed to ``planner.reset`` unchanged.
+    progress : bool or None, default False
+        Show a progress bar over simulated time on stderr; ``None`` shows it only on a terminal.
+    """
+    sim = sim or SimParams()
+    robot = world.robot
+    sensor = IRSensor(world)
+    checker = ClearanceChecker(world, robot.radius)
+    episode = EpisodeParams(robot, world.sensor, sim.dt, dict(params or {}))
+    planner.reset(world.start, world.goal, episode)
+
+    max_steps = math.ceil(sim.max_time / sim.dt - 1e-9)
+    pose = Pose(*world.start)
+    trace: list[TraceStep] = []
+    path_length = 0.0
+    min_clearance = checker.pose_clearance(pose)
+    stop: str = StopReason.TIME_LIMIT
+    detail: str | None = None
+    k = 0
+    disable = None if progress is None else not progress
+    with tqdm(total=max_steps, unit="step", desc=planner.name, disable=disable, leave=False) as bar:
+        while True:
+            t = k * sim.dt
+            if distance(pose, world.goal) <= sim.goal_tolerance:
+                stop = StopReason.GOAL_REACHED
+                break
+            if k >= max_steps:
+                stop = StopReason.TIME_LIMIT
+                break
+            command = planner.step(Observation(t, pose, world.goal, sensor.scan(pose)))
+            detail = _problem(command)
+            if detail is not None:
+                stop = StopReason.INVALID_COMMAND
+                break
+            if command.stop is not None:
+                stop = command.stop
+                break
+            new_pose = advance(pose, command, robot, sim.dt)
+            clearance = checker.segment_clearance(pose, new_pose)
+            trace.append(_sample(t, pose, command, clearance))
+            min_clearance = min(min_clearance, clearance)
+            path_length += distance(pose, new_pose)
+            pose = new_pose
+            k += 1
+            if k % 100 == 0:
+                bar.update(100)
+            if clearance < 0.0:
+                stop = StopReason.COLLISION
+                break
+            if world.bounds is not None and not _inside(pose, world):
+                stop = StopReason.OUT_OF_BOUNDS
+                break
+    trace.append(_sample(k * sim.dt, pose, None, checker.pose_clearance(pose)))
+    result = Result(
+        planner=planner.name,
+        world=world.name,
+        reached=stop == StopReason.GOAL_REACHED,
+        collided=stop == StopReason.COLLISION,
+        stop_reason=str(stop),
+        time_s=k * sim.dt,
+        path_length=path_length,
+        min_clearance=min_clearance,
+        steps=k,
+        detail=detail,
+    )
+    return Run(result, trace)
+
+
+def _problem(command: object) -> str | None:
+    if not isinstance(command, Command):
+        return f"step() returned {type(command).__name__}, but should return a Command"
+    return command.problem()
+
+
+def _inside(pose: Pose, world: World) -> bool:
+    b = world.bounds
+    assert b is not None
+    return b.xmin <= pose.x <= b.xmax and b.ymin <= pose.y <= b.ymax
+
+
+def _sample(t: float, pose: Pose, command: Command | None, clearance: float) -> TraceStep:
+    return TraceStep(
+        t=t,
+        x=pose.x,
+        y=pose.y,
+        theta=pose.theta,
+        heading_cmd=None if command is None else command.heading,
+        speed_cmd=None if command is None else command.speed,
+        behaviour=None if command is None else command.behaviour,
+        branch=None if command is None else command.branch,
+        clearance=clearance,
+    )
