@@ -1,0 +1,264 @@
+"""The sympy derivations of ``proofs/`` run under pytest, and their checks have teeth.
+
+``test_proofs_hold[eqN]`` builds each derivation (a claim sympy does not reduce to exactly 0
+or True raises ``ClaimFailed``) and pins the list of claims, so a claim cannot silently
+disappear. The ``test_*_rejects_*`` tests feed deliberately wrong claims to the same helpers,
+including a wrong eq. (4) into the real derivation, and expect them to be rejected.
+``test_errata_citations_resolve`` checks that every proof claim and test cited in
+``docs/errata.md`` exists.
+"""
+
+from __future__ import annotations
+
+import ast
+import functools
+import importlib
+import re
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+import sympy as sp
+
+from proofs._util import ClaimFailed, ClaimKind, Derivation
+
+ROOT = Path(__file__).resolve().parents[1]
+
+#: Every claim of every derivation, in order. Spot checks are the ``library_*`` claims.
+EXPECTED_CLAIMS: dict[str, tuple[str, ...]] = {
+    "eq1": (
+        "midpoint_on_segment",
+        "midpoint_equidistant",
+        "midpoint_half_gap",
+        "segment_point_distance_to_p1",
+        "segment_point_distance_to_p2",
+        "largest_free_disc_radius",
+        "largest_free_disc_centre_is_midpoint",
+        "robot_fits_iff_gap_at_least_diameter",
+        "rotation_equivariant",
+        "scaling_equivariant",
+        "library_midpoint_x_matches_formula",
+        "library_midpoint_y_matches_formula",
+    ),
+    "eq2": (
+        "printed_form_is_tangent",
+        "ratio_minus_angle_derivative",
+        "ratio_series",
+        "ratio_at_fov_edge",
+        "ratio_exceeds_angle_at_fov_edge",
+        "atan_of_ratio_is_atan2_ahead",
+        "fov_edge_is_ahead",
+        "midpoint_ahead_in_fov",
+        "direction_scale_invariant",
+        "direction_rotation_equivariant",
+        "width_parametrisation",
+        "cosine_theorem",
+        "apollonius_theorem",
+        "median_length",
+        "median_length_positive_form",
+        "median_length_positive",
+        "sine_of_arccos_positive",
+        "sine_of_arccos_squared",
+        "angle_difference_identities",
+        "fgm_angle_is_midpoint_direction",
+        "library_literal_is_tangent_of_angle",
+        "library_fgm_angle_is_midpoint_angle",
+    ),
+    "eq3": (
+        "literal_equals_atan2_ahead",
+        "literal_differs_by_pi_behind_left",
+        "literal_differs_by_pi_behind_right",
+        "literal_differs_by_pi_straight_behind",
+        "literal_points_away_behind",
+        "literal_heading_increases_distance",
+        "literal_limit_from_ahead",
+        "literal_limit_from_behind",
+        "atan2_on_vertical_line",
+        "library_literal_differs_by_pi_behind",
+    ),
+    "eq4": (
+        "convex_combination",
+        "gap_share_positive",
+        "goal_share_is_complement",
+        "goal_share_positive",
+        "offset_from_goal",
+        "offset_from_gap",
+        "limit_w_g_to_0",
+        "limit_w_d_to_0",
+        "limit_d_th_to_oo",
+        "limit_d_th_to_0",
+        "d_theta_g_is_gap_share",
+        "d_theta_d_is_goal_share",
+        "d_w_g_sign",
+        "d_w_g_sign_factor_positive",
+        "d_w_d_sign",
+        "d_w_d_sign_factor_positive",
+        "d_d_th_sign",
+        "d_d_th_sign_factor_positive",
+        "fgm_form_is_renamed_eq4",
+        "fgm_gap_share_derivative",
+        "fgm_gap_share_falls_with_d_min",
+        "literal_depends_on_angle_representation",
+        "counterexample_literal_mean",
+        "counterexample_relative_angles",
+        "counterexample_robot_frame_mean",
+        "counterexample_opposite_directions",
+        "counterexample_printed_far_from_gap",
+        "counterexample_printed_far_from_goal",
+        "counterexample_inputs_close",
+        "library_literal_matches_formula",
+        "library_counterexample_literal",
+        "library_counterexample_robot_frame",
+        "library_fgm_matches_renamed_eq4",
+    ),
+}
+
+
+@pytest.mark.parametrize("equation", sorted(EXPECTED_CLAIMS))
+def test_proofs_hold(equation: str) -> None:
+    module = importlib.import_module(f"proofs.{equation}")
+    claims = module.claims()  # raises ClaimFailed on the first claim that does not hold
+    names = tuple(c.name for c in claims)
+    assert names == EXPECTED_CLAIMS[equation], (
+        f"claims of proofs.{equation}={names}, but should be {EXPECTED_CLAIMS[equation]}"
+    )
+    for claim in claims:
+        expected_kind = (
+            ClaimKind.SPOT_CHECK if claim.name.startswith("library_") else ClaimKind.PROOF
+        )
+        assert claim.kind is expected_kind, f"{equation}:{claim.name} kind={claim.kind}"
+
+
+@pytest.mark.parametrize("equation", sorted(EXPECTED_CLAIMS))
+def test_proofs_main_prints_worked_page(
+    equation: str, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """``main()`` prints every claim, its kind and the summary line."""
+    importlib.import_module(f"proofs.{equation}").main()
+    page = capsys.readouterr().out
+    for name in EXPECTED_CLAIMS[equation]:
+        assert f"{equation}:{name}" in page
+    spot_checks = sum(n.startswith("library_") for n in EXPECTED_CLAIMS[equation])
+    proved = len(EXPECTED_CLAIMS[equation]) - spot_checks
+    assert f"{proved} claim(s) proved by sympy; {spot_checks} numeric spot check(s)" in page
+
+
+def test_proofs_run_as_module() -> None:
+    """``python -m proofs.eq3`` runs from the project root and prints the worked page."""
+    result = subprocess.run(
+        [sys.executable, "-m", "proofs.eq3"],
+        cwd=ROOT,
+        capture_output=True,
+        text=True,
+        check=False,
+        timeout=120,
+    )
+    assert result.returncode == 0, result.stderr
+    assert result.stdout.startswith("Equation (3): the destination angle")
+    assert "eq3:literal_differs_by_pi_behind_left" in result.stdout
+
+
+def test_proofs_render_markdown() -> None:
+    markdown = importlib.import_module("proofs.eq4").derivation().to_markdown()
+    assert markdown.startswith("### Equation (4)")
+    assert "`eq4:convex_combination`" in markdown
+    assert "$$" in markdown
+
+
+# ---- the checks have teeth -----------------------------------------------------------------
+
+
+def test_prove_equal_rejects_false_claim() -> None:
+    """atan(y/x) = atan2(y, x) is false behind the robot; the helper must say so."""
+    x = sp.Symbol("x", negative=True)
+    y = sp.Symbol("y", positive=True)
+    d = Derivation("teeth", "Teeth")
+    with pytest.raises(ClaimFailed, match=r"teeth:wrong not proved: simplify\(lhs - rhs\) = -pi"):
+        d.prove_equal("wrong", sp.atan(y / x), sp.atan2(y, x), "atan = atan2 behind")
+    assert d.claims == ()
+
+
+def test_prove_equal_rejects_unproved_claim() -> None:
+    """sqrt(y^2) = y needs y >= 0: without the assumption sympy leaves Abs(y) - y, not 0."""
+    y = sp.Symbol("y", real=True)
+    with pytest.raises(ClaimFailed, match=r"Abs\(y\)"):
+        Derivation("teeth", "Teeth").prove_equal("sqrt", sp.sqrt(y**2), y, "sqrt(y^2) = y")
+
+
+def test_prove_sign_rejects_unknown_sign() -> None:
+    """sympy's "don't know" (None) is not a proof."""
+    z = sp.Symbol("z", real=True)
+    with pytest.raises(ClaimFailed, match="is_positive is None"):
+        Derivation("teeth", "Teeth").prove_sign("sign", z, "positive", "z > 0")
+    with pytest.raises(ClaimFailed, match="is_negative is False"):
+        Derivation("teeth", "Teeth").prove_sign("sign", sp.pi, "negative", "pi < 0")
+
+
+def test_prove_true_rejects_unevaluated_relation() -> None:
+    a, b = sp.symbols("a b", real=True)
+    with pytest.raises(ClaimFailed, match="should be True"):
+        Derivation("teeth", "Teeth").prove_true("eq", sp.Eq(a, b), "a = b")
+    with pytest.raises(ClaimFailed, match="should be True"):
+        Derivation("teeth", "Teeth").prove_true("false", sp.false, "false")
+
+
+def test_spot_check_rejects_out_of_tolerance() -> None:
+    with pytest.raises(ClaimFailed, match=r"at \(1.0,\): value=1.5, but should be 1.0"):
+        Derivation("teeth", "Teeth").spot_check(
+            "off", lambda x: x + 0.5, lambda x: x, [(1.0,)], "x + 0.5 = x",
+            abs_tol=0.1, reason="test",
+        )
+
+
+def test_wrong_eq4_is_rejected_by_its_derivation(monkeypatch: pytest.MonkeyPatch) -> None:
+    """The real eq. (4) derivation fed a wrong formula (w_g * d_th for w_g / d_th) fails."""
+    eq4 = importlib.import_module("proofs.eq4")
+
+    def wrong(
+        theta_g: sp.Expr, theta_d: sp.Expr, w_g: sp.Expr, w_d: sp.Expr, d_th: sp.Expr
+    ) -> sp.Expr:
+        return ((w_g * d_th) * theta_g + w_d * theta_d) / (w_g * d_th + w_d)
+
+    monkeypatch.setattr(eq4, "final_heading", wrong)
+    with pytest.raises(ClaimFailed, match="eq4:convex_combination not proved"):
+        eq4.derivation.__wrapped__()  # the uncached builder
+
+
+def test_claim_names_are_unique() -> None:
+    d = Derivation("teeth", "Teeth")
+    d.prove_equal("same", sp.Integer(1), sp.Integer(1), "1 = 1")
+    with pytest.raises(ValueError, match="used twice"):
+        d.prove_equal("same", sp.Integer(2), sp.Integer(2), "2 = 2")
+
+
+# ---- docs/errata.md cites what exists ------------------------------------------------------
+
+_PROOF_CITATION = re.compile(r"proofs\.(eq\d):(\w+)")
+_TEST_CITATION = re.compile(r"((?:tests|ifgm_ref)/[\w/]+\.py)::([\w.]+)")
+
+
+@functools.cache
+def _defined_names(path: Path) -> frozenset[str]:
+    tree = ast.parse(path.read_text(encoding="utf-8"))
+    return frozenset(
+        node.name
+        for node in ast.walk(tree)
+        if isinstance(node, ast.FunctionDef | ast.AsyncFunctionDef | ast.ClassDef)
+    )
+
+
+def test_errata_citations_resolve() -> None:
+    """Every ``proofs.eqN:claim`` and ``path.py::name`` cited in docs/errata.md exists."""
+    text = (ROOT / "docs" / "errata.md").read_text(encoding="utf-8")
+    proof_citations = _PROOF_CITATION.findall(text)
+    test_citations = _TEST_CITATION.findall(text)
+    assert proof_citations and test_citations, "docs/errata.md cites nothing"
+    for equation, name in proof_citations:
+        assert name in EXPECTED_CLAIMS.get(equation, ()), f"proofs.{equation}:{name} not found"
+    for path, name in test_citations:
+        file = ROOT / path
+        assert file.is_file(), f"{path} cited in docs/errata.md does not exist"
+        # A pytest id: test function, or a doctest id "module.function" -> the function.
+        function = name.split("[")[0].rsplit(".", 1)[-1]
+        assert function in _defined_names(file), f"{path}::{name} not found"
