@@ -65,7 +65,7 @@ def plot_run(world: World, trace: Sequence[TraceStep], result: Result) -> Figure
         f"{result.planner} in {name}: {result.stop_reason} after {result.time_s:.1f} s, "
         f"path {result.path_length:.1f} ft"
     )
-    ax.legend(loc="best", fontsize="small")
+    ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize="small")
     return fig
 
 

@@ -158,7 +158,7 @@ def simulate(
     disable = None if progress is None else not progress
     with tqdm(total=max_steps, unit="step", desc=planner.name, disable=disable, leave=False) as bar:
         while True:
-            t = k * sim.dt
+            t = round(k * sim.dt, 12)
             if distance(pose, world.goal) <= sim.goal_tolerance:
                 stop = StopReason.GOAL_REACHED
                 break
@@ -185,17 +185,17 @@ def simulate(
             if clearance < 0.0:
                 stop = StopReason.COLLISION
                 break
-            if world.bounds is not None and not _inside(pose, world):
+            if world.bounds is not None and not world.bounds.contains(pose):
                 stop = StopReason.OUT_OF_BOUNDS
                 break
-    trace.append(_sample(k * sim.dt, pose, None, checker.pose_clearance(pose)))
+    trace.append(_sample(round(k * sim.dt, 12), pose, None, checker.pose_clearance(pose)))
     result = Result(
         planner=planner.name,
         world=world.name,
         reached=stop == StopReason.GOAL_REACHED,
         collided=stop == StopReason.COLLISION,
         stop_reason=str(stop),
-        time_s=k * sim.dt,
+        time_s=round(k * sim.dt, 12),
         path_length=path_length,
         min_clearance=min_clearance,
         steps=k,
@@ -208,12 +208,6 @@ def _problem(command: object) -> str | None:
     if not isinstance(command, Command):
         return f"step() returned {type(command).__name__}, but should return a Command"
     return command.problem()
-
-
-def _inside(pose: Pose, world: World) -> bool:
-    b = world.bounds
-    assert b is not None
-    return b.xmin <= pose.x <= b.xmax and b.ymin <= pose.y <= b.ymax
 
 
 def _sample(t: float, pose: Pose, command: Command | None, clearance: float) -> TraceStep:

@@ -1,0 +1,147 @@
+"""Obstacles as clusters of scan points, and the gaps between consecutive obstacles.
+
+Section 4: "In case of more than one obstacle, average clustered value is considered as the
+obstacle position for distance vector. The obstacle near to the robot is given higher
+priority. ... Using this array, the gap (Euclidian distance) between every two consecutive
+obstacles is calculated. The coordinates of obstacles having maximum gap are stored to steer
+the robot from middle of obstacles."
+
+Clusters are runs of consecutive rays whose returns lie within ``jump`` of each other; a ray
+with no return, or a jump wider than ``jump``, starts a new obstacle. Clusters are ordered by
+angle, right to left (REP-103: increasing angle), so "consecutive obstacles" are neighbours
+in the field of view. A gap is measured between the *facing borders* of two consecutive
+obstacles (the free space the robot must pass), not between their average positions, which
+for a long wall lie far from its end (see the errata table; :func:`gaps_between` offers the
+printed reading too).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from enum import StrEnum
+from itertools import pairwise
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ifgm_ref.laserscan import LaserScan
+from ifgm_ref.percepts.points import scan_points
+from ifgm_ref.pose import Point, distance
+
+
+class Side(StrEnum):
+    """Where an obstacle lies relative to the heading (REP-103: left is positive angles)."""
+
+    RIGHT = "right"
+    LEFT = "left"
+    BOTH = "both"
+
+
+@dataclass(frozen=True, eq=False)
+class Cluster:
+    """One obstacle: the robot-frame returns of consecutive rays ``first`` to ``last``."""
+
+    first: int
+    last: int
+    angles: NDArray[np.float64]
+    ranges: NDArray[np.float64]
+    xy: NDArray[np.float64]
+
+    @property
+    def mean(self) -> Point:
+        """The "average clustered value": the obstacle position of section 4."""
+        x, y = self.xy.mean(axis=0)
+        return Point(float(x), float(y))
+
+    @property
+    def nearest(self) -> float:
+        """Distance from the robot to the obstacle's nearest return, ft."""
+        return float(self.ranges.min())
+
+    @property
+    def right_border(self) -> Point:
+        """The return of the obstacle's rightmost ray (lowest angle)."""
+        return Point(float(self.xy[0, 0]), float(self.xy[0, 1]))
+
+    @property
+    def left_border(self) -> Point:
+        """The return of the obstacle's leftmost ray (highest angle)."""
+        return Point(float(self.xy[-1, 0]), float(self.xy[-1, 1]))
+
+    @property
+    def side(self) -> Side:
+        """Whether every return is right of the heading, left of it, or some of each."""
+        if self.angles[-1] < 0.0:
+            return Side.RIGHT
+        if self.angles[0] > 0.0:
+            return Side.LEFT
+        return Side.BOTH
+
+
+@dataclass(frozen=True)
+class Gap:
+    """The free space between two consecutive obstacles, from ``right`` to ``left`` point."""
+
+    right: Point
+    left: Point
+
+    @property
+    def width(self) -> float:
+        """The gap's Euclidean width, ft (section 4: "the gap (Euclidian distance)")."""
+        return distance(self.right, self.left)
+
+
+def cluster_scan(scan: LaserScan, *, jump: float) -> tuple[Cluster, ...]:
+    """Group the returns of ``scan`` into obstacles, ordered right to left.
+
+    Examples
+    --------
+    Two posts, one either side of the heading, and nothing in between:
+
+    >>> import math
+    >>> scan = LaserScan(-0.6, 0.6, 0.3, 0.0, 10.0, [5.0, 5.0, math.inf, 5.0, 5.0])
+    >>> [(c.first, c.last, str(c.side)) for c in cluster_scan(scan, jump=2.0)]
+    [(0, 1, 'right'), (3, 4, 'left')]
+
+    A jump in range splits consecutive returns:
+
+    >>> scan = LaserScan(-0.3, 0.3, 0.3, 0.0, 10.0, [2.0, 8.0, 8.0])
+    >>> [(c.first, c.last) for c in cluster_scan(scan, jump=3.0)]
+    [(0, 0), (1, 2)]
+    """
+    pts = scan_points(scan)
+    if len(pts) == 0:
+        return ()
+    steps = np.hypot(*np.diff(pts.xy, axis=0).T)
+    breaks = (np.diff(pts.indices) > 1) | (steps > jump)
+    starts = np.concatenate([[0], np.flatnonzero(breaks) + 1])
+    ends = np.concatenate([starts[1:], [len(pts)]])
+    return tuple(
+        Cluster(
+            first=int(pts.indices[a]),
+            last=int(pts.indices[b - 1]),
+            angles=pts.angles[a:b],
+            ranges=pts.ranges[a:b],
+            xy=pts.xy[a:b],
+        )
+        for a, b in zip(starts, ends, strict=True)
+    )
+
+
+def gaps_between(clusters: tuple[Cluster, ...], *, borders: bool = True) -> tuple[Gap, ...]:
+    """The gap between each two consecutive obstacles, right to left.
+
+    With ``borders=True`` (our reading) a gap runs from the left border of one obstacle to the
+    right border of the next; with ``borders=False`` (the printed reading) it runs between
+    their average positions.
+
+    >>> import math
+    >>> scan = LaserScan(-0.6, 0.6, 0.3, 0.0, 10.0, [5.0, 5.0, math.inf, 5.0, 5.0])
+    >>> [round(g.width, 3) for g in gaps_between(cluster_scan(scan, jump=2.0))]
+    [2.955]
+    >>> [round(g.width, 3) for g in gaps_between(cluster_scan(scan, jump=2.0), borders=False)]
+    [4.301]
+    """
+    if borders:
+        return tuple(Gap(a.left_border, b.right_border) for a, b in pairwise(clusters))
+    return tuple(Gap(a.mean, b.mean) for a, b in pairwise(clusters))

@@ -1,0 +1,228 @@
+"""The shared skeleton of the boundary-following planners: Bug1, Bug2, DistBug and IBA.
+
+Section 2.1 of the paper: Bug algorithms have "two behaviours, *move to goal* and *obstacle
+avoidance*. In *move to goal*, initially the robot generates a reference path and follows it
+until obstacle is encountered or destination is reached." In *obstacle avoidance* it follows
+the obstacle's edge until a leaving condition -- the one thing the variants disagree on --
+holds, then regenerates the reference path from where it is (section 4).
+
+A subclass chooses the side to follow (:meth:`BoundaryPlanner.choose_side`), the leaving rule
+(:meth:`BoundaryPlanner.should_leave`) and what to do when the robot comes back to the point
+where it met the obstacle (:meth:`BoundaryPlanner.on_loop_closed`).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, fields
+from typing import Any, ClassVar
+
+from ifgm_ref.errors import ParameterError
+from ifgm_ref.percepts.corridor import free_length
+from ifgm_ref.percepts.memory import PerceptMemory
+from ifgm_ref.planners.edge_following import FollowSide, follow_heading, turn_speed
+from ifgm_ref.pose import Point, Pose, distance, wrap_angle
+from ifgm_ref.protocol import Behaviour, Command, EpisodeParams, Observation
+
+#: Stop reason of a planner that has proved the goal cannot be reached.
+GOAL_UNREACHABLE = "goal_unreachable"
+
+
+@dataclass(frozen=True)
+class BoundaryParams:
+    """Tuning shared by the boundary followers (lengths in ft, times in s).
+
+    Parameters
+    ----------
+    standoff_margin : float, default 1.0
+        Free space kept between the robot's disc and the followed edge: the follower keeps
+        the edge at ``radius + standoff_margin`` from the robot's centre.
+    corridor_margin : float, default 0.25
+        The path towards the goal is tested in a corridor of half-width
+        ``radius + corridor_margin``: as wide as the robot, plus a little.
+    hit_margin : float, default 0.5
+        An obstacle is *encountered* when the corridor towards the goal is blocked nearer
+        than ``radius + standoff_margin + hit_margin``.
+    memory_horizon : float, default 8.0
+        How long obstacle points are remembered (:class:`PerceptMemory`): long enough to
+        round the corner of an obstacle the size of the paper's, short enough to forget it
+        once passed.
+    return_radius : float, default 1.0
+        The robot is back at its hit point when this close to it ...
+    min_loop : float, default 12.0
+        ... after following the edge at least this far.
+    """
+
+    standoff_margin: float = 1.0
+    corridor_margin: float = 0.25
+    hit_margin: float = 0.5
+    memory_horizon: float = 8.0
+    return_radius: float = 1.0
+    min_loop: float = 12.0
+
+    @classmethod
+    def from_params(cls, params: dict[str, Any]) -> BoundaryParams:
+        """Take this class's fields from a planner ``params`` mapping; ignore the rest."""
+        known = {f.name for f in fields(cls)}
+        values = {k: v for k, v in params.items() if k in known}
+        for name, value in values.items():
+            if (
+                isinstance(value, bool)
+                or not isinstance(value, int | float)
+                or not (math.isfinite(value) and value > 0)
+            ):
+                raise ParameterError(f"`{name}` must be a finite number > 0, got {value!r}")
+        return cls(**values)
+
+
+class BoundaryPlanner:
+    """Move to goal; on meeting an obstacle, follow its edge until the leaving rule holds."""
+
+    name: ClassVar[str] = "boundary"
+    #: The subclass's own parameters (names listed by ``ifgm-ref planners``).
+    parameters: ClassVar[tuple[str, ...]] = tuple(f.name for f in fields(BoundaryParams))
+
+    def __init__(self) -> None:
+        self.tuning = BoundaryParams()
+        self.memory = PerceptMemory(self.tuning.memory_horizon)
+        self.goal = Point(0.0, 0.0)
+        self.radius = 1.0
+        self.speed = 1.0
+        self.fov = math.pi
+        self.range_max = math.inf
+        self.following = False
+        self.side = FollowSide.RIGHT
+        self.hit_point = Point(0.0, 0.0)
+        self.travelled = 0.0
+        self._last = Point(0.0, 0.0)
+
+    # -- protocol ---------------------------------------------------------------------------
+    def reset(self, start: Pose, goal: Point, params: EpisodeParams) -> None:
+        """Start in *move to goal* towards ``goal``; read tuning from ``params.params``."""
+        self.tuning = BoundaryParams.from_params(params.params)
+        self.memory = PerceptMemory(self.tuning.memory_horizon)
+        self.goal = Point(*goal)
+        self.radius = params.robot.radius
+        self.speed = params.robot.speed
+        self.fov = params.sensor.fov
+        self.range_max = params.sensor.range_max
+        self.following = False
+        self._last = Point(start[0], start[1])
+
+    def step(self, observation: Observation) -> Command:
+        """Remember the scan, then move to goal or follow the edge (see the class docstring)."""
+        pose = observation.pose
+        self.memory.add(observation.t, pose, observation.scan)
+        here = pose.position
+        if self.following:
+            self.travelled += distance(self._last, here)
+        self._last = here
+        if not self.following:
+            if not self.goal_blocked(pose):
+                return self.move_to_goal(pose, "move_to_goal")
+            self.start_following(observation)
+        elif self.should_leave(observation):
+            self.following = False
+            return self.move_to_goal(pose, "leave")
+        elif self.travelled >= self.tuning.min_loop and (
+            distance(here, self.hit_point) <= self.tuning.return_radius
+        ):
+            closed = self.on_loop_closed(observation)
+            if closed is not None:
+                return closed
+        return self.follow(pose, "follow_edge")
+
+    # -- pieces for subclasses --------------------------------------------------------------
+    @property
+    def standoff(self) -> float:
+        """Distance kept from the followed edge to the robot's centre, ft."""
+        return self.radius + self.tuning.standoff_margin
+
+    @property
+    def half_width(self) -> float:
+        """Half-width of the corridor the robot needs, ft."""
+        return self.radius + self.tuning.corridor_margin
+
+    def goal_bearing(self, pose: Pose) -> float:
+        """World-frame direction from the robot to the goal, radians."""
+        return math.atan2(self.goal.y - pose.y, self.goal.x - pose.x)
+
+    def goal_free_length(self, pose: Pose) -> float:
+        """How far the corridor towards the goal is free of remembered obstacle points."""
+        return free_length(
+            self.memory.points, (pose.x, pose.y), self.goal_bearing(pose), self.half_width
+        )
+
+    def goal_blocked(self, pose: Pose) -> bool:
+        """Whether an obstacle stands in the corridor towards the goal, nearer than both the
+        goal and the encounter distance ``standoff + hit_margin``."""
+        reach = min(self.standoff + self.tuning.hit_margin, distance(pose, self.goal))
+        return self.goal_free_length(pose) < reach
+
+    def goal_in_view(self, pose: Pose, margin: float = math.radians(10.0)) -> bool:
+        """Whether the goal's bearing lies inside the field of view, ``margin`` from its edge."""
+        return abs(wrap_angle(self.goal_bearing(pose) - pose.theta)) <= self.fov / 2 - margin
+
+    def path_free(self, pose: Pose) -> bool:
+        """IBA's free path: the goal in view and its corridor clear as far as the sensor
+        sees or to the goal (section 4.1: "the leaving point is selected based on free
+        path")."""
+        if not self.goal_in_view(pose):
+            return False
+        needed = min(self.range_max, distance(pose, self.goal))
+        return self.goal_free_length(pose) >= needed
+
+    def start_following(self, observation: Observation) -> None:
+        """Record the hit point and pick the side to follow on."""
+        self.following = True
+        self.hit_point = observation.pose.position
+        self.travelled = 0.0
+        self.side = self.choose_side(observation)
+        self.on_hit(observation)
+
+    def move_to_goal(self, pose: Pose, branch: str) -> Command:
+        """Head for the goal on the regenerated reference path."""
+        heading = self.goal_bearing(pose)
+        return Command(
+            heading,
+            turn_speed(wrap_angle(heading - pose.theta), self.speed),
+            behaviour=Behaviour.MOVE_TO_GOAL,
+            branch=branch,
+        )
+
+    def follow(self, pose: Pose, branch: str) -> Command:
+        """Follow the nearest remembered edge on :attr:`side` at the stand-off."""
+        heading = follow_heading(
+            (pose.x, pose.y), self.memory.points, self.side, standoff=self.standoff
+        )
+        if heading is None:  # the edge is forgotten: the obstacle is behind us
+            self.following = False
+            return self.move_to_goal(pose, "edge_lost")
+        return Command(
+            heading,
+            turn_speed(wrap_angle(heading - pose.theta), self.speed),
+            behaviour=Behaviour.OBSTACLE_AVOIDANCE,
+            branch=branch,
+        )
+
+    # -- hooks ------------------------------------------------------------------------------
+    def choose_side(self, observation: Observation) -> FollowSide:
+        """The Bug family turns one fixed way: left, keeping the obstacle on the right."""
+        return FollowSide.RIGHT
+
+    def on_hit(self, observation: Observation) -> None:
+        """Called once when an obstacle is met (after :attr:`hit_point` is set)."""
+
+    def should_leave(self, observation: Observation) -> bool:
+        """The leaving rule; the base class never leaves."""
+        return False
+
+    def on_loop_closed(self, observation: Observation) -> Command | None:
+        """Back at the hit point after a whole loop: by default the goal is unreachable."""
+        return Command(
+            observation.pose.theta,
+            0.0,
+            behaviour=Behaviour.OBSTACLE_AVOIDANCE,
+            branch="loop_closed",
+            stop=GOAL_UNREACHABLE,
+        )
