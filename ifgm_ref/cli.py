@@ -12,7 +12,7 @@ import sys
 from collections.abc import Sequence
 from pathlib import Path
 
-from ifgm_ref.errors import IfgmRefError
+from ifgm_ref.errors import IfgmRefError, ParameterError
 from ifgm_ref.params import SimParams
 from ifgm_ref.planners import PLANNERS, make_planner
 from ifgm_ref.scenarios import BUILTIN_WORLDS, resolve_world
@@ -32,7 +32,8 @@ def _simulate(args: argparse.Namespace) -> int:
         if args.goal_tolerance is None
         else args.goal_tolerance,
     )
-    run = simulate(world, make_planner(args.planner), sim, progress=None)
+    params = _planner_params(args.planner, args.param or [])
+    run = simulate(world, make_planner(args.planner), sim, params=params, progress=None)
     result = run.result
     if args.trace:
         path = Path(args.trace)
@@ -55,6 +56,26 @@ def _simulate(args: argparse.Namespace) -> int:
         if result.detail:
             print(f"detail: {result.detail}")
     return 0
+
+
+def _planner_params(planner: str, pairs: list[str]) -> dict[str, float]:
+    """Parse ``NAME=VALUE`` planner parameters, checking names against the planner's list."""
+    allowed = PLANNERS[planner].parameters
+    params: dict[str, float] = {}
+    for pair in pairs:
+        name, sep, text = pair.partition("=")
+        if not sep:
+            raise ParameterError(f"--param {pair!r}: expected NAME=VALUE")
+        if name not in allowed:
+            known = ", ".join(allowed) or "none"
+            raise ParameterError(
+                f"--param {name!r}: {planner} has no such parameter; it has: {known}"
+            )
+        try:
+            params[name] = float(text)
+        except ValueError:
+            raise ParameterError(f"--param {name}: must be a number, got {text!r}") from None
+    return params
 
 
 def _worlds(args: argparse.Namespace) -> int:
@@ -106,6 +127,12 @@ def build_parser() -> argparse.ArgumentParser:
         choices=sorted(PLANNERS),
         metavar="NAME",
         help=f"planner to run: {', '.join(sorted(PLANNERS))}",
+    )
+    sim.add_argument(
+        "--param",
+        action="append",
+        metavar="NAME=VALUE",
+        help="set a planner parameter (repeatable; see `ifgm-ref planners`)",
     )
     sim.add_argument("--json", action="store_true", help="print the result as one JSON object")
     sim.add_argument("--trace", metavar="FILE", help="write the trace (.json for JSON, else CSV)")

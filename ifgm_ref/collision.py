@@ -13,67 +13,63 @@ validation ensures it for the start pose; the simulator stops at the first colli
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
-from numpy.typing import NDArray
 
 from ifgm_ref.pose import Pose
 from ifgm_ref.world import World
 
 
-def _cross(ax: NDArray, ay: NDArray, bx: NDArray, by: NDArray) -> NDArray:
-    return ax * by - ay * bx
-
-
 def point_segment_distance(
-    px: NDArray, py: NDArray, a: NDArray[np.float64], b: NDArray[np.float64]
-) -> NDArray[np.float64]:
-    """Distance from points ``(px, py)`` to segments ``a -> b`` (arrays broadcast together).
+    px: float, py: float, ax: float, ay: float, bx: float, by: float
+) -> float:
+    """Distance from the point ``(px, py)`` to the segment ``(ax, ay) -> (bx, by)``.
 
-    ``a`` and ``b`` have shape ``(..., 2)``; a zero-length segment is a point.
+    A zero-length segment is a point.
 
-    >>> a, b = np.array([0.0, 0.0]), np.array([2.0, 0.0])
-    >>> point_segment_distance(np.array([1.0, -3.0]), np.array([3.0, -4.0]), a, b).tolist()
-    [3.0, 5.0]
+    >>> point_segment_distance(1.0, 3.0, 0.0, 0.0, 2.0, 0.0)
+    3.0
+    >>> point_segment_distance(-3.0, -4.0, 0.0, 0.0, 2.0, 0.0)
+    5.0
+    >>> point_segment_distance(1.0, 1.0, 0.0, 0.0, 0.0, 0.0) == math.sqrt(2.0)
+    True
     """
-    ex, ey = b[..., 0] - a[..., 0], b[..., 1] - a[..., 1]
-    wx, wy = px - a[..., 0], py - a[..., 1]
+    ex, ey = bx - ax, by - ay
+    wx, wy = px - ax, py - ay
     length2 = ex * ex + ey * ey
-    with np.errstate(invalid="ignore", divide="ignore"):
-        t = np.where(length2 > 0.0, (wx * ex + wy * ey) / length2, 0.0)
-    t = np.clip(t, 0.0, 1.0)
-    return np.hypot(wx - t * ex, wy - t * ey)
+    t = 0.0 if length2 == 0.0 else min(max((wx * ex + wy * ey) / length2, 0.0), 1.0)
+    return math.hypot(wx - t * ex, wy - t * ey)
 
 
-def segment_segments_distance(
-    p: NDArray[np.float64], q: NDArray[np.float64], edges: NDArray[np.float64]
-) -> NDArray[np.float64]:
-    """Distance from the segment ``p -> q`` to each edge of an ``(n, 2, 2)`` array.
+def segment_distance(
+    p: tuple[float, float], q: tuple[float, float], a: tuple[float, float], b: tuple[float, float]
+) -> float:
+    """Distance between the segments ``p -> q`` and ``a -> b``.
 
-    Zero where they intersect or touch; otherwise the least of the four endpoint-to-segment
-    distances, which is exact for two non-intersecting segments.
+    Zero where they cross or touch; otherwise the least of the four endpoint-to-segment
+    distances, which is exact for two segments that do not cross.
 
-    >>> edges = np.array([[[1.0, -1.0], [1.0, 1.0]], [[3.0, 1.0], [4.0, 1.0]]])
-    >>> segment_segments_distance(np.array([0.0, 0.0]), np.array([2.0, 0.0]), edges).tolist()
-    [0.0, 1.4142135623730951]
+    >>> segment_distance((0.0, 0.0), (2.0, 0.0), (1.0, -1.0), (1.0, 1.0))
+    0.0
+    >>> segment_distance((0.0, 0.0), (2.0, 0.0), (3.0, 1.0), (4.0, 1.0)) == math.sqrt(2.0)
+    True
     """
-    a, b = edges[:, 0, :], edges[:, 1, :]
-    d = np.minimum.reduce(
-        [
-            point_segment_distance(a[:, 0], a[:, 1], p, q),
-            point_segment_distance(b[:, 0], b[:, 1], p, q),
-            point_segment_distance(np.full(len(a), p[0]), np.full(len(a), p[1]), a, b),
-            point_segment_distance(np.full(len(a), q[0]), np.full(len(a), q[1]), a, b),
-        ]
+    (px, py), (qx, qy), (ax, ay), (bx, by) = p, q, a, b
+    # Proper crossing: p and q strictly either side of the line ab, and a and b of the line pq.
+    ex, ey, rx, ry = bx - ax, by - ay, qx - px, qy - py
+    sp = ex * (py - ay) - ey * (px - ax)
+    sq = ex * (qy - ay) - ey * (qx - ax)
+    sa = rx * (ay - py) - ry * (ax - px)
+    sb = rx * (by - py) - ry * (bx - px)
+    if sp * sq < 0.0 and sa * sb < 0.0:
+        return 0.0
+    return min(
+        point_segment_distance(ax, ay, px, py, qx, qy),
+        point_segment_distance(bx, by, px, py, qx, qy),
+        point_segment_distance(px, py, ax, ay, bx, by),
+        point_segment_distance(qx, qy, ax, ay, bx, by),
     )
-    # Proper crossings: p and q on strictly opposite sides of the edge line and vice versa.
-    ex, ey = b[:, 0] - a[:, 0], b[:, 1] - a[:, 1]
-    sp = _cross(ex, ey, p[0] - a[:, 0], p[1] - a[:, 1])
-    sq = _cross(ex, ey, q[0] - a[:, 0], q[1] - a[:, 1])
-    rx, ry = q[0] - p[0], q[1] - p[1]
-    sa = _cross(rx, ry, a[:, 0] - p[0], a[:, 1] - p[1])
-    sb = _cross(rx, ry, b[:, 0] - p[0], b[:, 1] - p[1])
-    crossing = (sp * sq < 0.0) & (sa * sb < 0.0)
-    return np.where(crossing, 0.0, d)
 
 
 class ClearanceChecker:
@@ -85,20 +81,38 @@ class ClearanceChecker:
 
     def __init__(self, world: World, radius: float) -> None:
         self._edges = world.segments
+        self._mids = self._edges.mean(axis=1)
+        self._halves = 0.5 * np.hypot(*(self._edges[:, 1] - self._edges[:, 0]).T)
         self._centers = world.circle_centers
         self._radii = world.circle_radii
         self.radius = radius
 
     def segment_clearance(self, start: Pose, end: Pose) -> float:
-        """Clearance of the disc swept from ``start`` to ``end`` (positions only)."""
-        p = np.array([start.x, start.y])
-        q = np.array([end.x, end.y])
-        best = np.inf
-        if len(self._edges):
-            best = float(segment_segments_distance(p, q, self._edges).min())
-        if len(self._radii):
-            to_centres = point_segment_distance(self._centers[:, 0], self._centers[:, 1], p, q)
-            best = min(best, float((to_centres - self._radii).min()))
+        """Clearance of the disc swept from ``start`` to ``end`` (positions only).
+
+        Only obstacles that can hold the minimum are measured exactly: the distance from the
+        path's midpoint ``m`` (half-length ``h``) to an edge of midpoint ``c`` and half-length
+        ``k`` lies within ``|m - c| -+ (h + k)``, and to a circle of centre ``c`` and radius
+        ``r`` within ``|m - c| - r -+ h``; an obstacle whose lower bound exceeds the least
+        upper bound cannot be the nearest.
+        """
+        p, q = (start.x, start.y), (end.x, end.y)
+        mx, my = 0.5 * (p[0] + q[0]), 0.5 * (p[1] + q[1])
+        h = 0.5 * math.hypot(q[0] - p[0], q[1] - p[1])
+        edge_mid = np.hypot(self._mids[:, 0] - mx, self._mids[:, 1] - my)
+        circle_mid = np.hypot(self._centers[:, 0] - mx, self._centers[:, 1] - my) - self._radii
+        bound = h + min(
+            float((edge_mid + self._halves).min(initial=math.inf)),
+            float(circle_mid.min(initial=math.inf)),
+        )
+        best = math.inf
+        for a, b in self._edges[edge_mid - self._halves - h <= bound].tolist():
+            best = min(best, segment_distance(p, q, a, b))
+        near = circle_mid - h <= bound
+        for (cx, cy), r in zip(
+            self._centers[near].tolist(), self._radii[near].tolist(), strict=True
+        ):
+            best = min(best, point_segment_distance(cx, cy, *p, *q) - r)
         return best - self.radius
 
     def pose_clearance(self, pose: Pose) -> float:

@@ -24,6 +24,9 @@ from numpy.typing import NDArray
 
 #: Half-width of the paper's front beam, radians (section 4: front beam from -22.5 to 22.5 deg).
 FRONT_HALF_WIDTH = math.radians(22.5)
+#: Rays computed as ``angle_min + i * angle_increment`` land on the +-22.5 degree borders only
+#: to within rounding (1e-16 rad); this tolerance keeps such rays in the front beam.
+BORDER_TOLERANCE = 1e-9
 
 
 class Beam(StrEnum):
@@ -40,9 +43,9 @@ def beam_of(angle: float) -> Beam:
     >>> beam_of(math.radians(40.0)), beam_of(math.radians(-22.5)), beam_of(-1.0)
     (<Beam.LEFT: 'left'>, <Beam.FRONT: 'front'>, <Beam.RIGHT: 'right'>)
     """
-    if angle > FRONT_HALF_WIDTH:
+    if angle > FRONT_HALF_WIDTH + BORDER_TOLERANCE:
         return Beam.LEFT
-    if angle < -FRONT_HALF_WIDTH:
+    if angle < -FRONT_HALF_WIDTH - BORDER_TOLERANCE:
         return Beam.RIGHT
     return Beam.FRONT
 
@@ -62,8 +65,10 @@ class LaserScan:
     ranges: NDArray[np.float64]
 
     def __post_init__(self) -> None:
-        ranges = np.array(self.ranges, dtype=np.float64)
-        ranges.setflags(write=False)
+        ranges = np.asarray(self.ranges, dtype=np.float64)
+        if ranges.flags.writeable:  # the caller may still hold it: keep a private copy
+            ranges = ranges.copy()
+            ranges.setflags(write=False)
         object.__setattr__(self, "ranges", ranges)
         expected = self.angle_min + self.angle_increment * (len(ranges) - 1)
         if len(ranges) < 2 or not math.isclose(self.angle_max, expected, abs_tol=1e-9):

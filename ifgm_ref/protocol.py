@@ -33,13 +33,15 @@ class Behaviour(StrEnum):
 class EpisodeParams:
     """Everything a planner may know before the first step, besides start and goal.
 
-    ``params`` holds planner-specific settings (e.g. ``d_th``) by name.
+    ``params`` holds planner-specific settings (e.g. ``d_th``) by name; ``goal_tolerance`` is
+    the distance, in ft, at which the episode counts the goal as reached.
     """
 
     robot: RobotParams = field(default_factory=RobotParams)
     sensor: SensorParams = field(default_factory=SensorParams)
     dt: float = 0.1
     params: dict[str, Any] = field(default_factory=dict)
+    goal_tolerance: float = 0.5
 
 
 @dataclass(frozen=True)

@@ -144,7 +144,7 @@ def simulate(
     robot = world.robot
     sensor = IRSensor(world)
     checker = ClearanceChecker(world, robot.radius)
-    episode = EpisodeParams(robot, world.sensor, sim.dt, dict(params or {}))
+    episode = EpisodeParams(robot, world.sensor, sim.dt, dict(params or {}), sim.goal_tolerance)
     planner.reset(world.start, world.goal, episode)
 
     max_steps = math.ceil(sim.max_time / sim.dt - 1e-9)

@@ -4,12 +4,11 @@ from __future__ import annotations
 
 import math
 
-import numpy as np
 import shapely
 from hypothesis import assume, example, given
 from hypothesis import strategies as st
 
-from ifgm_ref.collision import ClearanceChecker, segment_segments_distance
+from ifgm_ref.collision import ClearanceChecker, segment_distance
 from ifgm_ref.pose import Point, Pose
 from ifgm_ref.world import Circle, Polygon, World
 
@@ -78,8 +77,7 @@ def test_grazing_a_corner_between_samples_is_caught() -> None:
 
 
 def test_crossing_segments_have_zero_distance() -> None:
-    edges = np.array([[[0.0, -1.0], [0.0, 1.0]]])
-    assert segment_segments_distance(np.array([-1.0, 0.0]), np.array([1.0, 0.0]), edges)[0] == 0.0
+    assert segment_distance((-1.0, 0.0), (1.0, 0.0), (0.0, -1.0), (0.0, 1.0)) == 0.0
 
 
 def test_world_without_obstacles_has_infinite_clearance() -> None:
