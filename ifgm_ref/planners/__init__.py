@@ -11,6 +11,8 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 from ifgm_ref.errors import PlannerError
+from ifgm_ref.planners.iba import IBAPlanner
+from ifgm_ref.planners.ifgm import IFGMPlanner
 from ifgm_ref.planners.straight import StraightPlanner
 from ifgm_ref.protocol import Planner
 
@@ -25,6 +27,18 @@ class PlannerInfo:
 
 
 PLANNERS: dict[str, PlannerInfo] = {
+    "iba": PlannerInfo(
+        IBAPlanner,
+        "Intelligent Bug Algorithm (section 4.1): bidirectional edge following, leaving at the "
+        "first free path to the goal",
+        IBAPlanner.parameters,
+    ),
+    "ifgm": PlannerInfo(
+        IFGMPlanner,
+        "Intelligent Follow the Gap Method (section 4, Figure 3): FGM through wide gaps, IBA "
+        "round the rest, 45-degree turns out of dead ends",
+        IFGMPlanner.parameters,
+    ),
     "straight": PlannerInfo(StraightPlanner, "steer straight at the goal; no avoidance"),
 }
 

@@ -1,0 +1,142 @@
+"""The decision function of IFGM: the paper's Figure 3 flowchart, reconstructed.
+
+Figure 3 itself is not in our copy of the paper; section 4 describes it: "After encountering
+the obstacles, if both conditions are true (refer to Figure 3), the robot is steered by FGM
+otherwise it is steered by IBA" -- the conditions being *max gap > d_th* and *distance to the
+nearest obstacle > d_obs* -- with Case-1 (steer through the gap, eqs. (1)-(4)), Case-2 (max
+gap <= d_th, or obstacles on one side only: IBA), Case-3 (an obstacle of more impact pre-empts
+the one being avoided; avoidance is recursive) and the dead-end rule for U and H shapes (turn
+in 45-degree steps until a free direction is found). After avoiding, "the robot regenerates
+the reference path and follows it until reaches to the destination."
+
+The flowchart is one function of boolean *atoms* computed from the percepts (:class:`Atoms`).
+Each :class:`Branch` has a guard, an expression over the atoms written with ``&``, ``|`` and
+``~`` only, so that the same guards evaluate on numpy booleans at run time and on sympy
+symbols in the proofs. The guards partition the atom space: exactly one holds for every
+percept. :func:`decide` checks that at every call.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import astuple, dataclass, fields
+from enum import StrEnum
+from typing import Any
+
+import numpy as np
+
+
+class Branch(StrEnum):
+    """The branches of the reconstructed Figure 3, as they appear in traces."""
+
+    GOAL_REACHED = "goal_reached"
+    MOVE_TO_GOAL = "move_to_goal"
+    CASE1_GAP = "case1_gap"
+    CASE2_NARROW_GAP = "case2_narrow_gap"
+    CASE2_ONE_SIDED = "case2_one_sided"
+    TOO_CLOSE = "too_close"
+    CASE3_PREEMPT = "case3_preempt"
+    FOLLOW_EDGE = "follow_edge"
+    DEAD_END_TURN = "dead_end_turn"
+    PATH_REGENERATED = "path_regenerated"
+
+
+@dataclass(frozen=True)
+class Atoms:
+    """The yes/no facts Figure 3 decides on, computed by the planner from its percepts.
+
+    Attributes
+    ----------
+    at_goal : the robot is within the goal tolerance.
+    turning : a dead-end turn sequence (45, 90, 135, 180 degrees) is under way.
+    avoiding : IBA is following an obstacle's edge (*obstacle avoidance* behaviour).
+    blocked : an obstacle stands in the robot-wide corridor towards the goal, within the
+        encounter distance ("an obstacle is sensed" on the reference path).
+    free : IBA's leaving condition: the goal in view and its corridor clear as far as the
+        sensor sees or to the goal (section 4.1).
+    close : the nearest obstacle is at most ``d_obs`` away.
+    wide : the maximum gap between consecutive obstacles is greater than ``d_th``.
+    one_sided : every obstacle point is on one side of the heading.
+    dead_end : the front beam is blocked within the encounter distance and every ray of the
+        field of view returns, with no gap wider than ``d_th``: nowhere to go ahead (inside a
+        U or an H). It is consulted only on encountering an obstacle, not while IBA follows
+        an edge.
+    preempt : while avoiding, another obstacle nearer than the followed edge is sensed.
+    """
+
+    at_goal: Any
+    turning: Any
+    avoiding: Any
+    blocked: Any
+    free: Any
+    close: Any
+    wide: Any
+    one_sided: Any
+    dead_end: Any
+    preempt: Any
+
+    @classmethod
+    def names(cls) -> tuple[str, ...]:
+        """The atom names, in declaration order."""
+        return tuple(f.name for f in fields(cls))
+
+
+Guard = Callable[[Atoms], Any]
+
+
+def _in_avoidance(a: Atoms) -> Any:
+    return ~a.at_goal & ~a.turning & a.avoiding
+
+
+def _encountered(a: Atoms) -> Any:
+    return ~a.at_goal & ~a.turning & ~a.avoiding & a.blocked & ~a.dead_end
+
+
+#: Figure 3 as guards: for every combination of atoms exactly one guard holds.
+GUARDS: dict[Branch, Guard] = {
+    Branch.GOAL_REACHED: lambda a: a.at_goal,
+    Branch.DEAD_END_TURN: lambda a: (
+        ~a.at_goal & (a.turning | (~a.avoiding & a.blocked & a.dead_end))
+    ),
+    Branch.PATH_REGENERATED: lambda a: _in_avoidance(a) & a.free,
+    Branch.CASE3_PREEMPT: lambda a: _in_avoidance(a) & ~a.free & a.preempt,
+    Branch.FOLLOW_EDGE: lambda a: _in_avoidance(a) & ~a.free & ~a.preempt,
+    Branch.MOVE_TO_GOAL: lambda a: ~a.at_goal & ~a.turning & ~a.avoiding & ~a.blocked,
+    Branch.TOO_CLOSE: lambda a: _encountered(a) & a.close,
+    Branch.CASE2_ONE_SIDED: lambda a: _encountered(a) & ~a.close & a.one_sided,
+    Branch.CASE2_NARROW_GAP: lambda a: _encountered(a) & ~a.close & ~a.one_sided & ~a.wide,
+    Branch.CASE1_GAP: lambda a: _encountered(a) & ~a.close & ~a.one_sided & a.wide,
+}
+
+#: The branches in which IBA steers (Case-2, too close, and the avoidance it continues).
+IBA_BRANCHES = frozenset(
+    {
+        Branch.CASE2_NARROW_GAP,
+        Branch.CASE2_ONE_SIDED,
+        Branch.TOO_CLOSE,
+        Branch.CASE3_PREEMPT,
+        Branch.FOLLOW_EDGE,
+    }
+)
+
+
+def decide(atoms: Atoms) -> Branch:
+    """The one Figure 3 branch whose guard holds for ``atoms`` (plain or numpy booleans).
+
+    Raises ``AssertionError`` if the guards do not hold for exactly one branch -- the
+    partition property, proved for all atom values in ``proofs/flowchart.py``.
+
+    Examples
+    --------
+    >>> base = dict.fromkeys(Atoms.names(), False)
+    >>> decide(Atoms(**base))
+    <Branch.MOVE_TO_GOAL: 'move_to_goal'>
+    >>> decide(Atoms(**{**base, "blocked": True, "wide": True}))
+    <Branch.CASE1_GAP: 'case1_gap'>
+    >>> decide(Atoms(**{**base, "blocked": True, "wide": True, "close": True}))
+    <Branch.TOO_CLOSE: 'too_close'>
+    """
+    values = Atoms(*(np.bool_(v) for v in astuple(atoms)))
+    holding = [branch for branch, guard in GUARDS.items() if bool(guard(values))]
+    assert len(holding) == 1, f"guards hold for {holding}, but should for exactly one [{atoms}]"
+    return holding[0]

@@ -1,0 +1,315 @@
+"""IFGM, the Intelligent Follow the Gap Method (section 4 and Figure 3 of the paper).
+
+Every step the robot resolves its scan into obstacles (clusters of returns, "average
+clustered value" as position, the nearest first), measures the gaps between consecutive
+obstacles and computes the atoms of the flowchart (:mod:`ifgm_ref.flowchart`); the flowchart
+alone picks the branch, and this module carries it out:
+
+* *move to goal*: head for the goal along the regenerated reference path (eq. (3));
+* *Case-1* (max gap > ``d_th``, nearest obstacle > ``d_obs``, obstacles on both sides):
+  steer through the middle of the widest gap, eqs. (1)-(4);
+* *Case-2* and *too close*: avoid with IBA (:class:`~ifgm_ref.planners.iba.IBAPlanner`),
+  following the edge bidirectionally until a free path towards the goal appears;
+* *Case-3*: while avoiding, a nearer obstacle pre-empts the followed one; the followed one is
+  pushed on a stack and resumed if it is met again (the recursion of section 4);
+* *dead end* (inside a U or an H): turn in place in 45-degree steps, 45, 90, 135, 180 degrees,
+  until the corridor ahead is free as far as the sensor sees; go that way, then follow the
+  wall round from outside with IBA and regenerate the path.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, fields
+from typing import Any, ClassVar
+
+import numpy as np
+
+from ifgm_ref.equations import eq1_gap_midpoint, eq2_gap_angle, eq3_goal_angle, eq4_final_heading
+from ifgm_ref.errors import ParameterError
+from ifgm_ref.flowchart import Atoms, Branch, decide
+from ifgm_ref.laserscan import Beam
+from ifgm_ref.percepts.clusters import Cluster, Gap, Side, cluster_scan, gaps_between
+from ifgm_ref.percepts.corridor import free_length
+from ifgm_ref.percepts.points import to_world
+from ifgm_ref.planners.boundary import BoundaryParams
+from ifgm_ref.planners.edge_following import FollowSide, turn_speed
+from ifgm_ref.planners.iba import IBAPlanner, freer_side
+from ifgm_ref.pose import Point, Pose, distance, wrap_angle
+from ifgm_ref.protocol import Behaviour, Command, EpisodeParams, Observation
+
+#: The dead-end rule's step, radians (section 4: "turns in steps of 45 degrees").
+DEAD_END_STEP = math.pi / 4
+#: At most four steps: 45, 90, 135 and 180 degrees ("until it finds obstacle free path (on
+#: 180 degrees)").
+DEAD_END_MAX_STEPS = 4
+#: A commanded turn counts as done within this angle, radians.
+TURN_DONE = 1e-6
+
+
+@dataclass(frozen=True)
+class IFGMParams:
+    """IFGM's thresholds and weights (section 4); ``None`` means "derived from the robot".
+
+    Parameters
+    ----------
+    d_th : float or None, default 2 r + 1 ft
+        Gap threshold: Case-1 needs a gap wider than this. The paper: greater than the robot's
+        size (we read: its diameter 2 r, errata row 12); one extra foot leaves half a foot of
+        clearance either side when passing through the middle.
+    d_obs : float or None, default r + v * 1 s
+        Nearest-obstacle threshold: at or below it IBA takes over. The paper: it "depends on
+        speed of the robot"; we take the robot's radius plus one second of travel.
+    d_look : float, default 8.0
+        Encounter distance: an obstacle in the robot-wide corridor towards the goal nearer
+        than this makes the robot leave *move to goal*; about half the default sensor range,
+        so that gaps are measured while there is still room to steer.
+    w_g, w_d : float, default 9.0 and 1.0
+        Gap and goal weights of eq. (4). With the default ``d_th`` = 3 ft the gap counts
+        three times as much as the goal (``w_g / d_th = 3``), so the robot commits to the gap.
+    jump : float or None, default 2 r
+        Two consecutive returns further apart than this belong to different obstacles: a
+        robot cannot pass between returns nearer than its diameter anyway.
+    preempt_margin : float, default 0.5
+        Case-3: another obstacle pre-empts the followed edge when it is this much nearer.
+    """
+
+    d_th: float | None = None
+    d_obs: float | None = None
+    d_look: float = 8.0
+    w_g: float = 9.0
+    w_d: float = 1.0
+    jump: float | None = None
+    preempt_margin: float = 0.5
+
+    @classmethod
+    def from_params(cls, params: dict[str, Any]) -> IFGMParams:
+        """Take this class's fields from a planner ``params`` mapping; ignore the rest."""
+        known = {f.name for f in fields(cls)}
+        values = {k: v for k, v in params.items() if k in known}
+        for name, value in values.items():
+            if value is None:
+                continue
+            if (
+                isinstance(value, bool)
+                or not isinstance(value, int | float)
+                or not (math.isfinite(value) and value > 0)
+            ):
+                raise ParameterError(f"`{name}` must be a finite number > 0, got {value!r}")
+        return cls(**values)
+
+
+class IFGMPlanner(IBAPlanner):
+    """IFGM: FGM through wide gaps, IBA round the rest, 45-degree turns out of dead ends."""
+
+    name = "ifgm"
+    parameters: ClassVar[tuple[str, ...]] = tuple(f.name for f in fields(IFGMParams)) + tuple(
+        f.name for f in fields(BoundaryParams)
+    )
+
+    def reset(self, start: Pose, goal: Point, params: EpisodeParams) -> None:
+        """Start in *move to goal*; derive and validate the thresholds."""
+        super().reset(start, goal, params)
+        p = IFGMParams.from_params(params.params)
+        r, v = params.robot.radius, params.robot.speed
+        self.d_th = 2.0 * r + 1.0 if p.d_th is None else float(p.d_th)
+        if self.d_th <= 2.0 * r:
+            raise ParameterError(
+                f"`d_th` must be > the robot diameter {2.0 * r!r} (section 4), got {self.d_th!r}"
+            )
+        self.d_obs = r + v * 1.0 if p.d_obs is None else float(p.d_obs)
+        self.jump = 2.0 * r if p.jump is None else float(p.jump)
+        self.ifgm = p
+        # The goal is reached during this step when it is within the episode's tolerance plus
+        # one step of travel: the robot then drives straight onto it.
+        self.goal_tolerance = params.goal_tolerance + params.robot.speed * params.dt
+        self.dt = params.dt
+        self.turning = False
+        self.turn_start = 0.0
+        self.turn_sign = 1
+        self.turn_steps = 0
+        self.escaping = 0.0
+        self.stack: list[tuple[Point, FollowSide]] = []
+        self.last_branch: Branch | None = None
+        self.last_gap: Gap | None = None
+
+    # -- percepts -> atoms ------------------------------------------------------------------
+    def atoms(self, observation: Observation, clusters: tuple[Cluster, ...]) -> Atoms:
+        """The flowchart's atoms for this observation."""
+        pose, scan = observation.pose, observation.scan
+        gaps = gaps_between(clusters)
+        widest = max(gaps, key=lambda g: g.width, default=None)
+        self.last_gap = widest
+        nearest = min((c.nearest for c in clusters), default=math.inf)
+        sides = {c.side for c in clusters}
+        one_sided = bool(clusters) and (sides == {Side.LEFT} or sides == {Side.RIGHT})
+        wide = widest is not None and widest.width > self.d_th
+        reach = min(self.ifgm.d_look, distance(pose, self.goal))
+        blocked = self.goal_free_length(pose) < reach
+        front = np.array([b is Beam.FRONT for b in scan.beams])
+        front_near = bool(np.any(scan.ranges[front] <= self.ifgm.d_look))
+        enclosed = bool(np.all(np.isfinite(scan.ranges)))
+        dead_end = front_near and enclosed and not wide
+        return Atoms(
+            at_goal=distance(pose, self.goal) <= self.goal_tolerance,
+            turning=self.turning,
+            avoiding=self.following,
+            blocked=blocked,
+            free=self.following and self.path_free(pose),
+            close=nearest <= self.d_obs,
+            wide=wide,
+            one_sided=one_sided,
+            dead_end=dead_end,
+            preempt=self.following and self._preempting(pose, clusters),
+        )
+
+    def _followed_point(self, pose: Pose) -> Point | None:
+        pts = self.memory.points
+        if len(pts) == 0:
+            return None
+        i = int(np.argmin(np.hypot(pts[:, 0] - pose.x, pts[:, 1] - pose.y)))
+        return Point(float(pts[i, 0]), float(pts[i, 1]))
+
+    def _preempting(self, pose: Pose, clusters: tuple[Cluster, ...]) -> bool:
+        """Case-3: a cluster apart from the followed edge and nearer than it by a margin."""
+        followed = self._followed_point(pose)
+        if followed is None:
+            return False
+        reach = distance(pose, followed) - self.ifgm.preempt_margin
+        for c in clusters:
+            if c.nearest >= reach:
+                continue
+            world = to_world(c.xy, pose)
+            if np.hypot(world[:, 0] - followed.x, world[:, 1] - followed.y).min() > self.jump:
+                return True
+        return False
+
+    # -- the planner ------------------------------------------------------------------------
+    def step(self, observation: Observation) -> Command:
+        """Decide with Figure 3, then act on the branch."""
+        pose = observation.pose
+        self.memory.add(observation.t, pose, observation.scan)
+        here = pose.position
+        if self.following:
+            self.travelled += distance(self._last, here)
+        self._last = here
+        clusters = cluster_scan(observation.scan, jump=self.jump)
+        branch = decide(self.atoms(observation, clusters))
+        self.last_branch = branch
+        if branch is Branch.GOAL_REACHED:
+            heading = eq3_goal_angle(pose.position, self.goal)
+            speed = min(self.speed, distance(pose, self.goal) / self.dt)
+            return Command(heading, speed, behaviour=Behaviour.MOVE_TO_GOAL, branch=branch)
+        if branch is Branch.MOVE_TO_GOAL:
+            return self._to_goal(pose, branch)
+        if branch is Branch.PATH_REGENERATED:
+            self.following = False
+            self.stack.clear()
+            return self._to_goal(pose, branch)
+        if branch is Branch.CASE1_GAP:
+            return self._through_gap(pose)
+        if branch is Branch.DEAD_END_TURN:
+            return self._dead_end(observation)
+        if branch is Branch.CASE3_PREEMPT:
+            followed = self._followed_point(pose)
+            if followed is not None:
+                self.stack.append((followed, self.side))
+            self.side = freer_side(observation.scan, pose, self.goal_bearing(pose))
+        elif branch is Branch.FOLLOW_EDGE:
+            self._resume_if_back(pose)
+        else:  # Case-2 (narrow gap, one-sided) or too close: IBA takes over
+            self.start_following(observation)
+        return self._follow(pose, branch)
+
+    def _to_goal(self, pose: Pose, branch: Branch) -> Command:
+        heading = eq3_goal_angle(pose.position, self.goal)
+        return Command(
+            heading,
+            turn_speed(wrap_angle(heading - pose.theta), self.speed),
+            behaviour=Behaviour.MOVE_TO_GOAL,
+            branch=branch,
+        )
+
+    def _follow(self, pose: Pose, branch: Branch) -> Command:
+        command = self.follow(pose, branch)
+        return Command(command.heading, command.speed, behaviour=command.behaviour, branch=branch)
+
+    def gap_heading(self, pose: Pose, gap: Gap) -> float:
+        """Case-1: the final heading through ``gap`` by eqs. (1)-(4), world frame."""
+        x_g, y_g = eq1_gap_midpoint(gap.right, gap.left)
+        theta_g = pose.theta + eq2_gap_angle(x_g, y_g)
+        theta_d = eq3_goal_angle(pose.position, self.goal)
+        return eq4_final_heading(
+            theta_g,
+            theta_d,
+            w_g=self.ifgm.w_g,
+            w_d=self.ifgm.w_d,
+            d_th=self.d_th,
+            heading=pose.theta,
+        )
+
+    def _through_gap(self, pose: Pose) -> Command:
+        assert self.last_gap is not None
+        heading = self.gap_heading(pose, self.last_gap)
+        return Command(
+            heading,
+            turn_speed(wrap_angle(heading - pose.theta), self.speed),
+            behaviour=Behaviour.OBSTACLE_AVOIDANCE,
+            branch=Branch.CASE1_GAP,
+        )
+
+    def _resume_if_back(self, pose: Pose) -> None:
+        """Case-3 recursion: back at the obstacle avoided before the pre-emption, resume it."""
+        followed = self._followed_point(pose)
+        if (
+            self.stack
+            and followed is not None
+            and distance(followed, self.stack[-1][0]) <= self.jump
+        ):
+            _, self.side = self.stack.pop()
+
+    def _dead_end(self, observation: Observation) -> Command:
+        """Turn in 45-degree steps until the way ahead is free; then go that way."""
+        pose = observation.pose
+        if not self.turning:  # entering the dead end
+            self.turning = True
+            self.turn_start = pose.theta
+            self.turn_steps = 1
+            self.escaping = 0.0
+            side = freer_side(observation.scan, pose, self.goal_bearing(pose))
+            self.turn_sign = 1 if side is FollowSide.RIGHT else -1  # turn towards the freer beam
+        target = wrap_angle(self.turn_start + self.turn_sign * self.turn_steps * DEAD_END_STEP)
+        if self.escaping == 0.0 and abs(wrap_angle(pose.theta - target)) > TURN_DONE:
+            return self._turn_command(target)
+        ahead = free_length(self.memory.points, (pose.x, pose.y), pose.theta, self.half_width)
+        if self.escaping == 0.0:
+            if ahead < self.range_max and self.turn_steps < DEAD_END_MAX_STEPS:
+                self.turn_steps += 1
+                return self._turn_command(
+                    wrap_angle(self.turn_start + self.turn_sign * self.turn_steps * DEAD_END_STEP)
+                )
+            self.escaping = 1e-9  # free (or 180 degrees reached): go that way
+            self._escape_from = pose.position
+        gone = distance(pose, self._escape_from)
+        if gone < self.ifgm.d_look and ahead > self.standoff + self.tuning.hit_margin:
+            self.escaping = max(gone, 1e-9)
+            return Command(
+                target,
+                self.speed,
+                behaviour=Behaviour.OBSTACLE_AVOIDANCE,
+                branch=Branch.DEAD_END_TURN,
+            )
+        # Escaped: follow the nearest wall round from outside (IBA), then regenerate the path.
+        self.turning = False
+        self.escaping = 0.0
+        self.start_following(observation)
+        followed = self._followed_point(pose)
+        if followed is not None:
+            rel = wrap_angle(math.atan2(followed.y - pose.y, followed.x - pose.x) - pose.theta)
+            self.side = FollowSide.LEFT if rel > 0.0 else FollowSide.RIGHT
+        return self._follow(pose, Branch.DEAD_END_TURN)
+
+    def _turn_command(self, target: float) -> Command:
+        return Command(
+            target, 0.0, behaviour=Behaviour.OBSTACLE_AVOIDANCE, branch=Branch.DEAD_END_TURN
+        )
