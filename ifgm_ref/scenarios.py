@@ -18,7 +18,7 @@ from pathlib import Path
 from ifgm_ref.errors import WorldError
 from ifgm_ref.params import PAPER_FREE_DISTANCE_FT
 from ifgm_ref.pose import Point, Pose
-from ifgm_ref.shapes import h_shape, rectangle, u_shape
+from ifgm_ref.shapes import circle, h_shape, rectangle, u_shape
 from ifgm_ref.world import Bounds, World
 from ifgm_ref.worldfile import load_world
 
@@ -62,6 +62,27 @@ BUILTIN_WORLDS: dict[str, BuiltinWorld] = {
     "box": BuiltinWorld(
         "demo: one 4 x 10 ft box across the straight line to the goal",
         lambda: _demo("box", rectangle((30.0, 0.0), 4.0, 10.0)),
+    ),
+    "offset_box": BuiltinWorld(
+        "demo: a 4 x 8 ft box just left of the straight line, its edge 0.4 ft into the path",
+        lambda: _demo("offset_box", rectangle((30.0, 4.4), 4.0, 8.0)),
+    ),
+    "posts_wide": BuiltinWorld(
+        "demo: three posts (radius 2.5 ft) across the line, 4 ft gaps between them",
+        lambda: _demo("posts_wide", *(circle((30.0, y), 2.5) for y in (-9.0, 0.0, 9.0))),
+    ),
+    "posts_narrow": BuiltinWorld(
+        "demo: three posts (radius 2.5 ft) across the line, 0.5 ft gaps between them",
+        lambda: _demo("posts_narrow", *(circle((30.0, y), 2.5) for y in (-5.5, 0.0, 5.5))),
+    ),
+    "wall_posts": BuiltinWorld(
+        "demo: a 20 ft wall across the line, two posts 2 ft in front of it",
+        lambda: _demo(
+            "wall_posts",
+            rectangle((30.0, 0.0), 2.0, 20.0),
+            circle((26.0, -5.0), 1.0),
+            circle((26.0, 5.0), 1.0),
+        ),
     ),
     "u_trap": BuiltinWorld(
         "demo: a U (24 ft wide, 16 ft deep) opening towards the start, on the straight line",

@@ -57,9 +57,10 @@ class IFGMParams:
         Gap threshold: Case-1 needs a gap wider than this. The paper: greater than the robot's
         size (we read: its diameter 2 r, errata row 12); one extra foot leaves half a foot of
         clearance either side when passing through the middle.
-    d_obs : float or None, default r + v * 1 s
+    d_obs : float or None, default r + v * 0.5 s
         Nearest-obstacle threshold: at or below it IBA takes over. The paper: it "depends on
-        speed of the robot"; we take the robot's radius plus one second of travel.
+        speed of the robot"; we take the robot's radius plus half a second of travel, so that
+        a robot passing through the middle of a gap just wider than ``d_th`` is not "too close".
     d_look : float, default 8.0
         Encounter distance: an obstacle in the robot-wide corridor towards the goal nearer
         than this makes the robot leave *move to goal*; about half the default sensor range,
@@ -117,7 +118,7 @@ class IFGMPlanner(IBAPlanner):
             raise ParameterError(
                 f"`d_th` must be > the robot diameter {2.0 * r!r} (section 4), got {self.d_th!r}"
             )
-        self.d_obs = r + v * 1.0 if p.d_obs is None else float(p.d_obs)
+        self.d_obs = r + v * 0.5 if p.d_obs is None else float(p.d_obs)
         self.jump = 2.0 * r if p.jump is None else float(p.jump)
         self.ifgm = p
         # The goal is reached during this step when it is within the episode's tolerance plus
@@ -130,15 +131,18 @@ class IFGMPlanner(IBAPlanner):
         self.turn_steps = 0
         self.escaping = 0.0
         self.stack: list[tuple[Point, FollowSide]] = []
+        self.followed: Point | None = None
+        self._gap_mid: Point | None = None
+        self._preemptor: Point | None = None
         self.last_branch: Branch | None = None
+        self.last_atoms: Atoms | None = None
         self.last_gap: Gap | None = None
 
     # -- percepts -> atoms ------------------------------------------------------------------
     def atoms(self, observation: Observation, clusters: tuple[Cluster, ...]) -> Atoms:
         """The flowchart's atoms for this observation."""
         pose, scan = observation.pose, observation.scan
-        gaps = gaps_between(clusters)
-        widest = max(gaps, key=lambda g: g.width, default=None)
+        widest = self._chosen_gap(pose, gaps_between(clusters))
         self.last_gap = widest
         nearest = min((c.nearest for c in clusters), default=math.inf)
         sides = {c.side for c in clusters}
@@ -163,24 +167,61 @@ class IFGMPlanner(IBAPlanner):
             preempt=self.following and self._preempting(pose, clusters),
         )
 
-    def _followed_point(self, pose: Pose) -> Point | None:
+    def _chosen_gap(self, pose: Pose, gaps: tuple[Gap, ...]) -> Gap | None:
+        """The maximum gap (section 4) -- but the gap steered through at the last step while
+        it stays wider than ``d_th``, so that two near-equal gaps (symmetric obstacles,
+        Figure 7) do not make the robot swerve from one to the other at every step."""
+        self._gap_mid, previous = None, self._gap_mid
+        if not gaps:
+            return None
+        chosen = max(gaps, key=lambda g: g.width)
+        if previous is not None:
+            for gap in gaps:
+                mid = to_world(np.array([eq1_gap_midpoint(gap.right, gap.left)]), pose)[0]
+                if gap.width > self.d_th and math.dist(mid, previous) <= self.jump:
+                    chosen = gap
+                    break
+        if chosen.width > self.d_th:
+            mid = to_world(np.array([eq1_gap_midpoint(chosen.right, chosen.left)]), pose)[0]
+            self._gap_mid = Point(float(mid[0]), float(mid[1]))
+        return chosen
+
+    def _nearest_remembered(self, pose: Pose, near: Point | None = None) -> Point | None:
+        """The remembered point nearest the robot; with ``near``, among those within ``jump``
+        of it (the same obstacle's edge, tracked as the robot moves along it)."""
         pts = self.memory.points
+        if near is not None:
+            pts = pts[np.hypot(pts[:, 0] - near.x, pts[:, 1] - near.y) <= self.jump]
         if len(pts) == 0:
             return None
         i = int(np.argmin(np.hypot(pts[:, 0] - pose.x, pts[:, 1] - pose.y)))
         return Point(float(pts[i, 0]), float(pts[i, 1]))
 
+    def on_hit(self, observation: Observation) -> None:
+        """A new avoidance starts: follow the nearest obstacle, with nothing pre-empted yet."""
+        self.followed = self._nearest_remembered(observation.pose)
+        self.stack.clear()
+
+    def _track_followed(self, pose: Pose) -> None:
+        """Keep :attr:`followed` on the edge of the obstacle being avoided."""
+        tracked = self._nearest_remembered(pose, self.followed) if self.followed else None
+        self.followed = tracked or self._nearest_remembered(pose)
+
     def _preempting(self, pose: Pose, clusters: tuple[Cluster, ...]) -> bool:
-        """Case-3: a cluster apart from the followed edge and nearer than it by a margin."""
-        followed = self._followed_point(pose)
-        if followed is None:
+        """Case-3: an obstacle apart from the followed one and nearer than it by a margin."""
+        self._preemptor = None
+        if self.followed is None:
             return False
-        reach = distance(pose, followed) - self.ifgm.preempt_margin
+        reach = distance(pose, self.followed) - self.ifgm.preempt_margin
         for c in clusters:
             if c.nearest >= reach:
                 continue
             world = to_world(c.xy, pose)
-            if np.hypot(world[:, 0] - followed.x, world[:, 1] - followed.y).min() > self.jump:
+            if np.hypot(world[:, 0] - self.followed.x, world[:, 1] - self.followed.y).min() > (
+                self.jump
+            ):
+                i = int(np.argmin(c.ranges))
+                self._preemptor = Point(float(world[i, 0]), float(world[i, 1]))
                 return True
         return False
 
@@ -194,7 +235,10 @@ class IFGMPlanner(IBAPlanner):
             self.travelled += distance(self._last, here)
         self._last = here
         clusters = cluster_scan(observation.scan, jump=self.jump)
-        branch = decide(self.atoms(observation, clusters))
+        if self.following:
+            self._track_followed(pose)
+        self.last_atoms = self.atoms(observation, clusters)
+        branch = decide(self.last_atoms)
         self.last_branch = branch
         if branch is Branch.GOAL_REACHED:
             heading = eq3_goal_angle(pose.position, self.goal)
@@ -204,6 +248,7 @@ class IFGMPlanner(IBAPlanner):
             return self._to_goal(pose, branch)
         if branch is Branch.PATH_REGENERATED:
             self.following = False
+            self.followed = None
             self.stack.clear()
             return self._to_goal(pose, branch)
         if branch is Branch.CASE1_GAP:
@@ -211,9 +256,9 @@ class IFGMPlanner(IBAPlanner):
         if branch is Branch.DEAD_END_TURN:
             return self._dead_end(observation)
         if branch is Branch.CASE3_PREEMPT:
-            followed = self._followed_point(pose)
-            if followed is not None:
-                self.stack.append((followed, self.side))
+            assert self.followed is not None and self._preemptor is not None
+            self.stack.append((self.followed, self.side))
+            self.followed = self._preemptor
             self.side = freer_side(observation.scan, pose, self.goal_bearing(pose))
         elif branch is Branch.FOLLOW_EDGE:
             self._resume_if_back(pose)
@@ -259,14 +304,17 @@ class IFGMPlanner(IBAPlanner):
         )
 
     def _resume_if_back(self, pose: Pose) -> None:
-        """Case-3 recursion: back at the obstacle avoided before the pre-emption, resume it."""
-        followed = self._followed_point(pose)
+        """Case-3 recursion: once the pre-empting obstacle is no longer the nearest, resume
+        avoiding the one it interrupted, on the side it was followed on."""
+        nearest = self._nearest_remembered(pose)
         if (
             self.stack
-            and followed is not None
-            and distance(followed, self.stack[-1][0]) <= self.jump
+            and nearest is not None
+            and self.followed is not None
+            and distance(nearest, self.followed) > self.jump
         ):
             _, self.side = self.stack.pop()
+            self.followed = nearest
 
     def _dead_end(self, observation: Observation) -> Command:
         """Turn in 45-degree steps until the way ahead is free; then go that way."""
@@ -303,7 +351,7 @@ class IFGMPlanner(IBAPlanner):
         self.turning = False
         self.escaping = 0.0
         self.start_following(observation)
-        followed = self._followed_point(pose)
+        followed = self._nearest_remembered(pose)
         if followed is not None:
             rel = wrap_angle(math.atan2(followed.y - pose.y, followed.x - pose.x) - pose.theta)
             self.side = FollowSide.LEFT if rel > 0.0 else FollowSide.RIGHT
