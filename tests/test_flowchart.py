@@ -1,0 +1,49 @@
+"""The reconstructed Figure 3 (ifgm_ref.flowchart): one branch for every percept."""
+
+from __future__ import annotations
+
+import itertools
+
+import pytest
+
+from ifgm_ref.flowchart import GUARDS, Atoms, Branch, decide
+
+ALL_ATOMS = list(itertools.product([False, True], repeat=len(Atoms.names())))
+
+
+def test_every_branch_has_a_guard() -> None:
+    assert set(GUARDS) == set(Branch)
+
+
+def test_guards_partition_every_combination_of_atoms() -> None:
+    """Exhaustive over all 2**10 atom values (the sympy proof is the general statement)."""
+    taken = {decide(Atoms(*values)) for values in ALL_ATOMS}
+    assert taken == set(Branch)
+
+
+def test_decide_rejects_guards_that_overlap(monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setitem(GUARDS, Branch.CASE1_GAP, lambda a: a.blocked)  # overlaps Case-2
+    atoms = Atoms(**{**dict.fromkeys(Atoms.names(), False), "blocked": True})
+    with pytest.raises(AssertionError, match="exactly one"):
+        decide(atoms)
+
+
+@pytest.mark.parametrize("values", ALL_ATOMS[::37])
+def test_case1_needs_both_conditions_of_section_4(values: tuple[bool, ...]) -> None:
+    """Case-1 (FGM) only if max gap > d_th and nearest > d_obs, with obstacles both sides."""
+    atoms = Atoms(*values)
+    if decide(atoms) is Branch.CASE1_GAP:
+        assert atoms.wide and not atoms.close and not atoms.one_sided and atoms.blocked
+
+
+def test_widening_the_gap_moves_case2_to_case1_never_back() -> None:
+    for values in ALL_ATOMS:
+        narrow = Atoms(*values)
+        if narrow.wide:
+            continue
+        wide = Atoms(**{**narrow.__dict__, "wide": True})
+        before, after = decide(narrow), decide(wide)
+        if before is Branch.CASE2_NARROW_GAP:
+            assert after is Branch.CASE1_GAP
+        if before is not Branch.CASE2_NARROW_GAP:
+            assert after is before, f"{narrow}: {before} -> {after}"

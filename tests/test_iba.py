@@ -1,0 +1,72 @@
+"""IBA (ifgm_ref.planners.iba): bidirectional edge following, free-path leaving."""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+
+from ifgm_ref.laserscan import Beam, LaserScan
+from ifgm_ref.planners.edge_following import FollowSide
+from ifgm_ref.planners.iba import IBAPlanner, beam_openness, freer_side
+from ifgm_ref.pose import Pose
+from ifgm_ref.scenarios import resolve_world
+from ifgm_ref.simulator import simulate
+from ifgm_ref.world import World
+
+ANGLES = dict(angle_min=-1.0, angle_max=1.0, angle_increment=0.5, range_min=0.0, range_max=10.0)
+
+
+@pytest.mark.parametrize("name", ["free", "box", "offset_box", "posts_narrow", "u_trap", "h_block"])
+def test_reaches_the_goal_without_collision(name: str) -> None:
+    result = simulate(resolve_world(name), IBAPlanner()).result
+    assert result.reached, f"stop_reason={result.stop_reason}, but should be goal_reached [{name}]"
+    assert result.min_clearance > 0.0
+
+
+def test_turns_towards_the_freer_beam() -> None:
+    left_open = LaserScan(**ANGLES, ranges=[2.0, 2.0, 3.0, math.inf, math.inf])
+    right_open = LaserScan(**ANGLES, ranges=[math.inf, 9.0, 3.0, 2.0, 2.0])
+    assert beam_openness(left_open, Beam.LEFT) == 10.0
+    # Turning left keeps the obstacle on the robot's right, and vice versa.
+    assert freer_side(left_open, Pose(0, 0, 0), goal_bearing=-1.0) is FollowSide.RIGHT
+    assert freer_side(right_open, Pose(0, 0, 0), goal_bearing=1.0) is FollowSide.LEFT
+
+
+def test_ties_break_towards_the_goal() -> None:
+    even = LaserScan(**ANGLES, ranges=[4.0, 4.0, 1.0, 4.0, 4.0])
+    assert freer_side(even, Pose(0, 0, 0), goal_bearing=0.3) is FollowSide.RIGHT
+    assert freer_side(even, Pose(0, 0, 0), goal_bearing=-0.3) is FollowSide.LEFT
+
+
+def _mirrored(world: World) -> World:
+    from ifgm_ref.world import Polygon
+
+    obstacles = tuple(Polygon(tuple((x, -y) for x, y in ob.vertices)) for ob in world.obstacles)
+    start = Pose(world.start.x, -world.start.y, -world.start.theta)
+    return World(
+        start=start,
+        goal=(world.goal.x, -world.goal.y),
+        obstacles=obstacles,
+        bounds=world.bounds,
+        name=f"{world.name} mirrored",
+    )
+
+
+def test_bidirectional_goes_round_the_side_with_room() -> None:
+    """offset_box juts into the path from the left: IBA goes right of it; mirrored, left."""
+    world = resolve_world("offset_box")
+    run = simulate(world, IBAPlanner())
+    mirrored = simulate(_mirrored(world), IBAPlanner())
+    assert min(s.y for s in run.trace) < -0.5 and max(s.y for s in run.trace) < 0.5
+    assert max(s.y for s in mirrored.trace) > 0.5 and min(s.y for s in mirrored.trace) > -0.5
+    assert run.result.path_length == pytest.approx(mirrored.result.path_length, rel=1e-9)
+
+
+def test_leaves_at_the_first_free_path_not_after_a_loop() -> None:
+    run = simulate(resolve_world("box"), IBAPlanner())
+    branches = [s.branch for s in run.trace]
+    assert branches.count("leave") == 1
+    follow = branches.count("follow_edge")
+    # The box is 4 x 10 ft: half its perimeter at the stand-off is about 20 ft, 150 steps.
+    assert 0 < follow < 200
