@@ -38,10 +38,13 @@ def _simulate(args: argparse.Namespace) -> int:
     if args.trace:
         path = Path(args.trace)
         path.write_text(run.trace_json() if path.suffix == ".json" else run.trace_csv())
-    if args.plot:
-        from ifgm_ref.plotting import plot_run, save_figure
+    if args.plot or args.animate:
+        from ifgm_ref.plotting import animate_run, plot_run, save_figure
 
-        save_figure(plot_run(world, run.trace, result), args.plot)
+        if args.plot:
+            save_figure(plot_run(world, run.trace, result, colour_by=args.colour_by), args.plot)
+        if args.animate:
+            animate_run(world, run.trace, result, args.animate)
     if args.json:
         print(json.dumps(result.to_json_dict()))
     else:
@@ -137,6 +140,13 @@ def build_parser() -> argparse.ArgumentParser:
     sim.add_argument("--json", action="store_true", help="print the result as one JSON object")
     sim.add_argument("--trace", metavar="FILE", help="write the trace (.json for JSON, else CSV)")
     sim.add_argument("--plot", metavar="FILE", help="write a plot of the run (e.g. run.png)")
+    sim.add_argument(
+        "--colour-by",
+        choices=("behaviour", "branch"),
+        default="behaviour",
+        help="colour the plotted path by behaviour (default) or flowchart branch",
+    )
+    sim.add_argument("--animate", metavar="FILE.gif", help="write an animation of the run")
     sim.add_argument("--dt", type=_positive_float, help=f"time step in s (default {SimParams.dt})")
     sim.add_argument(
         "--max-time", type=_positive_float, help=f"time limit in s (default {SimParams.max_time})"

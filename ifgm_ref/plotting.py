@@ -1,7 +1,13 @@
-"""Plots of worlds and episodes (matplotlib; feet on both axes, equal aspect)."""
+"""Plots and animations of worlds and episodes (matplotlib; feet on both axes, equal aspect).
+
+A run's path is coloured by the planner's behaviour (*move to goal*, *obstacle avoidance*,
+section 2.1) or by the Figure 3 branch it took; circles mark where the behaviour switched, and
+the sensor's 135-degree field of view (section 4, Figure 2) is drawn at those poses.
+"""
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 from pathlib import Path
 
@@ -10,19 +16,30 @@ import matplotlib
 matplotlib.use("Agg")
 
 import matplotlib.pyplot as plt
+import numpy as np
+from matplotlib.animation import FuncAnimation, PillowWriter
 from matplotlib.axes import Axes
+from matplotlib.collections import LineCollection
 from matplotlib.figure import Figure
 from matplotlib.patches import Circle as CirclePatch
 from matplotlib.patches import Polygon as PolygonPatch
+from matplotlib.patches import Wedge
 
+from ifgm_ref.sensor import IRSensor
 from ifgm_ref.simulator import Result, TraceStep
 from ifgm_ref.world import Circle, World
 
 OBSTACLE_STYLE = {"facecolor": "0.55", "edgecolor": "0.2", "linewidth": 0.8}
+#: Colours of the behaviours; other labels (branches) take the tab10 cycle in order.
+BEHAVIOUR_COLOURS = {"move_to_goal": "tab:blue", "obstacle_avoidance": "tab:orange"}
+#: At most this many field-of-view wedges on a plot (at the first behaviour switches).
+MAX_WEDGES = 6
+#: At most this many frames in an animation (the trace is subsampled evenly).
+MAX_FRAMES = 120
 
 
 def draw_world(ax: Axes, world: World) -> None:
-    """Draw the obstacles, the bounds, the start (with its heading) and the goal on ``ax``."""
+    """Draw the obstacles, the bounds, the start and the goal on ``ax``."""
     for i, ob in enumerate(world.obstacles):
         label = "obstacle" if i == 0 else None
         if isinstance(ob, Circle):
@@ -46,19 +63,82 @@ def draw_world(ax: Axes, world: World) -> None:
     ax.set_ylabel("y (ft)")
 
 
-def draw_path(ax: Axes, trace: Sequence[TraceStep], radius: float, *, label: str = "path") -> None:
-    """Draw the robot's path and its disc at the last pose."""
-    xs = [s.x for s in trace]
-    ys = [s.y for s in trace]
-    ax.plot(xs, ys, color="tab:blue", linewidth=1.6, label=label)
-    ax.add_patch(CirclePatch((xs[-1], ys[-1]), radius, fill=False, edgecolor="tab:blue"))
+def _labels(trace: Sequence[TraceStep], colour_by: str) -> list[str]:
+    """The label of every segment (sample i to i + 1) of the trace."""
+    return [str(getattr(s, colour_by) or "none") for s in trace[:-1]]
 
 
-def plot_run(world: World, trace: Sequence[TraceStep], result: Result) -> Figure:
-    """A figure of one episode: world, path, final robot disc, and the outcome in the title."""
+def _colours(labels: Sequence[str]) -> dict[str, str]:
+    cycle = iter(f"C{i}" for i in range(10) if f"C{i}" not in ("C0", "C1"))
+    colours: dict[str, str] = {}
+    for label in labels:
+        if label not in colours:
+            colours[label] = BEHAVIOUR_COLOURS.get(label) or next(cycle, "0.3")
+    return colours
+
+
+def switch_indices(trace: Sequence[TraceStep]) -> list[int]:
+    """Indices of the samples where the behaviour differs from the one before."""
+    return [i for i in range(1, len(trace) - 1) if trace[i].behaviour != trace[i - 1].behaviour]
+
+
+def draw_path(
+    ax: Axes, trace: Sequence[TraceStep], radius: float, *, colour_by: str = "behaviour"
+) -> None:
+    """Draw the path coloured by ``behaviour`` or ``branch``, switch points and final disc."""
+    xy = np.array([(s.x, s.y) for s in trace])
+    if len(xy) > 1:
+        labels = _labels(trace, colour_by)
+        colours = _colours(labels)
+        segments = np.stack([xy[:-1], xy[1:]], axis=1)
+        for label, colour in colours.items():
+            mask = np.array([lab == label for lab in labels])
+            ax.add_collection(
+                LineCollection(
+                    segments[mask], colors=colour, linewidths=2.0, label=label.replace("_", " ")
+                )
+            )
+    switches = switch_indices(trace)
+    if switches:
+        ax.plot(
+            xy[switches, 0],
+            xy[switches, 1],
+            "o",
+            markerfacecolor="white",
+            markeredgecolor="black",
+            markersize=5,
+            linestyle="none",
+            label="behaviour switch",
+        )
+    ax.add_patch(CirclePatch(tuple(xy[-1]), radius, fill=False, edgecolor="black"))
+
+
+def draw_field_of_view(ax: Axes, world: World, poses: Sequence[tuple[float, float, float]]) -> None:
+    """Shade the sensor's field of view (``range_max``, ``fov``) at each pose."""
+    fov, reach = world.sensor.fov, world.sensor.range_max
+    for i, (x, y, theta) in enumerate(poses):
+        ax.add_patch(
+            Wedge(
+                (x, y),
+                reach,
+                math.degrees(theta - fov / 2),
+                math.degrees(theta + fov / 2),
+                alpha=0.12,
+                color="tab:purple",
+                label="field of view" if i == 0 else None,
+            )
+        )
+
+
+def plot_run(
+    world: World, trace: Sequence[TraceStep], result: Result, *, colour_by: str = "behaviour"
+) -> Figure:
+    """A figure of one episode: world, path by behaviour (or branch), switches, field of view."""
     fig, ax = plt.subplots(figsize=(8, 5), layout="constrained")
     draw_world(ax, world)
-    draw_path(ax, trace, world.robot.radius, label=f"{result.planner} path")
+    wedges = [(trace[i].x, trace[i].y, trace[i].theta) for i in switch_indices(trace)[:MAX_WEDGES]]
+    draw_field_of_view(ax, world, wedges)
+    draw_path(ax, trace, world.robot.radius, colour_by=colour_by)
     ax.autoscale_view()
     name = world.name or "world"
     ax.set_title(
@@ -73,3 +153,53 @@ def save_figure(fig: Figure, path: str | Path) -> None:
     """Write ``fig`` to ``path`` (format from the suffix) and close it."""
     fig.savefig(path, dpi=120)
     plt.close(fig)
+
+
+def animate_run(
+    world: World,
+    trace: Sequence[TraceStep],
+    result: Result,
+    path: str | Path,
+    *,
+    fps: int = 12,
+    max_frames: int = MAX_FRAMES,
+) -> int:
+    """Write a GIF of the episode: the robot, its scan rays and the path so far.
+
+    The scan is re-cast from each sample's pose with the world's sensor (as the planner saw
+    it, noise aside). Returns the number of frames written (at most ``max_frames``).
+    """
+    frames = np.unique(np.linspace(0, len(trace) - 1, min(len(trace), max_frames)).astype(int))
+    sensor = IRSensor(world)
+    fig, ax = plt.subplots(figsize=(7, 4.5), layout="constrained")
+    draw_world(ax, world)
+    xs = np.array([s.x for s in trace])
+    ys = np.array([s.y for s in trace])
+    (line,) = ax.plot([], [], color="tab:blue", linewidth=1.6, label=f"{result.planner} path")
+    rays = LineCollection([], colors="tab:red", linewidths=0.5, alpha=0.6)
+    ax.add_collection(rays)
+    disc = CirclePatch((xs[0], ys[0]), world.robot.radius, fill=False, edgecolor="black")
+    ax.add_patch(disc)
+    pad = world.sensor.range_max
+    ax.set_xlim(min(xs.min(), world.goal.x) - pad, max(xs.max(), world.goal.x) + pad)
+    ax.set_ylim(min(ys.min(), world.goal.y) - pad, max(ys.max(), world.goal.y) + pad)
+    title = ax.set_title("")
+    ax.legend(loc="upper left", fontsize="small")
+
+    def show(k: int) -> None:
+        s = trace[k]
+        line.set_data(xs[: k + 1], ys[: k + 1])
+        disc.center = (s.x, s.y)
+        scan = sensor.scan((s.x, s.y, s.theta))  # type: ignore[arg-type]
+        reach = np.where(np.isfinite(scan.ranges), scan.ranges, scan.range_max)
+        angles = s.theta + scan.angles
+        ends = np.column_stack([s.x + reach * np.cos(angles), s.y + reach * np.sin(angles)])
+        rays.set_segments([[(s.x, s.y), tuple(e)] for e in ends])
+        title.set_text(
+            f"{result.planner} in {world.name or 'world'}: t = {s.t:.1f} s, "
+            f"{s.branch or s.behaviour or ''}"
+        )
+
+    FuncAnimation(fig, show, frames=frames).save(path, writer=PillowWriter(fps=fps))
+    plt.close(fig)
+    return len(frames)

@@ -11,6 +11,8 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 from ifgm_ref.errors import PlannerError
+from ifgm_ref.planners.apf import APFPlanner
+from ifgm_ref.planners.fgm import FGMPlanner
 from ifgm_ref.planners.iba import IBAPlanner
 from ifgm_ref.planners.ifgm import IFGMPlanner
 from ifgm_ref.planners.straight import StraightPlanner
@@ -27,6 +29,12 @@ class PlannerInfo:
 
 
 PLANNERS: dict[str, PlannerInfo] = {
+    "fgm": PlannerInfo(
+        FGMPlanner,
+        "Follow the Gap Method (Sezer & Gokasan 2012; section 2.2): steer through the widest "
+        "gap; trapped by U and H shapes",
+        FGMPlanner.parameters,
+    ),
     "iba": PlannerInfo(
         IBAPlanner,
         "Intelligent Bug Algorithm (section 4.1): bidirectional edge following, leaving at the "
@@ -38,6 +46,12 @@ PLANNERS: dict[str, PlannerInfo] = {
         "Intelligent Follow the Gap Method (section 4, Figure 3): FGM through wide gaps, IBA "
         "round the rest, 45-degree turns out of dead ends",
         IFGMPlanner.parameters,
+    ),
+    "apf": PlannerInfo(
+        APFPlanner,
+        "artificial potential field (Khatib 1986; Table 1): goal attracts, returns repel; "
+        "trapped by U, H and symmetric obstacles",
+        APFPlanner.parameters,
     ),
     "straight": PlannerInfo(StraightPlanner, "steer straight at the goal; no avoidance"),
 }

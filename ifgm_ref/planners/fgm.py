@@ -1,0 +1,417 @@
+"""Follow the Gap Method (FGM): steer through the middle of the widest free gap, towards the goal.
+
+Reference
+---------
+V. Sezer and M. Gokasan, "A novel obstacle avoidance algorithm: 'Follow the Gap Method'",
+*Robotics and Autonomous Systems* 60(9):1123-1134, 2012 -- as the IFGM paper (Zohaib et al.,
+*Studies in Informatics and Control* 23(1):97-106, 2014) summarises it in section 2.2: "FGM
+involves three main computations; calculation of the gap array and finding the maximum gap,
+calculation of theta_g and finally determination of theta_f ... it assumes the robot and
+obstacles as circular objects. It also adds the robot's dimensions into the obstacle
+dimensions." The FGM paper itself is not in our store; the formulas are FGM's as secondary
+sources give them, implemented in :mod:`ifgm_ref.equations` (``fgm_gap_centre_angle``,
+``eq4_final_heading_fgm``).
+
+FGM is a *local* method: it only knows the current scan. Table 1 of the IFGM paper: "The algo.
+cannot avoid U shaped obstacles due to its local characteristics" and "H-shaped obstacles are
+dead-end scenarios for this algo."; section 5.2: the robot "is steered towards centre of the
+obstacle ... At the centre of obstacle, the robot becomes unable to take any decision." This
+module reproduces that: when no gap is left the robot stops (speed 0) facing the goal.
+
+==========================  ======================  ============================================
+FGM symbol                  here                    meaning
+==========================  ======================  ============================================
+obstacle radius + robot     ``inflation``           ``r_inf = robot.radius + margin``, ft: each
+radius                                              return is a disc of this radius
+``phi_i`` (border half-     ``asin(min(1, r/d))``   angular half-width an inflated return at
+angle)                                              ``d`` ft blocks, rad
+gap array                   :func:`find_gaps`       runs of consecutive free (unblocked) rays
+``d_1, phi_1``              ``Gap.right_*``         right border: distance, clockwise angle
+``d_2, phi_2``              ``Gap.left_*``          left border: distance, counter-clockwise
+``theta_gap_c``             ``Gap.centre``          gap centre angle, robot frame, rad
+``theta_goal``              ``goal_angle``          goal bearing, robot frame, rad
+``alpha``, ``beta``         ``alpha``, ``beta``     gap and goal weights of the final heading
+``d_min``                   ``d_min``               range of the nearest return, ft
+``theta_final``             ``FGMDecision.heading`` final heading, robot frame, rad
+==========================  ======================  ============================================
+
+Frames: REP-103 robot frame (x forward, y left, angles counter-clockwise positive) for every
+angle here; :class:`FGMPlanner` turns the final heading into a world heading.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, fields
+from enum import StrEnum
+from typing import Any, ClassVar
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ifgm_ref.equations import eq4_final_heading_fgm, fgm_gap_centre_angle
+from ifgm_ref.errors import ParameterError
+from ifgm_ref.laserscan import LaserScan
+from ifgm_ref.percepts.points import scan_points
+from ifgm_ref.planners.edge_following import turn_speed
+from ifgm_ref.pose import Point, Pose, wrap_angle
+from ifgm_ref.protocol import Behaviour, Command, EpisodeParams, Observation
+
+__all__ = [
+    "FGMBranch",
+    "FGMDecision",
+    "FGMParams",
+    "FGMPlanner",
+    "Gap",
+    "blocked_rays",
+    "choose_max_gap",
+    "fgm_decide",
+    "find_gaps",
+]
+
+#: Smallest ``d_min`` used in the final heading, ft: a return at range 0 means the robot
+#: touches an obstacle; FGM's weight ``alpha / d_min`` is then taken as ``alpha / 1e-6``.
+D_MIN_FLOOR = 1e-6
+
+
+class FGMBranch(StrEnum):
+    """The decision FGM took at one step (the trace's ``branch``)."""
+
+    NO_OBSTACLE = "no_obstacle"  #: nothing in the scan: head straight for the goal
+    MAX_GAP = "max_gap"  #: steer by the final-heading weighting through the maximum gap
+    NO_GAP = "no_gap"  #: every ray blocked: stop, facing the goal (section 5.2)
+
+
+@dataclass(frozen=True)
+class FGMParams:
+    """FGM's settings, read from ``EpisodeParams.params`` by name.
+
+    The IFGM paper gives no values and our store has no copy of the FGM paper; the defaults
+    are ours, each with its reason.
+
+    Parameters
+    ----------
+    alpha : float, default 8.0
+        Gap weight of the final heading (multiplied by ``1 / d_min``), >= 0, ft. At 8 the gap
+        and the goal weigh the same when the nearest return is 8 ft away (four robot
+        diameters), and the gap dominates nearer than that. In the built-in ``box`` world FGM
+        passes the box for every ``alpha`` from 2 to 100 (clearance 0.2 ft at 2, 3.4 ft at 8,
+        6.9 ft at 100); below that the goal term pulls the robot into the box's corner.
+    beta : float, default 1.0
+        Goal weight of the final heading, >= 0; ``alpha`` and ``beta`` must not both be 0.
+    inflation_margin : float, default 0.5
+        Free space kept between the robot's disc and every return, ft, >= 0: each return is
+        inflated by ``robot.radius + inflation_margin`` (FGM "adds the robot's dimensions into
+        the obstacle dimensions", section 2.2). Half a foot covers the 0.13 ft the robot moves
+        per step at the default speed several times over.
+    """
+
+    alpha: float = 8.0
+    beta: float = 1.0
+    inflation_margin: float = 0.5
+
+    def __post_init__(self) -> None:
+        for f in fields(self):
+            value = getattr(self, f.name)
+            if (
+                isinstance(value, bool)
+                or not isinstance(value, int | float)
+                or not (math.isfinite(value) and value >= 0)
+            ):
+                raise ParameterError(f"`{f.name}` must be a finite number >= 0, got {value!r}")
+        if self.alpha == 0 and self.beta == 0:
+            raise ParameterError("`alpha` and `beta` must not both be 0")
+
+    @classmethod
+    def from_params(cls, params: dict[str, Any]) -> FGMParams:
+        """Take this class's fields from a planner ``params`` mapping; ignore other keys.
+
+        >>> FGMParams.from_params({"alpha": 2, "d_th": 3.0})
+        FGMParams(alpha=2, beta=1.0, inflation_margin=0.5)
+        >>> FGMParams.from_params({"beta": -1.0})
+        Traceback (most recent call last):
+        ...
+        ifgm_ref.errors.ParameterError: `beta` must be a finite number >= 0, got -1.0
+        """
+        known = {f.name for f in fields(cls)}
+        return cls(**{k: v for k, v in params.items() if k in known})
+
+
+@dataclass(frozen=True)
+class Gap:
+    """One run of consecutive free rays, ``first`` to ``last`` (right to left).
+
+    A border's distance is that of the nearest return blocking the ray just outside the gap;
+    where the gap reaches the edge of the field of view there is no such return, and the
+    border distance is ``range_max`` (the farthest an unseen obstacle can be said to be).
+    """
+
+    first: int
+    last: int
+    right_angle: float
+    right_distance: float
+    left_angle: float
+    left_distance: float
+
+    @property
+    def rays(self) -> int:
+        """Number of free rays in the gap: its angular width in ray increments, plus one."""
+        return self.last - self.first + 1
+
+    @property
+    def width(self) -> float:
+        """Angle from the right border ray to the left one, rad (0 for a one-ray gap)."""
+        return self.left_angle - self.right_angle
+
+    @property
+    def centre(self) -> float:
+        """FGM's gap centre angle, robot frame, rad (cosine and Apollonius theorems).
+
+        ``fgm_gap_centre_angle(d_1, phi_1, d_2, phi_2)`` with ``phi_1 = -right_angle``
+        (clockwise) and ``phi_2 = left_angle``: the direction of the midpoint of the two
+        border points. That formula needs ``phi_1 + phi_2 <= pi``; a gap wider than pi (only
+        with a field of view wider than pi) is steered through its angular bisector.
+        """
+        if self.width > math.pi:
+            return (self.right_angle + self.left_angle) / 2.0
+        return fgm_gap_centre_angle(
+            self.right_distance, -self.right_angle, self.left_distance, self.left_angle
+        )
+
+
+@dataclass(frozen=True)
+class FGMDecision:
+    """FGM's answer to one scan: the branch, the final heading and what led to it.
+
+    ``heading`` is robot-frame (rad): the final heading for ``max_gap``, the goal angle
+    otherwise. ``gap`` is the maximum gap (``None`` unless ``max_gap``); ``d_min`` is the
+    nearest return's range (``inf`` with no return).
+    """
+
+    branch: FGMBranch
+    heading: float
+    gap: Gap | None
+    d_min: float
+
+
+def blocked_rays(
+    scan: LaserScan, inflation: float
+) -> tuple[NDArray[np.bool_], NDArray[np.float64]]:
+    """Which rays an inflated return blocks, and the range of the nearest blocking return.
+
+    Every return (every finite range, and ``-inf`` read as ``range_min``) is an obstacle point
+    inflated to a disc of radius ``inflation``; seen from the robot at range ``d`` that disc
+    covers the rays within ``asin(min(1, inflation / d))`` of the return's own ray (pi/2 when
+    the robot is inside the disc). Rays with no return (``+inf``) or an error (``nan``) block
+    nothing by themselves.
+
+    Parameters
+    ----------
+    scan : LaserScan
+        The current scan.
+    inflation : float
+        Radius of every inflated return, ft (robot radius plus margin), >= 0.
+
+    Returns
+    -------
+    blocked : (n,) bool array
+        ``True`` for every blocked ray.
+    distance : (n,) float array
+        Range of the nearest return blocking each ray, ft; ``inf`` for free rays.
+
+    Examples
+    --------
+    One return 2 ft ahead inflated by 1 ft blocks the rays within asin(1/2) = 30 degrees:
+
+    >>> deg = math.radians
+    >>> scan = LaserScan(deg(-40), deg(40), deg(20), 0.0, 10.0, [math.inf, math.inf, 2.0,
+    ...                  math.inf, math.inf])
+    >>> blocked, distance = blocked_rays(scan, 1.0)
+    >>> blocked.tolist(), distance.tolist()
+    ([False, True, True, True, False], [inf, 2.0, 2.0, 2.0, inf])
+
+    No inflation blocks only the return's own ray; a return inside the disc blocks +-90 deg:
+
+    >>> blocked_rays(scan, 0.0)[0].tolist()
+    [False, False, True, False, False]
+    >>> blocked_rays(scan, 2.5)[0].tolist()
+    [True, True, True, True, True]
+    """
+    if not (math.isfinite(inflation) and inflation >= 0):
+        raise ParameterError(f"`inflation` must be finite and >= 0, got {inflation!r}")
+    angles = scan.angles
+    n = len(angles)
+    points = scan_points(scan)
+    if len(points) == 0:
+        return np.zeros(n, dtype=bool), np.full(n, np.inf)
+    d = points.ranges
+    with np.errstate(divide="ignore"):
+        ratio = np.where(d > 0.0, inflation / np.where(d > 0.0, d, 1.0), 1.0)
+    half = np.arcsin(np.minimum(1.0, ratio))
+    # covers[i, j]: return i blocks ray j (a 1e-12 rad tolerance keeps exact borders blocked).
+    covers = np.abs(angles[np.newaxis, :] - points.angles[:, np.newaxis]) <= half[:, None] + 1e-12
+    distance = np.where(covers, d[:, np.newaxis], np.inf).min(axis=0)
+    return np.isfinite(distance), distance
+
+
+def find_gaps(scan: LaserScan, inflation: float) -> tuple[Gap, ...]:
+    """The gap array: every run of consecutive free rays, right to left.
+
+    See :func:`blocked_rays` for which rays are free and :class:`Gap` for the borders.
+
+    Examples
+    --------
+    A post straight ahead leaves a gap on each side, bounded by the post and by the edge of
+    the field of view (at ``range_max``):
+
+    >>> deg = math.radians
+    >>> scan = LaserScan(deg(-60), deg(60), deg(10), 0.0, 10.0,
+    ...                  [math.inf] * 6 + [3.0] + [math.inf] * 6)
+    >>> [(g.first, g.last, g.right_distance, g.left_distance) for g in find_gaps(scan, 1.0)]
+    [(0, 4, 10.0, 3.0), (8, 12, 3.0, 10.0)]
+
+    Nothing seen: one gap over the whole field of view; everything blocked: no gap.
+
+    >>> [(g.first, g.last) for g in find_gaps(LaserScan(-1.0, 1.0, 1.0, 0.0, 5.0,
+    ...                                                 [math.inf] * 3), 1.0)]
+    [(0, 2)]
+    >>> find_gaps(LaserScan(-1.0, 1.0, 1.0, 0.0, 5.0, [1.0] * 3), 1.0)
+    ()
+    """
+    blocked, distance = blocked_rays(scan, inflation)
+    angles = scan.angles
+    n = len(blocked)
+    free = ~blocked
+    edges = np.diff(np.concatenate([[False], free, [False]]).astype(np.int8))
+    starts = np.flatnonzero(edges == 1)
+    ends = np.flatnonzero(edges == -1) - 1
+    gaps = []
+    for a, b in zip(starts.tolist(), ends.tolist(), strict=True):
+        right_d = float(distance[a - 1]) if a > 0 else scan.range_max
+        left_d = float(distance[b + 1]) if b < n - 1 else scan.range_max
+        gaps.append(Gap(a, b, float(angles[a]), right_d, float(angles[b]), left_d))
+    return tuple(gaps)
+
+
+def choose_max_gap(gaps: tuple[Gap, ...], goal_angle: float) -> Gap | None:
+    """The maximum gap: the one with the most free rays (the widest angular run).
+
+    FGM's maximum gap is the widest gap *in angle*, the one with the most free elements in
+    the gap array; counting rays makes the comparison exact. Ties go to the gap whose centre
+    is nearer the goal angle (rad, robot frame), then to the rightmost, so the choice is
+    deterministic.
+
+    Examples
+    --------
+    >>> narrow = Gap(0, 2, -1.0, 5.0, -0.8, 5.0)
+    >>> wide = Gap(5, 12, -0.4, 5.0, 1.0, 5.0)
+    >>> choose_max_gap((narrow, wide), goal_angle=-1.0) is wide
+    True
+    >>> choose_max_gap((), goal_angle=0.0) is None
+    True
+    """
+    if not gaps:
+        return None
+    return max(
+        gaps,
+        key=lambda g: (g.rays, -round(abs(wrap_angle(g.centre - goal_angle)), 9), -g.first),
+    )
+
+
+def fgm_decide(
+    scan: LaserScan, goal_angle: float, *, inflation: float, alpha: float, beta: float
+) -> FGMDecision:
+    """FGM on one scan: the branch taken and the robot-frame heading to steer.
+
+    * No return in the scan: ``no_obstacle``, heading ``goal_angle``.
+    * Some free ray: ``max_gap``; the heading is FGM's final heading
+      ``((alpha / d_min) theta_gap_c + beta theta_goal) / (alpha / d_min + beta)``
+      (:func:`~ifgm_ref.equations.eq4_final_heading_fgm`) with the maximum gap's centre.
+    * Every ray blocked: ``no_gap``, heading ``goal_angle`` -- FGM "cannot find theta_g and
+      thus theta_f" (section 2.2).
+
+    Examples
+    --------
+    A post straight ahead, the goal straight ahead: the robot turns off to one side.
+
+    >>> deg = math.radians
+    >>> scan = LaserScan(deg(-60), deg(60), deg(10), 0.0, 10.0,
+    ...                  [math.inf] * 6 + [3.0] + [math.inf] * 6)
+    >>> decision = fgm_decide(scan, 0.0, inflation=1.0, alpha=4.0, beta=1.0)
+    >>> str(decision.branch), decision.gap.first, round(math.degrees(decision.heading), 1)
+    ('max_gap', 0, -29.2)
+    """
+    points = scan_points(scan)
+    if len(points) == 0:
+        return FGMDecision(FGMBranch.NO_OBSTACLE, goal_angle, None, math.inf)
+    d_min = float(points.ranges.min())
+    gap = choose_max_gap(find_gaps(scan, inflation), goal_angle)
+    if gap is None:
+        return FGMDecision(FGMBranch.NO_GAP, goal_angle, None, d_min)
+    heading = eq4_final_heading_fgm(
+        gap.centre, goal_angle, alpha=alpha, beta=beta, d_min=max(d_min, D_MIN_FLOOR), heading=0.0
+    )
+    return FGMDecision(FGMBranch.MAX_GAP, heading, gap, d_min)
+
+
+class FGMPlanner:
+    """Follow the Gap Method on the current scan only; stops when no gap is left.
+
+    Speed is :func:`~ifgm_ref.planners.edge_following.turn_speed`: full speed when facing the
+    final heading, slower while turning, turning in place beyond 90 degrees; 0 on ``no_gap``.
+
+    Examples
+    --------
+    >>> planner = FGMPlanner()
+    >>> planner.reset(Pose(0.0, 0.0, 0.0), Point(10.0, 0.0), EpisodeParams())
+    >>> empty = LaserScan(-1.0, 1.0, 1.0, 0.0, 15.0, [math.inf] * 3)
+    >>> command = planner.step(Observation(0.0, Pose(0.0, 0.0, 0.0), Point(10.0, 0.0), empty))
+    >>> command.heading, round(command.speed, 3), command.branch
+    (0.0, 1.322, 'no_obstacle')
+    """
+
+    name: ClassVar[str] = "fgm"
+    #: Names of the settings read from ``EpisodeParams.params``.
+    parameters: ClassVar[tuple[str, ...]] = tuple(f.name for f in fields(FGMParams))
+
+    def __init__(self) -> None:
+        self.tuning = FGMParams()
+        self.radius = 1.0
+        self.speed = 1.0
+        self.last: FGMDecision | None = None
+
+    def reset(self, start: Pose, goal: Point, params: EpisodeParams) -> None:
+        """Read the settings from ``params.params`` (see :class:`FGMParams`)."""
+        self.tuning = FGMParams.from_params(params.params)
+        self.radius = params.robot.radius
+        self.speed = params.robot.speed
+        self.last = None
+
+    @property
+    def inflation(self) -> float:
+        """Radius every return is inflated by, ft: robot radius plus margin."""
+        return self.radius + self.tuning.inflation_margin
+
+    def step(self, observation: Observation) -> Command:
+        """Decide from the current scan (see :func:`fgm_decide`)."""
+        pose, goal = observation.pose, observation.goal
+        goal_angle = wrap_angle(math.atan2(goal.y - pose.y, goal.x - pose.x) - pose.theta)
+        decision = fgm_decide(
+            observation.scan,
+            goal_angle,
+            inflation=self.inflation,
+            alpha=self.tuning.alpha,
+            beta=self.tuning.beta,
+        )
+        self.last = decision
+        heading = wrap_angle(pose.theta + decision.heading)
+        if decision.branch is FGMBranch.NO_GAP:
+            speed = 0.0
+        else:
+            speed = turn_speed(decision.heading, self.speed)
+        behaviour = (
+            Behaviour.MOVE_TO_GOAL
+            if decision.branch is FGMBranch.NO_OBSTACLE
+            else Behaviour.OBSTACLE_AVOIDANCE
+        )
+        return Command(heading, speed, behaviour=behaviour, branch=str(decision.branch))
