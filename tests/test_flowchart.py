@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import itertools
+import re
 
 import pytest
 
@@ -47,3 +48,11 @@ def test_widening_the_gap_moves_case2_to_case1_never_back() -> None:
             assert after is Branch.CASE1_GAP
         if before is not Branch.CASE2_NARROW_GAP:
             assert after is before, f"{narrow}: {before} -> {after}"
+
+
+def test_the_diagram_names_every_branch() -> None:
+    from pathlib import Path
+
+    diagram = (Path(__file__).resolve().parent.parent / "docs" / "flowchart.md").read_text()
+    nodes = set(re.findall(r"\b([a-z0-9_]+)\[", diagram))
+    assert nodes == {str(b) for b in Branch}
