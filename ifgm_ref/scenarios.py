@@ -63,6 +63,10 @@ BUILTIN_WORLDS: dict[str, BuiltinWorld] = {
         "demo: one 4 x 10 ft box across the straight line to the goal",
         lambda: _demo("box", rectangle((30.0, 0.0), 4.0, 10.0)),
     ),
+    "post": BuiltinWorld(
+        "demo: one post (radius 1.5 ft) in the way, 1 ft left of the straight line",
+        lambda: _demo("post", circle((30.0, 1.0), 1.5)),
+    ),
     "offset_box": BuiltinWorld(
         "demo: a 4 x 8 ft box just left of the straight line, its edge 0.4 ft into the path",
         lambda: _demo("offset_box", rectangle((30.0, 4.4), 4.0, 8.0)),

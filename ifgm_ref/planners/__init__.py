@@ -12,6 +12,9 @@ from dataclasses import dataclass
 
 from ifgm_ref.errors import PlannerError
 from ifgm_ref.planners.apf import APFPlanner
+from ifgm_ref.planners.bug1 import Bug1Planner
+from ifgm_ref.planners.bug2 import Bug2Planner
+from ifgm_ref.planners.distbug import DistBugPlanner
 from ifgm_ref.planners.fgm import FGMPlanner
 from ifgm_ref.planners.iba import IBAPlanner
 from ifgm_ref.planners.ifgm import IFGMPlanner
@@ -29,17 +32,35 @@ class PlannerInfo:
 
 
 PLANNERS: dict[str, PlannerInfo] = {
-    "fgm": PlannerInfo(
-        FGMPlanner,
-        "Follow the Gap Method (Sezer & Gokasan 2012; section 2.2): steer through the widest "
-        "gap; trapped by U and H shapes",
-        FGMPlanner.parameters,
+    "bug1": PlannerInfo(
+        Bug1Planner,
+        "Bug1 (Lumelsky & Stepanov; section 2.1.1): go round the whole obstacle, leave at the "
+        "point nearest the goal",
+        Bug1Planner.parameters,
+    ),
+    "bug2": PlannerInfo(
+        Bug2Planner,
+        "Bug2 (Lumelsky & Stepanov; section 2.1.2): follow the edge back to the start-goal line, "
+        "nearer the goal",
+        Bug2Planner.parameters,
+    ),
+    "distbug": PlannerInfo(
+        DistBugPlanner,
+        "DistBug (Kamon & Rivlin 1997; section 2.1.3): leave when the free range towards the "
+        "goal promises progress",
+        DistBugPlanner.parameters,
     ),
     "iba": PlannerInfo(
         IBAPlanner,
         "Intelligent Bug Algorithm (section 4.1): bidirectional edge following, leaving at the "
         "first free path to the goal",
         IBAPlanner.parameters,
+    ),
+    "fgm": PlannerInfo(
+        FGMPlanner,
+        "Follow the Gap Method (Sezer & Gokasan 2012; section 2.2): steer through the widest "
+        "gap; trapped by U and H shapes",
+        FGMPlanner.parameters,
     ),
     "ifgm": PlannerInfo(
         IFGMPlanner,

@@ -1,0 +1,144 @@
+"""Bug2: follow the obstacle until the robot is back on the start-goal line, nearer the goal.
+
+Reference: V. J. Lumelsky and A. A. Stepanov, "Path-planning strategies for a point mobile
+automaton moving amidst unknown obstacles of arbitrary shape", *Algorithmica* 2 (1987)
+403-430. Paper, section 2.1.2: "the robot stores the initial slope of reference path to
+destination. When an obstacle is encountered, the robot starts following edges of obstacle
+and continuously calculates slope of the line from its current position to the destination.
+The point where this slope becomes equal to the slope of reference path is considered as the
+leaving point."
+
+The "initial slope of reference path" defines the *m-line*, the segment from the start S to
+the goal T. The slope from x to T equals the initial slope exactly when x is on that line;
+the planner tests the equivalent, better-conditioned, signed distance ``s(x)`` of x to the
+line (positive on its left). While following an obstacle hit at H it leaves at x when
+
+* x is on the m-line: ``|s(x)| <= m_line_tolerance``, or ``s`` changed sign since the last
+  sample (the line was crossed between two samples), with x's projection between S and T;
+* x is strictly nearer the goal than H: ``d(x, T) < d(H, T) - m_line_tolerance`` (the margin
+  keeps the robot from "leaving" where it has just met the obstacle);
+* the way towards the goal is not blocked (``not goal_blocked``), as Lumelsky and Stepanov's
+  robot leaves only if it can move towards T.
+
+Back at H without having left, the goal is unreachable (the skeleton's loop closure, stop
+reason ``goal_unreachable``). The bound ``D + sum(n_i * p_i) / 2`` (``n_i`` the number of
+times the m-line crosses obstacle i, ``p_i`` its perimeter) is checked by the tests.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import ClassVar
+
+from ifgm_ref.errors import ParameterError
+from ifgm_ref.planners.boundary import BoundaryPlanner
+from ifgm_ref.pose import Point, Pose, distance
+from ifgm_ref.protocol import Command, EpisodeParams, Observation
+
+
+def signed_distance(point: tuple[float, float], start: Point, goal: Point) -> float:
+    """Signed distance from ``point`` to the line from ``start`` to ``goal``, ft.
+
+    Positive on the left of the line (looking from ``start`` to ``goal``), negative on its
+    right. ``start`` and ``goal`` must differ.
+
+    Examples
+    --------
+    >>> signed_distance((3.0, 2.0), Point(0.0, 0.0), Point(10.0, 0.0))
+    2.0
+    >>> signed_distance((3.0, -2.0), Point(0.0, 0.0), Point(10.0, 0.0))
+    -2.0
+    >>> signed_distance((1.0, 1.0), Point(0.0, 0.0), Point(2.0, 2.0))
+    0.0
+    """
+    ux, uy = goal.x - start.x, goal.y - start.y
+    return (ux * (point[1] - start.y) - uy * (point[0] - start.x)) / math.hypot(ux, uy)
+
+
+class Bug2Planner(BoundaryPlanner):
+    """Lumelsky and Stepanov's Bug2 on the boundary-following skeleton.
+
+    Parameters (``params`` mapping of :func:`ifgm_ref.simulator.simulate`), besides those of
+    :class:`~ifgm_ref.planners.boundary.BoundaryParams`:
+
+    m_line_tolerance : float, default one step, ``robot.speed * dt``
+        How near the m-line counts as on it, ft; a crossing between two samples counts too.
+
+    Examples
+    --------
+    >>> from ifgm_ref.scenarios import resolve_world
+    >>> from ifgm_ref.simulator import simulate
+    >>> run = simulate(resolve_world("box"), Bug2Planner())
+    >>> run.result.stop_reason, run.result.collided
+    ('goal_reached', False)
+    >>> [b for b in dict.fromkeys(s.branch for s in run.trace) if b]
+    ['move_to_goal', 'follow_edge', 'leave_on_m_line']
+    >>> simulate(resolve_world("box"), Bug2Planner(), params={"m_line_tolerance": 0})
+    Traceback (most recent call last):
+    ...
+    ifgm_ref.errors.ParameterError: `m_line_tolerance` must be a finite number > 0, got 0
+    """
+
+    name: ClassVar[str] = "bug2"
+    parameters: ClassVar[tuple[str, ...]] = (*BoundaryPlanner.parameters, "m_line_tolerance")
+
+    def __init__(self) -> None:
+        super().__init__()
+        self.start = Point(0.0, 0.0)
+        self.m_line_tolerance = 0.1
+        self.hit_distance = math.inf
+        self._side = 0.0
+
+    def reset(self, start: Pose, goal: Point, params: EpisodeParams) -> None:
+        """Store the m-line from ``start`` to ``goal`` and read ``m_line_tolerance``."""
+        super().reset(start, goal, params)
+        self.start = Point(start[0], start[1])
+        default = params.robot.speed * params.dt
+        value = params.params.get("m_line_tolerance", default)
+        if (
+            isinstance(value, bool)
+            or not isinstance(value, int | float)
+            or not (math.isfinite(value) and value > 0)
+        ):
+            raise ParameterError(f"`m_line_tolerance` must be a finite number > 0, got {value!r}")
+        self.m_line_tolerance = float(value)
+        self.hit_distance = math.inf
+        self._side = 0.0
+
+    # -- hooks ------------------------------------------------------------------------------
+    def on_hit(self, observation: Observation) -> None:
+        """Remember d(H, T) and which side of the m-line the robot starts following on."""
+        self.hit_distance = distance(self.hit_point, self.goal)
+        self._side = self.m_line_offset(self.hit_point)
+
+    def should_leave(self, observation: Observation) -> bool:
+        """Leave on the m-line, strictly nearer the goal than H, the goal way free."""
+        pose = observation.pose
+        offset = self.m_line_offset(pose.position)
+        crossed = offset * self._side < 0.0
+        self._side = offset
+        on_line = (abs(offset) <= self.m_line_tolerance or crossed) and self.on_segment(
+            pose.position
+        )
+        if not on_line:
+            return False
+        if distance(pose.position, self.goal) >= self.hit_distance - self.m_line_tolerance:
+            return False
+        return not self.goal_blocked(pose)
+
+    # -- pieces -----------------------------------------------------------------------------
+    def m_line_offset(self, point: tuple[float, float]) -> float:
+        """Signed distance of ``point`` to the m-line, ft (0 when start and goal coincide)."""
+        if distance(self.start, self.goal) == 0.0:
+            return 0.0
+        return signed_distance(point, self.start, self.goal)
+
+    def on_segment(self, point: tuple[float, float]) -> bool:
+        """Whether ``point`` projects onto the m-line between the start and the goal."""
+        ux, uy = self.goal.x - self.start.x, self.goal.y - self.start.y
+        along = ux * (point[0] - self.start.x) + uy * (point[1] - self.start.y)
+        return 0.0 <= along <= ux * ux + uy * uy
+
+    def move_to_goal(self, pose: Pose, branch: str) -> Command:
+        """Head for the goal; the departure from the m-line is labelled ``leave_on_m_line``."""
+        return super().move_to_goal(pose, "leave_on_m_line" if branch == "leave" else branch)

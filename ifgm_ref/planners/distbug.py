@@ -1,0 +1,137 @@
+"""DistBug: leave the obstacle as soon as the free range towards the goal promises progress.
+
+Reference: I. Kamon and E. Rivlin, "Sensory-based motion planning with global proofs",
+*IEEE Transactions on Robotics and Automation* 13(6) (1997) 814-822. Paper, section 2.1.3:
+"when the robot encounters an obstacle in its path, it starts following the edges of the
+obstacle calculating and simultaneously storing the distance from its current and next
+positions to destination"; section 5.1, Figure 5a: "the robot is following the edge of
+obstacle until it reaches to the leaving point having minimum distance to destination".
+
+Kamon and Rivlin's leaving rule, with their symbols: while following the obstacle met at the
+hit point H, with x the robot's position and T the goal,
+
+* ``d_min`` is the least distance d(x, T) seen since H (the current position included);
+* ``F`` is the free range towards T, as far as the range sensor sees;
+* the robot leaves when ``d(x, T) - F <= 0`` (T is visible) or
+  ``d(x, T) - F <= d_min - Step``: moving ``F`` towards T brings it at least ``Step`` nearer
+  than it has been on this obstacle, so the next hit point (if any) is nearer T than any
+  point of this one and the algorithm terminates.
+
+Back at H without having left, the goal is unreachable (the skeleton's loop closure, stop
+reason ``goal_unreachable``).
+
+Our robot is a disc that sees 135 degrees ahead, so ``F`` is adapted, and says so:
+
+* ``F = 0`` when the goal is outside the field of view (``goal_in_view`` fails): the
+  sensor cannot see towards it, and nothing is known to be free;
+* ``F = d(x, T)`` when the corridor towards the goal (as wide as the robot, see
+  :meth:`~ifgm_ref.planners.boundary.BoundaryPlanner.goal_free_length`) is free up to the
+  goal and the goal is within ``range_max``: T is visible;
+* otherwise ``F = min(free length, range_max) - (standoff + hit_margin)``, at least 0: the
+  distance the robot can move towards T before the skeleton's hit test (an obstacle nearer
+  than ``standoff + hit_margin`` in the corridor) fires again. Without that subtraction a
+  robot at the stand-off from a wall facing the goal sees ``F = standoff``, leaves when
+  ``standoff >= Step`` and re-hits the same wall at once, with a new H, and never closes its
+  loop: Kamon and Rivlin's guarantee that the next hit point is ``Step`` nearer T holds
+  only for the distance the robot can actually travel.
+
+``Step`` is the ``step_length`` parameter. Kamon and Rivlin leave it as a constant of the
+robot; we take the robot's diameter, the least progress that moves the whole robot to a
+place it did not occupy, and large enough that re-hitting an edge the robot has just left
+is not mistaken for progress.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import ClassVar
+
+from ifgm_ref.errors import ParameterError
+from ifgm_ref.planners.boundary import BoundaryPlanner
+from ifgm_ref.pose import Point, Pose, distance
+from ifgm_ref.protocol import Command, EpisodeParams, Observation
+
+
+class DistBugPlanner(BoundaryPlanner):
+    """Kamon and Rivlin's DistBug on the boundary-following skeleton.
+
+    Parameters (``params`` mapping of :func:`ifgm_ref.simulator.simulate`), besides those of
+    :class:`~ifgm_ref.planners.boundary.BoundaryParams`:
+
+    step_length : float, default the robot's diameter, ``2 * robot.radius``
+        Step, ft: the least progress towards the goal, beyond the best distance seen on this
+        obstacle, that the free range must promise before the robot leaves.
+
+    Attributes
+    ----------
+    d_min : float
+        Least distance to the goal seen while following the current obstacle, ft.
+
+    Examples
+    --------
+    >>> from ifgm_ref.scenarios import resolve_world
+    >>> from ifgm_ref.simulator import simulate
+    >>> run = simulate(resolve_world("box"), DistBugPlanner())
+    >>> run.result.stop_reason, run.result.collided
+    ('goal_reached', False)
+    >>> "leave_distbug" in {s.branch for s in run.trace}
+    True
+    >>> simulate(resolve_world("box"), DistBugPlanner(), params={"step_length": -1.0})
+    Traceback (most recent call last):
+    ...
+    ifgm_ref.errors.ParameterError: `step_length` must be a finite number > 0, got -1.0
+    """
+
+    name: ClassVar[str] = "distbug"
+    parameters: ClassVar[tuple[str, ...]] = (*BoundaryPlanner.parameters, "step_length")
+
+    def __init__(self) -> None:
+        super().__init__()
+        self.step_length = 2.0
+        self.d_min = math.inf
+
+    def reset(self, start: Pose, goal: Point, params: EpisodeParams) -> None:
+        """Start in *move to goal*; read ``step_length`` (default ``2 * robot.radius``)."""
+        super().reset(start, goal, params)
+        value = params.params.get("step_length", 2.0 * params.robot.radius)
+        if (
+            isinstance(value, bool)
+            or not isinstance(value, int | float)
+            or not (math.isfinite(value) and value > 0)
+        ):
+            raise ParameterError(f"`step_length` must be a finite number > 0, got {value!r}")
+        self.step_length = float(value)
+        self.d_min = math.inf
+
+    # -- hooks ------------------------------------------------------------------------------
+    def on_hit(self, observation: Observation) -> None:
+        """A new obstacle: ``d_min`` starts at d(H, T)."""
+        self.d_min = distance(self.hit_point, self.goal)
+
+    def should_leave(self, observation: Observation) -> bool:
+        """Kamon and Rivlin's rule: ``d - F <= 0`` or ``d - F <= d_min - Step``."""
+        pose = observation.pose
+        d = distance(pose.position, self.goal)
+        self.d_min = min(self.d_min, d)
+        reach = d - self.free_range(pose)
+        return reach <= 0.0 or reach <= self.d_min - self.step_length
+
+    # -- pieces -----------------------------------------------------------------------------
+    @property
+    def encounter(self) -> float:
+        """The skeleton's hit distance: an obstacle this near in the corridor is met, ft."""
+        return self.standoff + self.tuning.hit_margin
+
+    def free_range(self, pose: Pose) -> float:
+        """F: how far the robot can move towards the goal, as the sensor tells (see above)."""
+        if not self.goal_in_view(pose):
+            return 0.0
+        d = distance(pose.position, self.goal)
+        free = self.goal_free_length(pose)
+        if free >= d and d <= self.range_max:
+            return d
+        return max(0.0, min(free, self.range_max) - self.encounter)
+
+    def move_to_goal(self, pose: Pose, branch: str) -> Command:
+        """Head for the goal; the departure by the DistBug rule is labelled ``leave_distbug``."""
+        return super().move_to_goal(pose, "leave_distbug" if branch == "leave" else branch)
