@@ -284,9 +284,7 @@ def fgm_gap_centre_angle(d1: float, phi1: float, d2: float, phi2: float) -> floa
 # --------------------------------------------------------------------------------------------
 
 
-def eq3_goal_angle_literal(
-    current: tuple[float, float], destination: tuple[float, float]
-) -> float:
+def eq3_goal_angle_literal(current: tuple[float, float], destination: tuple[float, float]) -> float:
     r"""Return ``theta_d`` exactly as printed in equation (3): the arctan of a ratio.
 
     Printed (section 4, Case-1)::
@@ -389,8 +387,9 @@ def eq3_goal_angle(current: tuple[float, float], destination: tuple[float, float
 # --------------------------------------------------------------------------------------------
 
 
-def _check_weights(gap_name: str, gap: float, goal_name: str, goal: float,
-                   divisor_name: str, divisor: float) -> None:
+def _check_weights(
+    gap_name: str, gap: float, goal_name: str, goal: float, divisor_name: str, divisor: float
+) -> None:
     """Raise :class:`ParameterError` unless the weights make (4) a convex combination."""
     for name, value in ((gap_name, gap), (goal_name, goal), (divisor_name, divisor)):
         if isinstance(value, bool) or not isinstance(value, int | float):

@@ -251,8 +251,10 @@ class Derivation:
             if isinstance(step, _Text):
                 lines += [*textwrap.wrap(step.paragraph, PAGE_WIDTH), ""]
             elif isinstance(step, _Definition):
-                lines += [_indent(_pretty(sp.Eq(sp.Symbol(step.name), step.expr,
-                                                evaluate=False)), 4), ""]
+                lines += [
+                    _indent(_pretty(sp.Eq(sp.Symbol(step.name), step.expr, evaluate=False)), 4),
+                    "",
+                ]
             else:
                 lines += textwrap.wrap(
                     f"[{step.kind}] {self.key}:{step.name} -- {step.statement}",

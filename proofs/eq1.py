@@ -50,9 +50,7 @@ def derivation() -> Derivation:
     d.text("It lies on the segment P1 P2, halfway (the parameter lambda = 1/2 is in [0, 1]):")
     sym_p1, sym_p2 = sp.symbols("P_1 P_2")
     with sp.evaluate(False):
-        on_segment_shown = sp.Eq(
-            sp.Symbol("M"), sym_p1 + sp.Rational(1, 2) * (sym_p2 - sym_p1)
-        )
+        on_segment_shown = sp.Eq(sp.Symbol("M"), sym_p1 + sp.Rational(1, 2) * (sym_p2 - sym_p1))
     d.prove_equal(
         "midpoint_on_segment",
         midpoint,
@@ -103,16 +101,22 @@ def derivation() -> Derivation:
         sp.Rational(1, 2),
         "max over lambda in [0, 1] of min(lambda, 1 - lambda) = 1/2: the largest free disc "
         "centred on the segment has radius L/2",
-        shown=sp.Eq(sp.Symbol("max(min(λ, 1 - λ), 0 <= λ <= 1)"), sp.Rational(1, 2),
-                    evaluate=False),
+        shown=sp.Eq(
+            sp.Symbol("max(min(λ, 1 - λ), 0 <= λ <= 1)"), sp.Rational(1, 2), evaluate=False
+        ),
     )
     d.prove_true(
         "largest_free_disc_centre_is_midpoint",
-        sp.Eq(sp.solveset(sp.Eq(free_radius, sp.Rational(1, 2)), lam, unit),
-              sp.FiniteSet(sp.Rational(1, 2))),
+        sp.Eq(
+            sp.solveset(sp.Eq(free_radius, sp.Rational(1, 2)), lam, unit),
+            sp.FiniteSet(sp.Rational(1, 2)),
+        ),
         "min(lambda, 1 - lambda) = 1/2 on [0, 1] only at lambda = 1/2: its centre is M",
-        shown=sp.Eq(sp.Symbol("{0 <= λ <= 1 : min(λ, 1 - λ) = 1/2}"),
-                    sp.FiniteSet(sp.Rational(1, 2)), evaluate=False),
+        shown=sp.Eq(
+            sp.Symbol("{0 <= λ <= 1 : min(λ, 1 - λ) = 1/2}"),
+            sp.FiniteSet(sp.Rational(1, 2)),
+            evaluate=False,
+        ),
     )
 
     d.text(
@@ -125,11 +129,12 @@ def derivation() -> Derivation:
     )
     d.prove_true(
         "robot_fits_iff_gap_at_least_diameter",
-        sp.Eq(sp.solve_univariate_inequality(gap / 2 - r >= 0, gap, relational=False),
-              sp.Interval(2 * r, sp.oo)),
+        sp.Eq(
+            sp.solve_univariate_inequality(gap / 2 - r >= 0, gap, relational=False),
+            sp.Interval(2 * r, sp.oo),
+        ),
         "for L, r > 0: L/2 - r >= 0 exactly when L is in [2r, oo)",
-        shown=sp.Eq(sp.Symbol("{L > 0 : L/2 - r >= 0}"), sp.Interval(2 * r, sp.oo),
-                    evaluate=False),
+        shown=sp.Eq(sp.Symbol("{L > 0 : L/2 - r >= 0}"), sp.Interval(2 * r, sp.oo), evaluate=False),
     )
 
     d.text("The midpoint commutes with rotating and scaling the two points about the robot:")

@@ -104,8 +104,9 @@ def derivation() -> Derivation:
         "printed heading takes the robot one step further from the destination",
         shown=held_eq(
             sp.Subs(
-                sp.Derivative(sp.sqrt((dx_behind - step * u_x) ** 2 + (dy - step * u_y) ** 2),
-                              step),
+                sp.Derivative(
+                    sp.sqrt((dx_behind - step * u_x) ** 2 + (dy - step * u_y) ** 2), step
+                ),
                 step,
                 0,
             ),
@@ -144,8 +145,12 @@ def derivation() -> Derivation:
         shown=held_eq(sp.Function("atan2")(dy_left, 0), sp.pi / 2),
     )
 
-    behind = [((0.0, 0.0), (-1.0, 1.0)), ((2.0, 3.0), (-5.0, -1.0)), ((0.0, 0.0), (-4.0, 0.0)),
-              ((10.0, -2.0), (9.999, 250.0))]
+    behind = [
+        ((0.0, 0.0), (-1.0, 1.0)),
+        ((2.0, 3.0), (-5.0, -1.0)),
+        ((0.0, 0.0), (-4.0, 0.0)),
+        ((10.0, -2.0), (9.999, 250.0)),
+    ]
 
     def wrapped_difference(current: tuple[float, float], destination: tuple[float, float]) -> float:
         difference = eq3_goal_angle(current, destination) - eq3_goal_angle_literal(

@@ -72,8 +72,10 @@ def _convexity(
         theta_f,
         share * theta_g + (1 - share) * theta_d,
         "theta_f = lambda theta_g + (1 - lambda) theta_d",
-        shown=held_eq(sp.Symbol("theta_f"),
-                      sp.Symbol("lambda") * theta_g + (1 - sp.Symbol("lambda")) * theta_d),
+        shown=held_eq(
+            sp.Symbol("theta_f"),
+            sp.Symbol("lambda") * theta_g + (1 - sp.Symbol("lambda")) * theta_d,
+        ),
     )
     d.prove_sign("gap_share_positive", share, "positive", "lambda > 0 for w_g, w_d, d_th > 0")
     goal_share = w_d / (w_g / d_th + w_d)
@@ -97,8 +99,9 @@ def _convexity(
         theta_g - theta_f,
         (1 - share) * (theta_g - theta_d),
         "theta_g - theta_f = (1 - lambda)(theta_g - theta_d): so theta_f is between them",
-        shown=held_eq(theta_g - sp.Symbol("theta_f"),
-                      (1 - sp.Symbol("lambda")) * (theta_g - theta_d)),
+        shown=held_eq(
+            theta_g - sp.Symbol("theta_f"), (1 - sp.Symbol("lambda")) * (theta_g - theta_d)
+        ),
     )
 
 
@@ -115,8 +118,13 @@ def _limits(
     for name, var, point, expected, statement in (
         ("limit_w_g_to_0", w_g, 0, theta_d, "w_g -> 0+: theta_f -> theta_d (goal only)"),
         ("limit_w_d_to_0", w_d, 0, theta_g, "w_d -> 0+: theta_f -> theta_g (gap only)"),
-        ("limit_d_th_to_oo", d_th, sp.oo, theta_d,
-         "d_th -> oo: theta_f -> theta_d (a large threshold silences the gap)"),
+        (
+            "limit_d_th_to_oo",
+            d_th,
+            sp.oo,
+            theta_d,
+            "d_th -> oo: theta_f -> theta_d (a large threshold silences the gap)",
+        ),
         ("limit_d_th_to_0", d_th, 0, theta_g, "d_th -> 0+: theta_f -> theta_g"),
     ):
         direction = "-" if point is sp.oo else "+"
@@ -162,12 +170,28 @@ def _derivatives(
     )
     denominator = (w_g + w_d * d_th) ** 2
     for name, var, factor, difference, statement in (
-        ("d_w_g_sign", w_g, w_d * d_th / denominator, theta_g - theta_d,
-         "d theta_f / d w_g = K (theta_g - theta_d), K > 0: w_g pulls towards the gap"),
-        ("d_w_d_sign", w_d, w_g * d_th / denominator, theta_d - theta_g,
-         "d theta_f / d w_d = K (theta_d - theta_g), K > 0: w_d pulls towards the goal"),
-        ("d_d_th_sign", d_th, w_g * w_d / denominator, theta_d - theta_g,
-         "d theta_f / d d_th = K (theta_d - theta_g), K > 0: a larger d_th pulls towards the goal"),
+        (
+            "d_w_g_sign",
+            w_g,
+            w_d * d_th / denominator,
+            theta_g - theta_d,
+            "d theta_f / d w_g = K (theta_g - theta_d), K > 0: w_g pulls towards the gap",
+        ),
+        (
+            "d_w_d_sign",
+            w_d,
+            w_g * d_th / denominator,
+            theta_d - theta_g,
+            "d theta_f / d w_d = K (theta_d - theta_g), K > 0: w_d pulls towards the goal",
+        ),
+        (
+            "d_d_th_sign",
+            d_th,
+            w_g * w_d / denominator,
+            theta_d - theta_g,
+            "d theta_f / d d_th = K (theta_d - theta_g), K > 0: "
+            "a larger d_th pulls towards the goal",
+        ),
     ):
         d.prove_equal(
             name,
@@ -262,28 +286,55 @@ def _wrap_around(
     literal = theta_f.subs({theta_g: gap, theta_d: goal, **equal_weights})
     relative_g, relative_d = wrap_exact(gap - heading), wrap_exact(goal - heading)
     robot_frame = wrap_exact(heading + (relative_g + relative_d) / 2)
-    d.prove_equal("counterexample_literal_mean", literal, 0,
-                  "printed mean of 175 deg and -175 deg, equal weights = 0",
-                  shown=held_eq(sp.Function("theta_f")(gap, goal), 0))
-    d.prove_equal("counterexample_relative_angles",
-                  sp.Matrix([relative_g, relative_d]), sp.Matrix([-sp.pi / 36, sp.pi / 36]),
-                  "relative to heading pi the angles wrap to -5 deg and +5 deg",
-                  shown=held_eq(sp.Matrix([sp.Function("wrap")(gap - heading),
-                                           sp.Function("wrap")(goal - heading)]),
-                                sp.Matrix([-sp.pi / 36, sp.pi / 36])))
-    d.prove_equal("counterexample_robot_frame_mean", robot_frame, -sp.pi,
-                  "robot-frame mean = wrap(pi + 0) = -pi, the same direction as pi",
-                  shown=held_eq(sp.Symbol("theta_f_robot_frame"), -sp.pi))
-    d.prove_equal("counterexample_opposite_directions", sp.cos(literal - robot_frame), -1,
-                  "cos(printed - robot-frame) = -1: the printed heading is exactly reversed",
-                  shown=held_eq(sp.cos(sp.Symbol("theta_f_printed")
-                                       - sp.Symbol("theta_f_robot_frame")), -1))
-    d.prove_sign("counterexample_printed_far_from_gap", sp.cos(literal - gap), "negative",
-                 "cos(printed - theta_g) < 0: more than 90 deg from the gap")
-    d.prove_sign("counterexample_printed_far_from_goal", sp.cos(literal - goal), "negative",
-                 "cos(printed - theta_d) < 0: more than 90 deg from the goal")
-    d.prove_sign("counterexample_inputs_close", sp.cos(gap - goal), "positive",
-                 "cos(theta_g - theta_d) > 0: yet gap and goal are only 10 deg apart")
+    d.prove_equal(
+        "counterexample_literal_mean",
+        literal,
+        0,
+        "printed mean of 175 deg and -175 deg, equal weights = 0",
+        shown=held_eq(sp.Function("theta_f")(gap, goal), 0),
+    )
+    d.prove_equal(
+        "counterexample_relative_angles",
+        sp.Matrix([relative_g, relative_d]),
+        sp.Matrix([-sp.pi / 36, sp.pi / 36]),
+        "relative to heading pi the angles wrap to -5 deg and +5 deg",
+        shown=held_eq(
+            sp.Matrix([sp.Function("wrap")(gap - heading), sp.Function("wrap")(goal - heading)]),
+            sp.Matrix([-sp.pi / 36, sp.pi / 36]),
+        ),
+    )
+    d.prove_equal(
+        "counterexample_robot_frame_mean",
+        robot_frame,
+        -sp.pi,
+        "robot-frame mean = wrap(pi + 0) = -pi, the same direction as pi",
+        shown=held_eq(sp.Symbol("theta_f_robot_frame"), -sp.pi),
+    )
+    d.prove_equal(
+        "counterexample_opposite_directions",
+        sp.cos(literal - robot_frame),
+        -1,
+        "cos(printed - robot-frame) = -1: the printed heading is exactly reversed",
+        shown=held_eq(sp.cos(sp.Symbol("theta_f_printed") - sp.Symbol("theta_f_robot_frame")), -1),
+    )
+    d.prove_sign(
+        "counterexample_printed_far_from_gap",
+        sp.cos(literal - gap),
+        "negative",
+        "cos(printed - theta_g) < 0: more than 90 deg from the gap",
+    )
+    d.prove_sign(
+        "counterexample_printed_far_from_goal",
+        sp.cos(literal - goal),
+        "negative",
+        "cos(printed - theta_d) < 0: more than 90 deg from the goal",
+    )
+    d.prove_sign(
+        "counterexample_inputs_close",
+        sp.cos(gap - goal),
+        "positive",
+        "cos(theta_g - theta_d) > 0: yet gap and goal are only 10 deg apart",
+    )
     d.text(
         """
         In the robot frame both relative angles lie in [-pi, pi), and the mean is the convex
@@ -330,8 +381,9 @@ def _library(d: Derivation) -> None:
     )
     d.spot_check(
         "library_fgm_matches_renamed_eq4",
-        lambda *p: eq4_final_heading_fgm(p[0], p[1], alpha=p[2], beta=p[3], d_min=p[4],
-                                         heading=0.0),
+        lambda *p: eq4_final_heading_fgm(
+            p[0], p[1], alpha=p[2], beta=p[3], d_min=p[4], heading=0.0
+        ),
         lambda *p: eq4_final_heading(p[0], p[1], w_g=p[2], w_d=p[3], d_th=p[4], heading=0.0),
         points,
         "eq4_final_heading_fgm = eq4_final_heading with alpha, beta, d_min for w_g, w_d, d_th",

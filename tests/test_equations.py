@@ -210,8 +210,9 @@ def test_eq2_literal_is_ratio_not_angle(data: st.DataObject) -> None:
 @given(data=st.data())
 def test_eq2_visible_gap_is_ahead(data: st.DataObject) -> None:
     """Gaps inside the field of view have x_g > 0 (proofs.eq2:midpoint_ahead_in_fov)."""
-    m = eq1_gap_midpoint(data.draw(visible_points(), label="p1"),
-                         data.draw(visible_points(), label="p2"))
+    m = eq1_gap_midpoint(
+        data.draw(visible_points(), label="p1"), data.draw(visible_points(), label="p2")
+    )
     assert m.x > 0
     literal = math.atan(eq2_gap_angle_literal(*m))
     assert math.isclose(literal, eq2_gap_angle(*m), rel_tol=0.0, abs_tol=ANGLE_TOL)
@@ -259,8 +260,9 @@ def test_fgm_gap_centre_angle_is_midpoint_angle(data: st.DataObject) -> None:
     d1 = data.draw(finite_floats(min_value=0.1, max_value=15.0), label="d1")
     d2 = data.draw(finite_floats(min_value=0.1, max_value=15.0), label="d2")
     angle1 = data.draw(angles(bound=HALF_FOV), label="angle of border 1")
-    angle2 = data.draw(finite_floats(min_value=angle1, max_value=HALF_FOV),
-                       label="angle of border 2")
+    angle2 = data.draw(
+        finite_floats(min_value=angle1, max_value=HALF_FOV), label="angle of border 2"
+    )
     b1 = (d1 * math.cos(angle1), d1 * math.sin(angle1))
     b2 = (d2 * math.cos(angle2), d2 * math.sin(angle2))
     fgm = fgm_gap_centre_angle(d1, -angle1, d2, angle2)
@@ -389,17 +391,21 @@ def test_eq4_interpreted_between_inputs_in_robot_frame(data: st.DataObject) -> N
     w_g, w_d, d_th = data.draw(weight_sets(), label="(w_g, w_d, d_th)")
     assume(_clear_of_behind((relative_d, 0.0)))
     theta_f = eq4_final_heading(
-        wrap_angle(heading + relative_g), wrap_angle(heading + relative_d),
-        w_g=w_g, w_d=w_d, d_th=d_th, heading=heading,
+        wrap_angle(heading + relative_g),
+        wrap_angle(heading + relative_d),
+        w_g=w_g,
+        w_d=w_d,
+        d_th=d_th,
+        heading=heading,
     )
     relative_f = wrap_angle(theta_f - heading)
     # heading + relative, its wrap, and the difference back each round by an ulp of 2 pi.
     tol = 1e-14
     low, high = min(relative_g, relative_d) - tol, max(relative_g, relative_d) + tol
-    assert any(low <= candidate <= high
-               for candidate in (relative_f, relative_f - 2 * math.pi, relative_f + 2 * math.pi)), (
-        f"relative theta_f={relative_f}, but should be in [{low}, {high}]"
-    )
+    assert any(
+        low <= candidate <= high
+        for candidate in (relative_f, relative_f - 2 * math.pi, relative_f + 2 * math.pi)
+    ), f"relative theta_f={relative_f}, but should be in [{low}, {high}]"
 
 
 @given(data=st.data())
@@ -412,8 +418,9 @@ def test_eq4_interpreted_invariant_under_full_turns(data: st.DataObject) -> None
     w_g, w_d, d_th = data.draw(weight_sets(), label="(w_g, w_d, d_th)")
     assume(_clear_of_behind((theta_g, heading), (theta_d, heading)))
     base = eq4_final_heading(theta_g, theta_d, w_g=w_g, w_d=w_d, d_th=d_th, heading=heading)
-    turned = eq4_final_heading(theta_g, theta_d + 2 * math.pi * k, w_g=w_g, w_d=w_d, d_th=d_th,
-                               heading=heading)
+    turned = eq4_final_heading(
+        theta_g, theta_d + 2 * math.pi * k, w_g=w_g, w_d=w_d, d_th=d_th, heading=heading
+    )
     # theta_d + 2 pi k (|k| <= 3) and its wrap round by an ulp of 7 pi: ~3.6e-15.
     assert _angle_distance(base, turned) <= 1e-13
 
@@ -427,8 +434,9 @@ def test_eq4_literal_depends_on_angle_representation(data: st.DataObject) -> Non
     k = data.draw(st.integers(min_value=-3, max_value=3), label="k")
     w_g, w_d, d_th = data.draw(weight_sets(), label="(w_g, w_d, d_th)")
     base = eq4_final_heading_literal(theta_g, theta_d, w_g=w_g, w_d=w_d, d_th=d_th)
-    turned = eq4_final_heading_literal(theta_g, theta_d + 2 * math.pi * k,
-                                       w_g=w_g, w_d=w_d, d_th=d_th)
+    turned = eq4_final_heading_literal(
+        theta_g, theta_d + 2 * math.pi * k, w_g=w_g, w_d=w_d, d_th=d_th
+    )
     goal_share = w_d / (w_g / d_th + w_d)
     # Values up to ~7 pi: a few ulps of 22 is ~1e-14.
     assert math.isclose(turned - base, 2 * math.pi * k * goal_share, rel_tol=0.0, abs_tol=1e-13)
@@ -444,8 +452,9 @@ def test_eq4_interpreted_rotation_equivariant(data: st.DataObject) -> None:
     w_g, w_d, d_th = data.draw(weight_sets(), label="(w_g, w_d, d_th)")
     assume(_clear_of_behind((theta_g, heading), (theta_d, heading)))
     base = eq4_final_heading(theta_g, theta_d, w_g=w_g, w_d=w_d, d_th=d_th, heading=heading)
-    turned = eq4_final_heading(theta_g + phi, theta_d + phi, w_g=w_g, w_d=w_d, d_th=d_th,
-                               heading=heading + phi)
+    turned = eq4_final_heading(
+        theta_g + phi, theta_d + phi, w_g=w_g, w_d=w_d, d_th=d_th, heading=heading + phi
+    )
     # Sums of angles up to 2 pi, wrapped: a few ulps of 2 pi.
     assert _angle_distance(turned, base + phi) <= 1e-14
 
@@ -454,8 +463,10 @@ def test_eq4_interpreted_rotation_equivariant(data: st.DataObject) -> None:
 def test_eq4_wraparound_counterexample(data: st.DataObject) -> None:
     """Gap and goal either side of +-pi: the printed mean points back, the robot-frame mean on
     (proofs.eq4:counterexample_literal_mean, counterexample_robot_frame_mean)."""
-    a = data.draw(finite_floats(min_value=math.pi / 2 + 0.01, max_value=math.pi - 1e-6),
-                  label="|theta| of gap and goal")
+    a = data.draw(
+        finite_floats(min_value=math.pi / 2 + 0.01, max_value=math.pi - 1e-6),
+        label="|theta| of gap and goal",
+    )
     weight = data.draw(finite_floats(min_value=1e-3, max_value=1e3), label="w_g = w_d, d_th = 1")
     literal = eq4_final_heading_literal(a, -a, w_g=weight, w_d=weight, d_th=1.0)
     interpreted = eq4_final_heading(a, -a, w_g=weight, w_d=weight, d_th=1.0, heading=math.pi)
@@ -498,10 +509,10 @@ def test_eq4_fgm_is_renamed_eq4(data: st.DataObject) -> None:
     theta_d = data.draw(angles(), label="theta_d")
     heading = data.draw(angles(), label="heading")
     alpha, beta, d_min = data.draw(weight_sets(), label="(alpha, beta, d_min)")
-    fgm = eq4_final_heading_fgm(theta_g, theta_d, alpha=alpha, beta=beta, d_min=d_min,
-                                heading=heading)
-    renamed = eq4_final_heading(theta_g, theta_d, w_g=alpha, w_d=beta, d_th=d_min,
-                                heading=heading)
+    fgm = eq4_final_heading_fgm(
+        theta_g, theta_d, alpha=alpha, beta=beta, d_min=d_min, heading=heading
+    )
+    renamed = eq4_final_heading(theta_g, theta_d, w_g=alpha, w_d=beta, d_th=d_min, heading=heading)
     assert fgm == renamed
 
 

@@ -131,9 +131,7 @@ def test_proofs_hold(equation: str) -> None:
 
 
 @pytest.mark.parametrize("equation", sorted(EXPECTED_CLAIMS))
-def test_proofs_main_prints_worked_page(
-    equation: str, capsys: pytest.CaptureFixture[str]
-) -> None:
+def test_proofs_main_prints_worked_page(equation: str, capsys: pytest.CaptureFixture[str]) -> None:
     """``main()`` prints every claim, its kind and the summary line."""
     importlib.import_module(f"proofs.{equation}").main()
     page = capsys.readouterr().out
@@ -206,8 +204,13 @@ def test_prove_true_rejects_unevaluated_relation() -> None:
 def test_spot_check_rejects_out_of_tolerance() -> None:
     with pytest.raises(ClaimFailed, match=r"at \(1.0,\): value=1.5, but should be 1.0"):
         Derivation("teeth", "Teeth").spot_check(
-            "off", lambda x: x + 0.5, lambda x: x, [(1.0,)], "x + 0.5 = x",
-            abs_tol=0.1, reason="test",
+            "off",
+            lambda x: x + 0.5,
+            lambda x: x,
+            [(1.0,)],
+            "x + 0.5 = x",
+            abs_tol=0.1,
+            reason="test",
         )
 
 
