@@ -81,8 +81,9 @@ class ClearanceChecker:
 
     def __init__(self, world: World, radius: float) -> None:
         self._edges = world.segments
-        self._mids = self._edges.mean(axis=1)
-        self._halves = 0.5 * np.hypot(*(self._edges[:, 1] - self._edges[:, 0]).T)
+        self._starts = self._edges[:, 0, :]
+        self._spans = self._edges[:, 1, :] - self._edges[:, 0, :]
+        self._length2 = np.einsum("ij,ij->i", self._spans, self._spans)
         self._centers = world.circle_centers
         self._radii = world.circle_radii
         self.radius = radius
@@ -90,23 +91,23 @@ class ClearanceChecker:
     def segment_clearance(self, start: Pose, end: Pose) -> float:
         """Clearance of the disc swept from ``start`` to ``end`` (positions only).
 
-        Only obstacles that can hold the minimum are measured exactly: the distance from the
-        path's midpoint ``m`` (half-length ``h``) to an edge of midpoint ``c`` and half-length
-        ``k`` lies within ``|m - c| -+ (h + k)``, and to a circle of centre ``c`` and radius
-        ``r`` within ``|m - c| - r -+ h``; an obstacle whose lower bound exceeds the least
-        upper bound cannot be the nearest.
+        Only obstacles that can hold the minimum are measured exactly. Every point of the
+        path is within ``h`` (its half-length) of its midpoint ``m``, so its distance to an
+        obstacle lies within ``d(m) -+ h``; an obstacle whose lower bound ``d(m) - h`` exceeds
+        the least upper bound cannot be the nearest. ``d(m)`` is computed for all obstacles at
+        once, the exact segment distance for the few that remain.
         """
         p, q = (start.x, start.y), (end.x, end.y)
         mx, my = 0.5 * (p[0] + q[0]), 0.5 * (p[1] + q[1])
         h = 0.5 * math.hypot(q[0] - p[0], q[1] - p[1])
-        edge_mid = np.hypot(self._mids[:, 0] - mx, self._mids[:, 1] - my)
+        wx, wy = mx - self._starts[:, 0], my - self._starts[:, 1]
+        t = (wx * self._spans[:, 0] + wy * self._spans[:, 1]) / self._length2
+        np.clip(t, 0.0, 1.0, out=t)
+        edge_mid = np.hypot(wx - t * self._spans[:, 0], wy - t * self._spans[:, 1])
         circle_mid = np.hypot(self._centers[:, 0] - mx, self._centers[:, 1] - my) - self._radii
-        bound = h + min(
-            float((edge_mid + self._halves).min(initial=math.inf)),
-            float(circle_mid.min(initial=math.inf)),
-        )
+        bound = h + min(edge_mid.min(initial=math.inf), circle_mid.min(initial=math.inf))
         best = math.inf
-        for a, b in self._edges[edge_mid - self._halves - h <= bound].tolist():
+        for a, b in self._edges[edge_mid - h <= bound].tolist():
             best = min(best, segment_distance(p, q, a, b))
         near = circle_mid - h <= bound
         for (cx, cy), r in zip(
