@@ -51,16 +51,16 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, fields
 from enum import StrEnum
-from typing import Any, ClassVar
+from typing import ClassVar
 
 import numpy as np
 from numpy.typing import NDArray
 
-from ifgm_ref.errors import ParameterError
 from ifgm_ref.laserscan import LaserScan
 from ifgm_ref.percepts.corridor import free_length
 from ifgm_ref.percepts.points import scan_points
 from ifgm_ref.planners.edge_following import turn_speed
+from ifgm_ref.planners.tuning import Tuning
 from ifgm_ref.pose import Point, Pose, wrap_angle
 from ifgm_ref.protocol import Behaviour, Command, EpisodeParams, Observation
 
@@ -83,7 +83,7 @@ class APFBranch(StrEnum):
 
 
 @dataclass(frozen=True)
-class APFParams:
+class APFParams(Tuning):
     """APF's settings, read from ``EpisodeParams.params`` by name.
 
     The IFGM paper gives no values; the defaults are ours, each with its reason.
@@ -110,30 +110,6 @@ class APFParams:
     eta: float = 50.0
     d0: float = 5.0
     stop_margin: float = 0.5
-
-    def __post_init__(self) -> None:
-        for f in fields(self):
-            value = getattr(self, f.name)
-            if (
-                isinstance(value, bool)
-                or not isinstance(value, int | float)
-                or not (math.isfinite(value) and value > 0)
-            ):
-                raise ParameterError(f"`{f.name}` must be a finite number > 0, got {value!r}")
-
-    @classmethod
-    def from_params(cls, params: dict[str, Any]) -> APFParams:
-        """Take this class's fields from a planner ``params`` mapping; ignore other keys.
-
-        >>> APFParams.from_params({"eta": 10, "alpha": 3.0})
-        APFParams(k_att=1.0, eta=10, d0=5.0, stop_margin=0.5)
-        >>> APFParams.from_params({"d0": 0.0})
-        Traceback (most recent call last):
-        ...
-        ifgm_ref.errors.ParameterError: `d0` must be a finite number > 0, got 0.0
-        """
-        known = {f.name for f in fields(cls)}
-        return cls(**{k: v for k, v in params.items() if k in known})
 
 
 def attractive_force(to_goal: tuple[float, float], k_att: float) -> NDArray[np.float64]:

@@ -14,13 +14,13 @@ where it met the obstacle (:meth:`BoundaryPlanner.on_loop_closed`).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, fields
-from typing import Any, ClassVar
+from dataclasses import dataclass
+from typing import ClassVar
 
-from ifgm_ref.errors import ParameterError
 from ifgm_ref.percepts.corridor import free_length
 from ifgm_ref.percepts.memory import PerceptMemory
 from ifgm_ref.planners.edge_following import FollowSide, follow_heading, turn_speed
+from ifgm_ref.planners.tuning import Tuning
 from ifgm_ref.pose import Point, Pose, distance, wrap_angle
 from ifgm_ref.protocol import Behaviour, Command, EpisodeParams, Observation
 
@@ -29,7 +29,7 @@ GOAL_UNREACHABLE = "goal_unreachable"
 
 
 @dataclass(frozen=True)
-class BoundaryParams:
+class BoundaryParams(Tuning):
     """Tuning shared by the boundary followers (lengths in ft, times in s).
 
     Parameters
@@ -60,27 +60,13 @@ class BoundaryParams:
     return_radius: float = 1.0
     min_loop: float = 12.0
 
-    @classmethod
-    def from_params(cls, params: dict[str, Any]) -> BoundaryParams:
-        """Take this class's fields from a planner ``params`` mapping; ignore the rest."""
-        known = {f.name for f in fields(cls)}
-        values = {k: v for k, v in params.items() if k in known}
-        for name, value in values.items():
-            if (
-                isinstance(value, bool)
-                or not isinstance(value, int | float)
-                or not (math.isfinite(value) and value > 0)
-            ):
-                raise ParameterError(f"`{name}` must be a finite number > 0, got {value!r}")
-        return cls(**values)
-
 
 class BoundaryPlanner:
     """Move to goal; on meeting an obstacle, follow its edge until the leaving rule holds."""
 
     name: ClassVar[str] = "boundary"
     #: The subclass's own parameters (names listed by ``ifgm-ref planners``).
-    parameters: ClassVar[tuple[str, ...]] = tuple(f.name for f in fields(BoundaryParams))
+    parameters: ClassVar[tuple[str, ...]] = BoundaryParams.names()
 
     def __init__(self) -> None:
         self.tuning = BoundaryParams()

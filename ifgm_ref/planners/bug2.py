@@ -30,8 +30,8 @@ from __future__ import annotations
 import math
 from typing import ClassVar
 
-from ifgm_ref.errors import ParameterError
 from ifgm_ref.planners.boundary import BoundaryPlanner
+from ifgm_ref.planners.tuning import positive_param
 from ifgm_ref.pose import Point, Pose, distance
 from ifgm_ref.protocol import Command, EpisodeParams, Observation
 
@@ -94,14 +94,9 @@ class Bug2Planner(BoundaryPlanner):
         super().reset(start, goal, params)
         self.start = Point(start[0], start[1])
         default = params.robot.speed * params.dt
-        value = params.params.get("m_line_tolerance", default)
-        if (
-            isinstance(value, bool)
-            or not isinstance(value, int | float)
-            or not (math.isfinite(value) and value > 0)
-        ):
-            raise ParameterError(f"`m_line_tolerance` must be a finite number > 0, got {value!r}")
-        self.m_line_tolerance = float(value)
+        self.m_line_tolerance = positive_param(
+            "m_line_tolerance", params.params.get("m_line_tolerance", default)
+        )
         self.hit_distance = math.inf
         self._side = 0.0
 

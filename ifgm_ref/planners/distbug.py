@@ -46,8 +46,8 @@ from __future__ import annotations
 import math
 from typing import ClassVar
 
-from ifgm_ref.errors import ParameterError
 from ifgm_ref.planners.boundary import BoundaryPlanner
+from ifgm_ref.planners.tuning import positive_param
 from ifgm_ref.pose import Point, Pose, distance
 from ifgm_ref.protocol import Command, EpisodeParams, Observation
 
@@ -93,14 +93,9 @@ class DistBugPlanner(BoundaryPlanner):
     def reset(self, start: Pose, goal: Point, params: EpisodeParams) -> None:
         """Start in *move to goal*; read ``step_length`` (default ``2 * robot.radius``)."""
         super().reset(start, goal, params)
-        value = params.params.get("step_length", 2.0 * params.robot.radius)
-        if (
-            isinstance(value, bool)
-            or not isinstance(value, int | float)
-            or not (math.isfinite(value) and value > 0)
-        ):
-            raise ParameterError(f"`step_length` must be a finite number > 0, got {value!r}")
-        self.step_length = float(value)
+        self.step_length = positive_param(
+            "step_length", params.params.get("step_length", 2.0 * params.robot.radius)
+        )
         self.d_min = math.inf
 
     # -- hooks ------------------------------------------------------------------------------

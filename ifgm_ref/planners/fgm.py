@@ -44,7 +44,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, fields
 from enum import StrEnum
-from typing import Any, ClassVar
+from typing import ClassVar
 
 import numpy as np
 from numpy.typing import NDArray
@@ -54,6 +54,7 @@ from ifgm_ref.errors import ParameterError
 from ifgm_ref.laserscan import LaserScan
 from ifgm_ref.percepts.points import scan_points
 from ifgm_ref.planners.edge_following import turn_speed
+from ifgm_ref.planners.tuning import Tuning
 from ifgm_ref.pose import Point, Pose, wrap_angle
 from ifgm_ref.protocol import Behaviour, Command, EpisodeParams, Observation
 
@@ -83,7 +84,7 @@ class FGMBranch(StrEnum):
 
 
 @dataclass(frozen=True)
-class FGMParams:
+class FGMParams(Tuning):
     """FGM's settings, read from ``EpisodeParams.params`` by name.
 
     The IFGM paper gives no values and our store has no copy of the FGM paper; the defaults
@@ -110,31 +111,12 @@ class FGMParams:
     beta: float = 1.0
     inflation_margin: float = 0.5
 
+    NON_NEGATIVE: ClassVar[frozenset[str]] = frozenset({"alpha", "beta", "inflation_margin"})
+
     def __post_init__(self) -> None:
-        for f in fields(self):
-            value = getattr(self, f.name)
-            if (
-                isinstance(value, bool)
-                or not isinstance(value, int | float)
-                or not (math.isfinite(value) and value >= 0)
-            ):
-                raise ParameterError(f"`{f.name}` must be a finite number >= 0, got {value!r}")
+        super().__post_init__()
         if self.alpha == 0 and self.beta == 0:
             raise ParameterError("`alpha` and `beta` must not both be 0")
-
-    @classmethod
-    def from_params(cls, params: dict[str, Any]) -> FGMParams:
-        """Take this class's fields from a planner ``params`` mapping; ignore other keys.
-
-        >>> FGMParams.from_params({"alpha": 2, "d_th": 3.0})
-        FGMParams(alpha=2, beta=1.0, inflation_margin=0.5)
-        >>> FGMParams.from_params({"beta": -1.0})
-        Traceback (most recent call last):
-        ...
-        ifgm_ref.errors.ParameterError: `beta` must be a finite number >= 0, got -1.0
-        """
-        known = {f.name for f in fields(cls)}
-        return cls(**{k: v for k, v in params.items() if k in known})
 
 
 @dataclass(frozen=True)

@@ -21,7 +21,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, fields
-from typing import Any, ClassVar
+from typing import ClassVar
 
 import numpy as np
 
@@ -35,6 +35,7 @@ from ifgm_ref.percepts.points import to_world
 from ifgm_ref.planners.boundary import BoundaryParams
 from ifgm_ref.planners.edge_following import FollowSide, turn_speed
 from ifgm_ref.planners.iba import IBAPlanner, freer_side
+from ifgm_ref.planners.tuning import Tuning
 from ifgm_ref.pose import Point, Pose, distance, wrap_angle
 from ifgm_ref.protocol import Behaviour, Command, EpisodeParams, Observation
 
@@ -48,7 +49,7 @@ TURN_DONE = 1e-6
 
 
 @dataclass(frozen=True)
-class IFGMParams:
+class IFGMParams(Tuning):
     """IFGM's thresholds and weights (section 4); ``None`` means "derived from the robot".
 
     Parameters
@@ -82,22 +83,6 @@ class IFGMParams:
     w_d: float = 1.0
     jump: float | None = None
     preempt_margin: float = 0.5
-
-    @classmethod
-    def from_params(cls, params: dict[str, Any]) -> IFGMParams:
-        """Take this class's fields from a planner ``params`` mapping; ignore the rest."""
-        known = {f.name for f in fields(cls)}
-        values = {k: v for k, v in params.items() if k in known}
-        for name, value in values.items():
-            if value is None:
-                continue
-            if (
-                isinstance(value, bool)
-                or not isinstance(value, int | float)
-                or not (math.isfinite(value) and value > 0)
-            ):
-                raise ParameterError(f"`{name}` must be a finite number > 0, got {value!r}")
-        return cls(**values)
 
 
 class IFGMPlanner(IBAPlanner):
