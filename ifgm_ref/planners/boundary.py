@@ -98,11 +98,7 @@ class BoundaryPlanner:
     def step(self, observation: Observation) -> Command:
         """Remember the scan, then move to goal or follow the edge (see the class docstring)."""
         pose = observation.pose
-        self.memory.add(observation.t, pose, observation.scan)
-        here = pose.position
-        if self.following:
-            self.travelled += distance(self._last, here)
-        self._last = here
+        here = self.observe(observation)
         if not self.following:
             if not self.goal_blocked(pose):
                 return self.move_to_goal(pose, "move_to_goal")
@@ -119,6 +115,15 @@ class BoundaryPlanner:
         return self.follow(pose, "follow_edge")
 
     # -- pieces for subclasses --------------------------------------------------------------
+    def observe(self, observation: Observation) -> Point:
+        """Remember the scan and count the distance followed; return the robot's position."""
+        self.memory.add(observation.t, observation.pose, observation.scan)
+        here = observation.pose.position
+        if self.following:
+            self.travelled += distance(self._last, here)
+        self._last = here
+        return here
+
     @property
     def standoff(self) -> float:
         """Distance kept from the followed edge to the robot's centre, ft."""

@@ -214,11 +214,7 @@ class IFGMPlanner(IBAPlanner):
     def step(self, observation: Observation) -> Command:
         """Decide with Figure 3, then act on the branch."""
         pose = observation.pose
-        self.memory.add(observation.t, pose, observation.scan)
-        here = pose.position
-        if self.following:
-            self.travelled += distance(self._last, here)
-        self._last = here
+        self.observe(observation)
         clusters = cluster_scan(observation.scan, jump=self.jump)
         if self.following:
             self._track_followed(pose)
