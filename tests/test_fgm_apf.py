@@ -42,7 +42,7 @@ from ifgm_ref.planners.fgm import (
     FGMBranch,
     FGMParams,
     FGMPlanner,
-    Gap,
+    RayGap,
     blocked_rays,
     choose_max_gap,
     fgm_decide,
@@ -220,9 +220,9 @@ def test_fgm_no_gap_stops_facing_the_goal() -> None:
 
 
 def test_choose_max_gap_prefers_most_rays_then_goal_side() -> None:
-    a = Gap(0, 9, -1.0, 5.0, -0.5, 5.0)
-    b = Gap(20, 29, 0.5, 5.0, 1.0, 5.0)
-    c = Gap(40, 40, 1.1, 5.0, 1.1, 5.0)
+    a = RayGap(0, 9, -1.0, 5.0, -0.5, 5.0)
+    b = RayGap(20, 29, 0.5, 5.0, 1.0, 5.0)
+    c = RayGap(40, 40, 1.1, 5.0, 1.1, 5.0)
     assert choose_max_gap((a, b, c), goal_angle=0.9) is b  # a and b tie on 10 rays
     assert choose_max_gap((a, b, c), goal_angle=-0.9) is a
 

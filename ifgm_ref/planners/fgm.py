@@ -26,9 +26,9 @@ radius                                              return is a disc of this rad
 ``phi_i`` (border half-     ``asin(min(1, r/d))``   angular half-width an inflated return at
 angle)                                              ``d`` ft blocks, rad
 gap array                   :func:`find_gaps`       runs of consecutive free (unblocked) rays
-``d_1, phi_1``              ``Gap.right_*``         right border: distance, clockwise angle
-``d_2, phi_2``              ``Gap.left_*``          left border: distance, counter-clockwise
-``theta_gap_c``             ``Gap.centre``          gap centre angle, robot frame, rad
+``d_1, phi_1``              ``RayGap.right_*``      right border: distance, clockwise angle
+``d_2, phi_2``              ``RayGap.left_*``       left border: distance, counter-clockwise
+``theta_gap_c``             ``RayGap.centre``       gap centre angle, robot frame, rad
 ``theta_goal``              ``goal_angle``          goal bearing, robot frame, rad
 ``alpha``, ``beta``         ``alpha``, ``beta``     gap and goal weights of the final heading
 ``d_min``                   ``d_min``               range of the nearest return, ft
@@ -63,7 +63,7 @@ __all__ = [
     "FGMDecision",
     "FGMParams",
     "FGMPlanner",
-    "Gap",
+    "RayGap",
     "blocked_rays",
     "choose_max_gap",
     "fgm_decide",
@@ -120,7 +120,7 @@ class FGMParams(Tuning):
 
 
 @dataclass(frozen=True)
-class Gap:
+class RayGap:
     """One run of consecutive free rays, ``first`` to ``last`` (right to left).
 
     A border's distance is that of the nearest return blocking the ray just outside the gap;
@@ -172,7 +172,7 @@ class FGMDecision:
 
     branch: FGMBranch
     heading: float
-    gap: Gap | None
+    gap: RayGap | None
     d_min: float
 
 
@@ -236,10 +236,10 @@ def blocked_rays(
     return np.isfinite(distance), distance
 
 
-def find_gaps(scan: LaserScan, inflation: float) -> tuple[Gap, ...]:
+def find_gaps(scan: LaserScan, inflation: float) -> tuple[RayGap, ...]:
     """The gap array: every run of consecutive free rays, right to left.
 
-    See :func:`blocked_rays` for which rays are free and :class:`Gap` for the borders.
+    See :func:`blocked_rays` for which rays are free and :class:`RayGap` for the borders.
 
     Examples
     --------
@@ -271,11 +271,11 @@ def find_gaps(scan: LaserScan, inflation: float) -> tuple[Gap, ...]:
     for a, b in zip(starts.tolist(), ends.tolist(), strict=True):
         right_d = float(distance[a - 1]) if a > 0 else scan.range_max
         left_d = float(distance[b + 1]) if b < n - 1 else scan.range_max
-        gaps.append(Gap(a, b, float(angles[a]), right_d, float(angles[b]), left_d))
+        gaps.append(RayGap(a, b, float(angles[a]), right_d, float(angles[b]), left_d))
     return tuple(gaps)
 
 
-def choose_max_gap(gaps: tuple[Gap, ...], goal_angle: float) -> Gap | None:
+def choose_max_gap(gaps: tuple[RayGap, ...], goal_angle: float) -> RayGap | None:
     """The maximum gap: the one with the most free rays (the widest angular run).
 
     FGM's maximum gap is the widest gap *in angle*, the one with the most free elements in
@@ -285,8 +285,8 @@ def choose_max_gap(gaps: tuple[Gap, ...], goal_angle: float) -> Gap | None:
 
     Examples
     --------
-    >>> narrow = Gap(0, 2, -1.0, 5.0, -0.8, 5.0)
-    >>> wide = Gap(5, 12, -0.4, 5.0, 1.0, 5.0)
+    >>> narrow = RayGap(0, 2, -1.0, 5.0, -0.8, 5.0)
+    >>> wide = RayGap(5, 12, -0.4, 5.0, 1.0, 5.0)
     >>> choose_max_gap((narrow, wide), goal_angle=-1.0) is wide
     True
     >>> choose_max_gap((), goal_angle=0.0) is None
