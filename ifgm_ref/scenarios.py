@@ -1,10 +1,25 @@
 """Built-in worlds, by name; a built-in name works wherever a world-file path does.
 
 ``free`` is the paper's obstacle-free run (section 5.1, Figure 4a): 197 ft from source to
-destination, covered in 149 s at the default speed. The small demonstration worlds (one box,
-a U opening towards the start, an H) exercise the planners on the paper's obstacle families;
-they are ours, not the paper's. The paper's own scenarios are reconstructions added beside
-them.
+destination, covered in 149 s at the default speed.
+
+The paper's scenarios are **reconstructions**: the paper gives no coordinates and its figures
+are not in our copy, only the text of section 5. What the text fixes is kept (197 ft from
+source to destination; two of the simple obstacles on the straight line; three symmetric
+obstacles across the path, far apart or close together; a U opening towards the source, then
+an H); sizes and positions are ours, chosen so that the robot of the default parameters meets
+each situation the text describes:
+
+* ``scenario1`` (Figures 4-6): a 8 x 40 ft rectangle and a hexagon of radius 14 ft on the
+  line, a disc and a triangle off it;
+* ``fig7a``/``fig7c`` (Figure 7, far apart): three discs / squares across the path with gaps of
+  4.5 ft, wider than ``d_th`` = 3 ft; ``fig7b``/``fig7d`` (close together): gaps of 1.5 ft,
+  narrower than ``d_th`` and than the robot (2 ft);
+* ``scenario2`` (Figures 8-9): the U of ``u_trap`` opening towards the source, then the H of
+  ``h_block`` with a cavity facing it.
+
+The small demonstration worlds (one box, a post, three posts, a U, an H) are ours; they
+exercise the planners on the paper's obstacle families and every branch of Figure 3.
 """
 
 from __future__ import annotations
@@ -18,8 +33,8 @@ from pathlib import Path
 from ifgm_ref.errors import WorldError
 from ifgm_ref.params import PAPER_FREE_DISTANCE_FT
 from ifgm_ref.pose import Point, Pose
-from ifgm_ref.shapes import circle, h_shape, rectangle, u_shape
-from ifgm_ref.world import Bounds, World
+from ifgm_ref.shapes import circle, h_shape, rectangle, regular_polygon, u_shape
+from ifgm_ref.world import Bounds, Obstacle, World
 from ifgm_ref.worldfile import load_world
 
 #: Start, goal and arena of the demonstration worlds: 60 ft along +x.
@@ -55,9 +70,84 @@ def _demo(name: str, *obstacles: object) -> World:
     )
 
 
+#: The paper's source-to-destination distance (section 5.1) along +x, and its arena.
+_PAPER_START = Pose(0.0, 0.0, 0.0)
+_PAPER_GOAL = Point(PAPER_FREE_DISTANCE_FT, 0.0)
+_PAPER_BOUNDS = Bounds(-20.0, -70.0, PAPER_FREE_DISTANCE_FT + 20.0, 70.0)
+#: Figure 7's arena: 80 ft along +x, the three obstacles half way.
+_FIG7_GOAL = Point(80.0, 0.0)
+_FIG7_BOUNDS = Bounds(-15.0, -40.0, 95.0, 40.0)
+#: Figure 7's gaps between neighbouring obstacles, ft: wider than d_th (3 ft) far apart,
+#: narrower than the robot (2 ft) close together. (A gap between 2 ft and d_th looks wider
+#: than it is from afar -- the visible borders are the tangent points, and the 1.8-degree
+#: rays add up to half a foot -- so IFGM would first take it for a Case-1 gap.)
+FIG7_GAP_FAR = 4.5
+FIG7_GAP_NEAR = 1.5
+
+
+def _paper(name: str, *obstacles: Obstacle) -> World:
+    return World(
+        name=name, start=_PAPER_START, goal=_PAPER_GOAL, obstacles=obstacles, bounds=_PAPER_BOUNDS
+    )
+
+
+def _fig7(name: str, size: float, gap: float, shape: Callable[[float], Obstacle]) -> World:
+    """Three equal obstacles of width ``size`` centred on x = 40 ft, ``gap`` apart in y."""
+    pitch = size + gap
+    return World(
+        name=name,
+        start=_PAPER_START,
+        goal=_FIG7_GOAL,
+        obstacles=tuple(shape(k * pitch) for k in (-1, 0, 1)),
+        bounds=_FIG7_BOUNDS,
+    )
+
+
+def _scenario1() -> World:
+    return _paper(
+        "scenario1",
+        rectangle((60.0, 3.0), 8.0, 40.0),
+        regular_polygon((135.0, -3.0), 14.0, 6),
+        circle((100.0, 22.0), 5.0),
+        regular_polygon((170.0, -20.0), 6.0, 3),
+    )
+
+
+def _scenario2() -> World:
+    return _paper(
+        "scenario2",
+        u_shape((50.0, 0.0), width=24.0, depth=16.0, thickness=1.0, opening=math.pi),
+        h_shape((130.0, 0.0), width=20.0, height=24.0, thickness=1.0, orientation=math.pi / 2),
+    )
+
+
 BUILTIN_WORLDS: dict[str, BuiltinWorld] = {
     "free": BuiltinWorld(
         "no obstacle; 197 ft from source to destination (paper section 5.1, Figure 4a)", _free
+    ),
+    "scenario1": BuiltinWorld(
+        "paper Figures 4-6 (reconstruction): simple obstacles, two on the 197 ft line",
+        _scenario1,
+    ),
+    "fig7a": BuiltinWorld(
+        "paper Figure 7a (reconstruction): three discs across the path, 4.5 ft gaps (> d_th)",
+        lambda: _fig7("fig7a", 8.0, FIG7_GAP_FAR, lambda y: circle((40.0, y), 4.0)),
+    ),
+    "fig7b": BuiltinWorld(
+        "paper Figure 7b (reconstruction): three discs across the path, 1.5 ft gaps (<= d_th)",
+        lambda: _fig7("fig7b", 8.0, FIG7_GAP_NEAR, lambda y: circle((40.0, y), 4.0)),
+    ),
+    "fig7c": BuiltinWorld(
+        "paper Figure 7c (reconstruction): three squares across the path, 4.5 ft gaps (> d_th)",
+        lambda: _fig7("fig7c", 6.0, FIG7_GAP_FAR, lambda y: rectangle((40.0, y), 6.0, 6.0)),
+    ),
+    "fig7d": BuiltinWorld(
+        "paper Figure 7d (reconstruction): three squares across the path, 1.5 ft gaps (<= d_th)",
+        lambda: _fig7("fig7d", 6.0, FIG7_GAP_NEAR, lambda y: rectangle((40.0, y), 6.0, 6.0)),
+    ),
+    "scenario2": BuiltinWorld(
+        "paper Figures 8-9 (reconstruction): a U opening towards the source, then an H",
+        _scenario2,
     ),
     "box": BuiltinWorld(
         "demo: one 4 x 10 ft box across the straight line to the goal",

@@ -9,10 +9,11 @@ the robot from middle of obstacles."
 Clusters are runs of consecutive rays whose returns lie within ``jump`` of each other; a ray
 with no return, or a jump wider than ``jump``, starts a new obstacle. Clusters are ordered by
 angle, right to left (REP-103: increasing angle), so "consecutive obstacles" are neighbours
-in the field of view. A gap is measured between the *facing borders* of two consecutive
-obstacles (the free space the robot must pass), not between their average positions, which
-for a long wall lie far from its end (see the errata table; :func:`gaps_between` offers the
-printed reading too).
+in the field of view. A gap is the Euclidean distance *between* two consecutive obstacles: from
+the nearest point of one to the nearest point of the other, the narrowest place the robot must
+pass. Not between their average positions, which for a long wall lie far from its end, nor
+between the borders the robot happens to see, which for obstacles seen obliquely are far
+corners (see the errata table; :func:`gaps_between` offers the printed reading too).
 """
 
 from __future__ import annotations
@@ -128,20 +129,35 @@ def cluster_scan(scan: LaserScan, *, jump: float) -> tuple[Cluster, ...]:
     )
 
 
-def gaps_between(clusters: tuple[Cluster, ...], *, borders: bool = True) -> tuple[Gap, ...]:
+class GapReading(StrEnum):
+    """Which points of two consecutive obstacles a gap runs between."""
+
+    NEAREST = "nearest"  # the closest pair of returns: the obstacles' distance (our reading)
+    MEANS = "means"  # their average positions (the printed "average clustered value")
+
+
+def gaps_between(
+    clusters: tuple[Cluster, ...], *, reading: GapReading = GapReading.NEAREST
+) -> tuple[Gap, ...]:
     """The gap between each two consecutive obstacles, right to left.
 
-    With ``borders=True`` (our reading) a gap runs from the left border of one obstacle to the
-    right border of the next; with ``borders=False`` (the printed reading) it runs between
-    their average positions.
+    With ``GapReading.NEAREST`` (our reading) a gap runs between the closest pair of returns
+    of the two obstacles; with ``GapReading.MEANS`` (the printed reading) between their
+    average positions.
 
     >>> import math
     >>> scan = LaserScan(-0.6, 0.6, 0.3, 0.0, 10.0, [5.0, 5.0, math.inf, 5.0, 5.0])
     >>> [round(g.width, 3) for g in gaps_between(cluster_scan(scan, jump=2.0))]
     [2.955]
-    >>> [round(g.width, 3) for g in gaps_between(cluster_scan(scan, jump=2.0), borders=False)]
+    >>> [round(g.width, 3) for g in gaps_between(cluster_scan(scan, jump=2.0),
+    ...                                          reading=GapReading.MEANS)]
     [4.301]
     """
-    if borders:
-        return tuple(Gap(a.left_border, b.right_border) for a, b in pairwise(clusters))
-    return tuple(Gap(a.mean, b.mean) for a, b in pairwise(clusters))
+    if reading is GapReading.MEANS:
+        return tuple(Gap(a.mean, b.mean) for a, b in pairwise(clusters))
+    gaps = []
+    for a, b in pairwise(clusters):
+        d = np.hypot(a.xy[:, None, 0] - b.xy[None, :, 0], a.xy[:, None, 1] - b.xy[None, :, 1])
+        i, j = np.unravel_index(int(np.argmin(d)), d.shape)
+        gaps.append(Gap(Point(*map(float, a.xy[i])), Point(*map(float, b.xy[j]))))
+    return tuple(gaps)

@@ -1,0 +1,42 @@
+"""Percepts (ifgm_ref.percepts): obstacles as clusters and the gaps between them."""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+
+from ifgm_ref.laserscan import LaserScan
+from ifgm_ref.percepts.clusters import GapReading, Side, cluster_scan, gaps_between
+from ifgm_ref.pose import Point, Pose
+from ifgm_ref.sensor import IRSensor
+from ifgm_ref.shapes import rectangle
+from ifgm_ref.world import Polygon, World
+
+
+def _scan_of(*obstacles: Polygon) -> LaserScan:
+    """The default sensor's scan from the origin, facing +x."""
+    pose = Pose(0.0, 0.0, 0.0)
+    return IRSensor(World(start=pose, goal=Point(50.0, 0.0), obstacles=obstacles)).scan(pose)
+
+
+def test_gap_is_the_distance_between_the_obstacles() -> None:
+    """Two 6 ft squares 1.5 ft apart: the gap found is the closest pair of returns, no wider
+    than the 1.5 ft between them plus the ray spacing there (1.8 degrees at 10 ft, 0.3 ft),
+    and no wider than the distance between the facing borders."""
+    squares = (rectangle((10.0, 5.0), 6.0, 6.0), rectangle((10.0, 12.5), 6.0, 6.0))
+    clusters = cluster_scan(_scan_of(*squares), jump=2.0)
+    assert len(clusters) == 2
+    (gap,) = gaps_between(clusters)
+    assert 1.5 <= gap.width <= 1.5 + 0.35
+    assert gap.width <= math.dist(clusters[0].left_border, clusters[1].right_border)
+
+
+def test_means_reading_overstates_a_gap_between_walls() -> None:
+    walls = (rectangle((10.0, -6.0), 2.0, 8.0), rectangle((10.0, 6.0), 2.0, 8.0))
+    clusters = cluster_scan(_scan_of(*walls), jump=2.0)
+    (nearest,) = gaps_between(clusters)
+    (means,) = gaps_between(clusters, reading=GapReading.MEANS)
+    assert nearest.width == pytest.approx(4.0, abs=0.5)  # the 4 ft between the walls' ends
+    assert means.width > nearest.width + 3.0
+    assert [c.side for c in clusters] == [Side.RIGHT, Side.LEFT]
