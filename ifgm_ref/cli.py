@@ -103,6 +103,14 @@ def _planners(args: argparse.Namespace) -> int:
     return 0
 
 
+def _figures(args: argparse.Namespace) -> int:
+    from ifgm_ref.figures import write_all
+
+    written = write_all(args.out, progress=None)
+    print(f"wrote {len(written)} files to {args.out}", file=sys.stderr)
+    return 0
+
+
 def _positive_float(text: str) -> float:
     try:
         value = float(text)
@@ -163,6 +171,14 @@ def build_parser() -> argparse.ArgumentParser:
         "--export", metavar="DIR", help="write every built-in world as DIR/NAME.json"
     )
     worlds.set_defaults(func=_worlds)
+
+    figures = sub.add_parser(
+        "figures", help="regenerate the paper's Figures 4-9 and the reproduction table"
+    )
+    figures.add_argument(
+        "--out", default="paper_figs", metavar="DIR", help="output folder (default paper_figs)"
+    )
+    figures.set_defaults(func=_figures)
 
     planners = sub.add_parser("planners", help="list the planners")
     planners.set_defaults(func=_planners)
