@@ -298,8 +298,8 @@ def reproduction_rows() -> list[Row]:
             f"paths up to {fgm_ifgm:.1f} ft apart (Hausdorff); times "
             f"{run('scenario1', 'fgm').result.time_s:.1f} vs {times['ifgm']:.1f} s",
             _verdict(fgm_ifgm <= 2.0),
-            "same means within 2 ft (one robot diameter); IFGM hands "
-            "over to IBA where FGM keeps steering through gaps",
+            "same means within 2 ft (one robot diameter). At the long rectangle IFGM hands over "
+            "to IBA (Case-2), which goes round the other end than FGM's widest gap",
         ),
         Row(
             "IFGM/FGM give the shortest trajectory of all",
