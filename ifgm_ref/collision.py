@@ -81,10 +81,13 @@ class ClearanceChecker:
 
     def __init__(self, world: World, radius: float) -> None:
         self._edges = world.segments
-        self._starts = self._edges[:, 0, :]
-        self._spans = self._edges[:, 1, :] - self._edges[:, 0, :]
-        self._length2 = np.einsum("ij,ij->i", self._spans, self._spans)
-        self._centers = world.circle_centers
+        # Contiguous 1-D columns: the per-step pass below is a dozen small array operations.
+        self._sx, self._sy = (np.ascontiguousarray(c) for c in self._edges[:, 0, :].T)
+        self._ex, self._ey = (
+            np.ascontiguousarray(c) for c in (self._edges[:, 1] - self._edges[:, 0]).T
+        )
+        self._length2 = self._ex * self._ex + self._ey * self._ey
+        self._cx, self._cy = (np.ascontiguousarray(c) for c in world.circle_centers.T)
         self._radii = world.circle_radii
         self.radius = radius
 
@@ -100,20 +103,27 @@ class ClearanceChecker:
         p, q = (start.x, start.y), (end.x, end.y)
         mx, my = 0.5 * (p[0] + q[0]), 0.5 * (p[1] + q[1])
         h = 0.5 * math.hypot(q[0] - p[0], q[1] - p[1])
-        wx, wy = mx - self._starts[:, 0], my - self._starts[:, 1]
-        t = (wx * self._spans[:, 0] + wy * self._spans[:, 1]) / self._length2
-        np.clip(t, 0.0, 1.0, out=t)
-        edge_mid = np.hypot(wx - t * self._spans[:, 0], wy - t * self._spans[:, 1])
-        circle_mid = np.hypot(self._centers[:, 0] - mx, self._centers[:, 1] - my) - self._radii
-        bound = h + min(edge_mid.min(initial=math.inf), circle_mid.min(initial=math.inf))
-        best = math.inf
-        for a, b in self._edges[edge_mid - h <= bound].tolist():
-            best = min(best, segment_distance(p, q, a, b))
-        near = circle_mid - h <= bound
-        for (cx, cy), r in zip(
-            self._centers[near].tolist(), self._radii[near].tolist(), strict=True
-        ):
-            best = min(best, point_segment_distance(cx, cy, *p, *q) - r)
+        best = bound = math.inf
+        if len(self._sx):
+            wx, wy = mx - self._sx, my - self._sy
+            t = (wx * self._ex + wy * self._ey) / self._length2
+            t = np.minimum(np.maximum(t, 0.0), 1.0)
+            edge_mid = np.hypot(wx - t * self._ex, wy - t * self._ey)
+            bound = float(edge_mid.min()) + h
+        if len(self._cx):
+            circle_mid = np.hypot(self._cx - mx, self._cy - my) - self._radii
+            bound = min(bound, float(circle_mid.min()) + h)
+            near = circle_mid - h <= bound
+            for cx, cy, r in zip(
+                self._cx[near].tolist(),
+                self._cy[near].tolist(),
+                self._radii[near].tolist(),
+                strict=True,
+            ):
+                best = min(best, point_segment_distance(cx, cy, *p, *q) - r)
+        if len(self._sx):
+            for a, b in self._edges[edge_mid - h <= bound].tolist():
+                best = min(best, segment_distance(p, q, a, b))
         return best - self.radius
 
     def pose_clearance(self, pose: Pose) -> float:
