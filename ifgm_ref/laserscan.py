@@ -106,6 +106,21 @@ class LaserScan:
         """The paper's beam name of every ray."""
         return tuple(beam_of(float(a)) for a in self.angles)
 
+    def beam_mask(self, beam: Beam) -> NDArray[np.bool_]:
+        """Which rays belong to ``beam`` (vectorised :func:`beam_of`).
+
+        >>> scan = LaserScan(-1.0, 1.0, 0.5, 0.0, 10.0, [1.0] * 5)
+        >>> scan.beam_mask(Beam.LEFT).tolist(), scan.beam_mask(Beam.FRONT).tolist()
+        ([False, False, False, True, True], [False, False, True, False, False])
+        """
+        angles = self.angles
+        border = FRONT_HALF_WIDTH + BORDER_TOLERANCE
+        if beam is Beam.LEFT:
+            return angles > border
+        if beam is Beam.RIGHT:
+            return angles < -border
+        return np.abs(angles) <= border
+
     def to_message(self) -> dict[str, Any]:
         """The scan as a JSON-ready mapping (the JSON-lines protocol's ``scan`` object).
 

@@ -435,3 +435,16 @@ def test_default_beams_split_the_rays_25_26_25_with_the_borders_in_front() -> No
     assert Counter(beams) == {Beam.RIGHT: 25, Beam.FRONT: 26, Beam.LEFT: 25}
     assert beams[25] is Beam.FRONT and beams[50] is Beam.FRONT
     assert beams[24] is Beam.RIGHT and beams[51] is Beam.LEFT
+
+
+def test_beam_mask_agrees_with_beam_of_on_every_ray() -> None:
+    from ifgm_ref.laserscan import Beam
+    from ifgm_ref.pose import Point, Pose
+    from ifgm_ref.sensor import IRSensor
+    from ifgm_ref.world import World
+
+    scan = IRSensor(World(start=Pose(0.0, 0.0, 0.0), goal=Point(5.0, 0.0))).scan(
+        Pose(0.0, 0.0, 0.0)
+    )
+    for beam in Beam:
+        assert scan.beam_mask(beam).tolist() == [b is beam for b in scan.beams]

@@ -39,7 +39,7 @@ def beam_openness(scan: LaserScan, beam: Beam) -> float:
     >>> beam_openness(scan, Beam.RIGHT), beam_openness(scan, Beam.LEFT)
     (2.0, 10.0)
     """
-    mask = np.array([b is beam for b in scan.beams])
+    mask = scan.beam_mask(beam)
     ranges = np.where(np.isfinite(scan.ranges), scan.ranges, scan.range_max)
     ranges = np.where(ranges < 0.0, 0.0, ranges)
     return float(ranges[mask].mean()) if mask.any() else 0.0

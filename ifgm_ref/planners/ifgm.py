@@ -135,7 +135,7 @@ class IFGMPlanner(IBAPlanner):
         wide = widest is not None and widest.width > self.d_th
         reach = min(self.ifgm.d_look, distance(pose, self.goal))
         blocked = self.goal_free_length(pose) < reach
-        front = np.array([b is Beam.FRONT for b in scan.beams])
+        front = scan.beam_mask(Beam.FRONT)
         front_near = bool(np.any(scan.ranges[front] <= self.ifgm.d_look))
         enclosed = bool(np.all(np.isfinite(scan.ranges)))
         dead_end = front_near and enclosed and not wide
