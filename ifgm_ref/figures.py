@@ -133,7 +133,7 @@ def figure4() -> Figure:
     (c) Bug-2."""
     return _panels(
         "Figure 4. Robot trajectories using (a) any algorithm (no obstacle) (b) Bug-1 (c) Bug-2",
-        [("a", "free", "ifgm"), ("b", "scenario1", "bug1"), ("c", "scenario1", "bug2")],
+        [("a", "free", "straight"), ("b", "scenario1", "bug1"), ("c", "scenario1", "bug2")],
         columns=3,
     )
 
