@@ -56,3 +56,32 @@ def test_the_diagram_names_every_branch() -> None:
     diagram = (Path(__file__).resolve().parent.parent / "docs" / "flowchart.md").read_text()
     nodes = set(re.findall(r"\b([a-z0-9_]+)\[", diagram))
     assert nodes == {str(b) for b in Branch}
+
+
+def test_sympy_proves_the_guards_partition_the_atoms() -> None:
+    from proofs import flowchart
+
+    names = [c.name for c in flowchart.claims()]
+    assert names == [
+        "pairwise_exclusive",
+        "exhaustive",
+        "case1_needs_both_conditions",
+        "widening_the_gap_moves_case2_to_case1",
+        "no_case1_without_a_wide_gap",
+        "dead_end_turns_end_at_a_half_turn",
+    ]
+
+
+@pytest.mark.parametrize(
+    ("branch", "guard", "failing"),
+    [
+        (Branch.CASE1_GAP, lambda a: a.blocked & a.wide, "pairwise_exclusive"),
+        (Branch.MOVE_TO_GOAL, lambda a: a.blocked & ~a.blocked, "exhaustive"),
+    ],
+)
+def test_the_proof_rejects_broken_guards(branch: Branch, guard: object, failing: str) -> None:
+    from proofs import flowchart
+    from proofs._util import ClaimFailed
+
+    with pytest.raises(ClaimFailed, match=failing):
+        flowchart.build({**GUARDS, branch: guard})  # type: ignore[dict-item]
