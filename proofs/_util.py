@@ -314,3 +314,23 @@ def wrap_exact(angle: sp.Expr) -> sp.Expr:
     (-pi/2, -pi)
     """
     return sp.Mod(angle + sp.pi, 2 * sp.pi) - sp.pi
+
+
+def entry_points(
+    derivation: Callable[[], Derivation],
+) -> tuple[Callable[[], tuple[Claim, ...]], Callable[[], None]]:
+    """The ``claims()`` and ``main()`` every proof module exports, for its ``derivation``.
+
+    ``claims()`` returns every checked claim (building the derivation raises ``ClaimFailed``
+    if one does not hold); ``main()`` prints the derivation as a worked page.
+    """
+
+    def claims() -> tuple[Claim, ...]:
+        return derivation().claims
+
+    def main() -> None:
+        print(derivation().render())
+
+    claims.__doc__ = f"Every claim of {derivation.__module__}, checked."
+    main.__doc__ = f"Print {derivation.__module__} as a worked page."
+    return claims, main

@@ -14,7 +14,7 @@ import functools
 import sympy as sp
 
 from ifgm_ref.equations import eq1_gap_midpoint
-from proofs._util import Claim, Derivation
+from proofs._util import Derivation, entry_points
 
 __all__ = ["claims", "derivation", "main"]
 
@@ -168,14 +168,7 @@ def derivation() -> Derivation:
     return d
 
 
-def claims() -> tuple[Claim, ...]:
-    """Every claim of eq. (1), checked (raises ``ClaimFailed`` if one does not hold)."""
-    return derivation().claims
-
-
-def main() -> None:
-    """Print the derivation of eq. (1) as a worked page."""
-    print(derivation().render())
+claims, main = entry_points(derivation)
 
 
 if __name__ == "__main__":

@@ -25,7 +25,7 @@ from ifgm_ref.equations import (
     eq2_gap_angle_literal,
     fgm_gap_centre_angle,
 )
-from proofs._util import Claim, Derivation, held_eq
+from proofs._util import Derivation, entry_points, held_eq
 
 __all__ = ["claims", "derivation", "main"]
 
@@ -329,14 +329,7 @@ def _library(d: Derivation) -> None:
     )
 
 
-def claims() -> tuple[Claim, ...]:
-    """Every claim of eq. (2), checked (raises ``ClaimFailed`` if one does not hold)."""
-    return derivation().claims
-
-
-def main() -> None:
-    """Print the derivation of eq. (2) as a worked page."""
-    print(derivation().render())
+claims, main = entry_points(derivation)
 
 
 if __name__ == "__main__":

@@ -15,7 +15,7 @@ import math
 import sympy as sp
 
 from ifgm_ref.equations import eq3_goal_angle, eq3_goal_angle_literal
-from proofs._util import Claim, Derivation, held_eq
+from proofs._util import Derivation, entry_points, held_eq
 
 __all__ = ["claims", "derivation", "main"]
 
@@ -170,14 +170,7 @@ def derivation() -> Derivation:
     return d
 
 
-def claims() -> tuple[Claim, ...]:
-    """Every claim of eq. (3), checked (raises ``ClaimFailed`` if one does not hold)."""
-    return derivation().claims
-
-
-def main() -> None:
-    """Print the derivation of eq. (3) as a worked page."""
-    print(derivation().render())
+claims, main = entry_points(derivation)
 
 
 if __name__ == "__main__":

@@ -19,7 +19,7 @@ from ifgm_ref.equations import (
     eq4_final_heading_fgm,
     eq4_final_heading_literal,
 )
-from proofs._util import Claim, Derivation, held_eq, wrap_exact
+from proofs._util import Derivation, entry_points, held_eq, wrap_exact
 
 __all__ = ["claims", "derivation", "main"]
 
@@ -392,14 +392,7 @@ def _library(d: Derivation) -> None:
     )
 
 
-def claims() -> tuple[Claim, ...]:
-    """Every claim of eq. (4), checked (raises ``ClaimFailed`` if one does not hold)."""
-    return derivation().claims
-
-
-def main() -> None:
-    """Print the derivation of eq. (4) as a worked page."""
-    print(derivation().render())
+claims, main = entry_points(derivation)
 
 
 if __name__ == "__main__":

@@ -20,7 +20,7 @@ from sympy.logic.inference import satisfiable
 
 from ifgm_ref.flowchart import GUARDS, Atoms, Branch
 from ifgm_ref.planners.ifgm import DEAD_END_MAX_STEPS, DEAD_END_STEP
-from proofs._util import Claim, Derivation
+from proofs._util import Derivation, entry_points
 
 __all__ = ["build", "claims", "derivation", "main"]
 
@@ -94,14 +94,7 @@ def derivation() -> Derivation:
     return build()
 
 
-def claims() -> tuple[Claim, ...]:
-    """Every claim about Figure 3, checked (raises ``ClaimFailed`` if one does not hold)."""
-    return derivation().claims
-
-
-def main() -> None:
-    """Print the derivation as a worked page."""
-    print(derivation().render())
+claims, main = entry_points(derivation)
 
 
 if __name__ == "__main__":
