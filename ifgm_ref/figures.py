@@ -298,8 +298,9 @@ def reproduction_rows() -> list[Row]:
             f"paths up to {fgm_ifgm:.1f} ft apart (Hausdorff); times "
             f"{run('scenario1', 'fgm').result.time_s:.1f} vs {times['ifgm']:.1f} s",
             _verdict(fgm_ifgm <= 2.0),
-            "same means within 2 ft (one robot diameter). At the long rectangle IFGM hands over "
-            "to IBA (Case-2), which goes round the other end than FGM's widest gap",
+            "same means within 2 ft (one robot diameter). Both go round the same end of the long "
+            "rectangle, but IFGM hands over to IBA (Case-2) and follows its edge, where FGM "
+            "swings wide through its widest gap",
         ),
         Row(
             "IFGM/FGM give the shortest trajectory of all",

@@ -19,7 +19,7 @@ percept. :func:`decide` checks that at every call.
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import astuple, dataclass, fields
+from dataclasses import dataclass, fields
 from enum import StrEnum
 from typing import Any
 
@@ -136,7 +136,7 @@ def decide(atoms: Atoms) -> Branch:
     >>> decide(Atoms(**{**base, "blocked": True, "wide": True, "close": True}))
     <Branch.TOO_CLOSE: 'too_close'>
     """
-    values = Atoms(*(np.bool_(v) for v in astuple(atoms)))
+    values = Atoms(*(np.bool_(getattr(atoms, name)) for name in Atoms.names()))
     holding = [branch for branch, guard in GUARDS.items() if bool(guard(values))]
     assert len(holding) == 1, f"guards hold for {holding}, but should for exactly one [{atoms}]"
     return holding[0]

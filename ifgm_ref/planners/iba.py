@@ -8,13 +8,19 @@ changes its behaviour to *move to goal* in order to generate new reference path.
 contrast with Bug family algorithms, bidirectional mechanism is introduced in IBA using the
 sensor's configuration on the robot."
 
-So IBA is DistBug's structure (:class:`~ifgm_ref.planners.boundary.BoundaryPlanner`) with two
-changes:
+So IBA is DistBug (:class:`~ifgm_ref.planners.distbug.DistBugPlanner`) with two changes:
 
 * **bidirectional**: on meeting an obstacle the robot turns towards the freer of its left and
   right beams (ties: towards the goal's side), instead of always the same way;
 * **free-path leaving**: it leaves the edge at the first point where the goal is in view and
   the robot-wide corridor towards it is clear as far as the sensor sees, or to the goal.
+
+The free-path rule alone never fires while a second obstacle stands within sensor range
+behind the followed one: the robot circles the first for ever (the oracle's
+``converges_open`` found two posts in a row; errata row 24). So IBA keeps DistBug's own
+leaving rule too, which IBA improves on rather than drops: it also leaves when the free range
+promises ``step_length`` of progress beyond the best distance seen on this obstacle. That
+rule alone guarantees termination (Kamon and Rivlin); the free-path rule leaves earlier.
 
 Back at its hit point after a whole loop it reports the goal unreachable, as DistBug does.
 """
@@ -27,9 +33,10 @@ import numpy as np
 
 from ifgm_ref.laserscan import Beam, LaserScan
 from ifgm_ref.planners.boundary import BoundaryPlanner
+from ifgm_ref.planners.distbug import DistBugPlanner
 from ifgm_ref.planners.edge_following import FollowSide
 from ifgm_ref.pose import Pose, wrap_angle
-from ifgm_ref.protocol import Observation
+from ifgm_ref.protocol import Command, Observation
 
 
 def beam_openness(scan: LaserScan, beam: Beam) -> float:
@@ -45,22 +52,36 @@ def beam_openness(scan: LaserScan, beam: Beam) -> float:
     return float(ranges[mask].mean()) if mask.any() else 0.0
 
 
-def freer_side(scan: LaserScan, pose: Pose, goal_bearing: float) -> FollowSide:
-    """The side to keep the obstacle on: turn towards the freer beam (ties: the goal's side).
+#: The goal counts as dead ahead within this angle, rad: moving to the goal points the robot
+#: at it, so the sign of so small a bearing is rounding, not a side.
+GOAL_AHEAD = 1e-6
 
-    Turning left keeps the obstacle on the robot's right, and vice versa.
+
+def freer_side(scan: LaserScan, pose: Pose, goal_bearing: float) -> FollowSide:
+    """The side to keep the obstacle on: turn towards the freer beam.
+
+    Ties (equal side beams, e.g. both empty) go towards the goal's side; with the goal dead
+    ahead (within :data:`GOAL_AHEAD`), away from the nearest return. Turning left keeps the
+    obstacle on the robot's right, and vice versa.
+
+    >>> scan = LaserScan(-1.0, 1.0, 0.5, 0.0, 10.0, [5.0, 3.0, 3.5, 5.0, 5.0])
+    >>> freer_side(scan, Pose(0.0, 0.0, 0.0), 0.0)  # nearest return right of ahead: go left
+    <FollowSide.RIGHT: 'right'>
     """
     left = beam_openness(scan, Beam.LEFT)
     right = beam_openness(scan, Beam.RIGHT)
-    if math.isclose(left, right, rel_tol=1e-9):
-        goes_left = wrap_angle(goal_bearing - pose.theta) >= 0.0
-    else:
+    if not math.isclose(left, right, rel_tol=1e-9):
         goes_left = left > right
+    elif abs(relative := wrap_angle(goal_bearing - pose.theta)) > GOAL_AHEAD:
+        goes_left = relative > 0.0
+    else:
+        goes_left = bool(scan.angles[int(np.argmin(scan.ranges))] < 0.0)
     return FollowSide.RIGHT if goes_left else FollowSide.LEFT
 
 
-class IBAPlanner(BoundaryPlanner):
-    """Bidirectional edge following, leaving at the first free path towards the goal."""
+class IBAPlanner(DistBugPlanner):
+    """Bidirectional edge following, leaving at the first free path towards the goal (or,
+    failing that, where DistBug would)."""
 
     name = "iba"
 
@@ -70,5 +91,11 @@ class IBAPlanner(BoundaryPlanner):
         return freer_side(observation.scan, pose, self.goal_bearing(pose))
 
     def should_leave(self, observation: Observation) -> bool:
-        """Leave at the first free path towards the goal (section 4.1)."""
-        return self.path_free(observation.pose)
+        """Leave at the first free path towards the goal (section 4.1), or where the free
+        range promises progress (DistBug's rule, errata row 24)."""
+        progress = super().should_leave(observation)  # keeps d_min up to date
+        return progress or self.path_free(observation.pose)
+
+    def move_to_goal(self, pose: Pose, branch: str) -> Command:
+        """Head for the goal; a departure is labelled ``leave`` whichever rule fired."""
+        return BoundaryPlanner.move_to_goal(self, pose, branch)

@@ -32,7 +32,6 @@ from ifgm_ref.laserscan import Beam
 from ifgm_ref.percepts.clusters import Cluster, Gap, Side, cluster_scan, gaps_between
 from ifgm_ref.percepts.corridor import free_length
 from ifgm_ref.percepts.points import to_world
-from ifgm_ref.planners.boundary import BoundaryParams
 from ifgm_ref.planners.edge_following import FollowSide, turn_speed
 from ifgm_ref.planners.iba import IBAPlanner, freer_side
 from ifgm_ref.planners.tuning import Tuning
@@ -65,7 +64,10 @@ class IFGMParams(Tuning):
     d_look : float, default 8.0
         Encounter distance: an obstacle in the robot-wide corridor towards the goal nearer
         than this makes the robot leave *move to goal*; about half the default sensor range,
-        so that gaps are measured while there is still room to steer.
+        so that gaps are measured while there is still room to steer. After leaving an edge
+        by DistBug's progress rule with an obstacle still ahead, the encounter distance is
+        IBA's short one (``standoff + hit_margin``) and Case-1 is off until the corridor
+        towards the goal is free for ``d_look`` again (errata row 24).
     w_g, w_d : float, default 9.0 and 1.0
         Gap and goal weights of eq. (4). With the default ``d_th`` = 3 ft the gap counts
         three times as much as the goal (``w_g / d_th = 3``), so the robot commits to the gap.
@@ -89,8 +91,8 @@ class IFGMPlanner(IBAPlanner):
     """IFGM: FGM through wide gaps, IBA round the rest, 45-degree turns out of dead ends."""
 
     name = "ifgm"
-    parameters: ClassVar[tuple[str, ...]] = tuple(f.name for f in fields(IFGMParams)) + tuple(
-        f.name for f in fields(BoundaryParams)
+    parameters: ClassVar[tuple[str, ...]] = (
+        tuple(f.name for f in fields(IFGMParams)) + IBAPlanner.parameters
     )
 
     def reset(self, start: Pose, goal: Point, params: EpisodeParams) -> None:
@@ -122,6 +124,12 @@ class IFGMPlanner(IBAPlanner):
         self.last_branch: Branch | None = None
         self.last_atoms: Atoms | None = None
         self.last_gap: Gap | None = None
+        self.short_look = False
+        self.escaped = False
+
+    def goal_bearing(self, pose: Pose) -> float:
+        """The destination angle theta_d of eq. (3), world frame (the reading we run)."""
+        return eq3_goal_angle(pose.position, self.goal)
 
     # -- percepts -> atoms ------------------------------------------------------------------
     def atoms(self, observation: Observation, clusters: tuple[Cluster, ...]) -> Atoms:
@@ -132,25 +140,37 @@ class IFGMPlanner(IBAPlanner):
         nearest = min((c.nearest for c in clusters), default=math.inf)
         sides = {c.side for c in clusters}
         one_sided = bool(clusters) and (sides == {Side.LEFT} or sides == {Side.RIGHT})
-        wide = widest is not None and widest.width > self.d_th
-        reach = min(self.ifgm.d_look, distance(pose, self.goal))
-        blocked = self.goal_free_length(pose) < reach
+        gap_wide = widest is not None and widest.width > self.d_th
+        free_ahead = self.goal_free_length(pose)
+        if self.short_look and free_ahead >= self.ifgm.d_look:
+            self.short_look = False  # in the open again
+        look = self.encounter if self.short_look else self.ifgm.d_look
+        blocked = free_ahead < min(look, distance(pose, self.goal))
         front = scan.beam_mask(Beam.FRONT)
         front_near = bool(np.any(scan.ranges[front] <= self.ifgm.d_look))
         enclosed = bool(np.all(np.isfinite(scan.ranges)))
-        dead_end = front_near and enclosed and not wide
+        dead_end = front_near and enclosed and not gap_wide
         return Atoms(
             at_goal=distance(pose, self.goal) <= self.goal_tolerance,
             turning=self.turning,
             avoiding=self.following,
             blocked=blocked,
-            free=self.following and self.path_free(pose),
+            free=self.following and self._may_leave(observation),
             close=nearest <= self.d_obs,
-            wide=wide,
+            # Case-1 needs a gap measured from afar (d_look): near, gaps look wider than
+            # they are (errata row 23), so not while looking short.
+            wide=gap_wide and not self.short_look,
             one_sided=one_sided,
             dead_end=dead_end,
             preempt=self.following and self._preempting(pose, clusters),
         )
+
+    def _may_leave(self, observation: Observation) -> bool:
+        """IBA's leaving rules (errata row 24): a free path, or DistBug's progress rule --
+        but not while following the wall round from outside after a dead end, where the
+        progress rule would lead straight back into the U or H (``tests/worlds/small_u``)."""
+        progress = self.should_leave(observation)  # IBA's rules; keeps d_min up to date
+        return self.path_free(observation.pose) or (progress and not self.escaped)
 
     def _chosen_gap(self, pose: Pose, gaps: tuple[Gap, ...]) -> Gap | None:
         """The maximum gap (section 4) -- but the gap steered through at the last step while
@@ -184,6 +204,9 @@ class IFGMPlanner(IBAPlanner):
 
     def on_hit(self, observation: Observation) -> None:
         """A new avoidance starts: follow the nearest obstacle, with nothing pre-empted yet."""
+        super().on_hit(observation)  # DistBug's d_min
+        self.short_look = False
+        self.escaped = False
         self.followed = self._nearest_remembered(observation.pose)
         self.stack.clear()
 
@@ -222,12 +245,17 @@ class IFGMPlanner(IBAPlanner):
         branch = decide(self.last_atoms)
         self.last_branch = branch
         if branch is Branch.GOAL_REACHED:
-            heading = eq3_goal_angle(pose.position, self.goal)
+            heading = self.goal_bearing(pose)
             speed = min(self.speed, distance(pose, self.goal) / self.dt)
             return Command(heading, speed, behaviour=Behaviour.MOVE_TO_GOAL, branch=branch)
         if branch is Branch.MOVE_TO_GOAL:
             return self._to_goal(pose, branch)
         if branch is Branch.PATH_REGENERATED:
+            # Left by the progress rule, with an obstacle still ahead: meet it at IBA's short
+            # encounter distance, not d_look (the followed one is still the nearest, and at
+            # d_look the robot would go back to following it: tests/worlds/two_posts_in_line).
+            self.short_look = not self.path_free(pose)
+            self.escaped = False
             self.following = False
             self.followed = None
             self.stack.clear()
@@ -248,7 +276,7 @@ class IFGMPlanner(IBAPlanner):
         return self._follow(pose, branch)
 
     def _to_goal(self, pose: Pose, branch: Branch) -> Command:
-        heading = eq3_goal_angle(pose.position, self.goal)
+        heading = self.goal_bearing(pose)
         return Command(
             heading,
             turn_speed(wrap_angle(heading - pose.theta), self.speed),
@@ -264,7 +292,7 @@ class IFGMPlanner(IBAPlanner):
         """Case-1: the final heading through ``gap`` by eqs. (1)-(4), world frame."""
         x_g, y_g = eq1_gap_midpoint(gap.right, gap.left)
         theta_g = pose.theta + eq2_gap_angle(x_g, y_g)
-        theta_d = eq3_goal_angle(pose.position, self.goal)
+        theta_d = self.goal_bearing(pose)
         return eq4_final_heading(
             theta_g,
             theta_d,
@@ -332,6 +360,7 @@ class IFGMPlanner(IBAPlanner):
         self.turning = False
         self.escaping = 0.0
         self.start_following(observation)
+        self.escaped = True
         followed = self._nearest_remembered(pose)
         if followed is not None:
             rel = wrap_angle(math.atan2(followed.y - pose.y, followed.x - pose.x) - pose.theta)
