@@ -8,13 +8,14 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
 import sys
 from collections.abc import Sequence
 from pathlib import Path
 
 from ifgm_ref.errors import IfgmRefError, ParameterError
 from ifgm_ref.params import SimParams
-from ifgm_ref.planners import PLANNERS, make_planner
+from ifgm_ref.planners import PLANNERS
 from ifgm_ref.scenarios import BUILTIN_WORLDS, resolve_world
 from ifgm_ref.simulator import simulate
 from ifgm_ref.worldfile import save_world
@@ -32,8 +33,19 @@ def _simulate(args: argparse.Namespace) -> int:
         if args.goal_tolerance is None
         else args.goal_tolerance,
     )
-    params = _planner_params(args.planner, args.param or [])
-    run = simulate(world, make_planner(args.planner), sim, params=params, progress=None)
+    if (args.planner is None) == (args.cmd is None):
+        raise ParameterError("give exactly one of --planner NAME and --cmd 'PROGRAM'")
+    if args.cmd is not None:
+        from ifgm_ref.oracle.external import ExternalPlanner
+
+        params = _planner_params(None, args.param or [])
+        with ExternalPlanner(args.cmd, timeout=args.timeout) as external:
+            run = simulate(world, external, sim, params=params, progress=None)
+    else:
+        from ifgm_ref.oracle.loading import load_factory
+
+        params = _planner_params(args.planner, args.param or [])
+        run = simulate(world, load_factory(args.planner)(), sim, params=params, progress=None)
     result = run.result
     if args.trace:
         path = Path(args.trace)
@@ -61,15 +73,16 @@ def _simulate(args: argparse.Namespace) -> int:
     return 0
 
 
-def _planner_params(planner: str, pairs: list[str]) -> dict[str, float]:
-    """Parse ``NAME=VALUE`` planner parameters, checking names against the planner's list."""
-    allowed = PLANNERS[planner].parameters
+def _planner_params(planner: str | None, pairs: list[str]) -> dict[str, float]:
+    """Parse ``NAME=VALUE`` planner parameters, checking names against a built-in planner's
+    list (any name goes for other implementations)."""
+    allowed = PLANNERS[planner].parameters if planner in PLANNERS else None
     params: dict[str, float] = {}
     for pair in pairs:
         name, sep, text = pair.partition("=")
         if not sep:
             raise ParameterError(f"--param {pair!r}: expected NAME=VALUE")
-        if name not in allowed:
+        if allowed is not None and name not in allowed:
             known = ", ".join(allowed) or "none"
             raise ParameterError(
                 f"--param {name!r}: {planner} has no such parameter; it has: {known}"
@@ -111,6 +124,54 @@ def _figures(args: argparse.Namespace) -> int:
     return 0
 
 
+def _serve(args: argparse.Namespace) -> int:
+    from ifgm_ref.oracle.loading import load_factory
+    from ifgm_ref.serve import serve
+
+    factory = load_factory(args.planner)
+    return serve(factory, sys.stdin, sys.stdout, sys.stderr)
+
+
+def _vectors(args: argparse.Namespace) -> int:
+    from ifgm_ref.oracle.vectors import summarize, write_vectors
+
+    vectors = write_vectors(args.out)
+    size = Path(args.out).stat().st_size
+    print(f"wrote {summarize(vectors)} to {args.out} ({size} bytes)", file=sys.stderr)
+    return 0
+
+
+def _oracle(args: argparse.Namespace) -> int:
+    from ifgm_ref.oracle.implementation import Implementation
+    from ifgm_ref.oracle.runner import check_planner
+
+    if (args.planner is None) == (args.cmd is None):
+        raise ParameterError("give exactly one of --planner NAME and --cmd 'PROGRAM'")
+    expected = {}
+    for item in args.expect_failure or []:
+        name, _, reason = item.partition("=")
+        expected[name] = reason or "expected"
+    if args.cmd is not None:
+        impl = Implementation.from_command(args.cmd, timeout=args.timeout, promises=args.promises)
+    else:
+        impl = Implementation.from_spec(args.planner, promises=args.promises)
+    try:
+        report = check_planner(
+            impl,
+            profile=args.profile,
+            checks=args.check,
+            expected_failed_checks=expected,
+            artifacts=args.artifacts,
+            progress=True,
+            stop_on_failure=args.stop_on_failure,
+            jobs=args.jobs,
+        )
+    finally:
+        impl.close()
+    print(report.text())
+    return 0 if report.ok else 1
+
+
 def _positive_float(text: str) -> float:
     try:
         value = float(text)
@@ -134,10 +195,19 @@ def build_parser() -> argparse.ArgumentParser:
     sim.add_argument("world", metavar="WORLD", help="a world file (JSON) or a built-in world name")
     sim.add_argument(
         "--planner",
-        required=True,
-        choices=sorted(PLANNERS),
         metavar="NAME",
-        help=f"planner to run: {', '.join(sorted(PLANNERS))}",
+        help=f"planner to run: {', '.join(sorted(PLANNERS))}, or module:attribute (a factory)",
+    )
+    sim.add_argument(
+        "--cmd",
+        metavar="PROGRAM",
+        help="run a program speaking the JSON-lines protocol instead (docs/oracle-protocol.md)",
+    )
+    sim.add_argument(
+        "--timeout",
+        type=_positive_float,
+        default=10.0,
+        help="per-reply timeout for --cmd, s (default 10)",
     )
     sim.add_argument(
         "--param",
@@ -182,6 +252,85 @@ def build_parser() -> argparse.ArgumentParser:
 
     planners = sub.add_parser("planners", help="list the planners")
     planners.set_defaults(func=_planners)
+
+    vectors = sub.add_parser(
+        "vectors",
+        help="write equation test vectors and reference traces (JSON) for ports",
+        description="Write the conformance vectors (docs/vectors-format.md): inputs and "
+        "outputs of equations (1)-(4), literal and interpreted, and short IFGM and IBA "
+        "reference traces, for implementations that cannot run Python.",
+    )
+    vectors.add_argument("--out", required=True, metavar="FILE.json", help="output file")
+    vectors.set_defaults(func=_vectors)
+
+    oracle = sub.add_parser(
+        "oracle",
+        help="check a planner against the oracle's properties (docs/oracle.md)",
+        description="Run the oracle's property checks against a built-in or Python planner "
+        "(--planner) or a program speaking the JSON-lines protocol (--cmd). Prints one line "
+        "per check and a summary; exit status 0 when every check passed (or failed as "
+        "expected), 1 otherwise. Counterexamples go to --artifacts.",
+    )
+    oracle.add_argument("--planner", metavar="NAME", help="built-in name or module:attribute")
+    oracle.add_argument("--cmd", metavar="PROGRAM", help="a JSON-lines protocol program")
+    oracle.add_argument(
+        "--profile",
+        default="quick",
+        choices=("quick", "default", "thorough"),
+        help="examples per check: quick 50 (default), default 200, thorough 1000",
+    )
+    oracle.add_argument(
+        "--promises",
+        metavar="PLANNER",
+        help="check what this built-in planner promises (default: its own, or ifgm's)",
+    )
+    oracle.add_argument(
+        "--check", action="append", metavar="NAME", help="run only this check (repeatable)"
+    )
+    oracle.add_argument(
+        "--expect-failure",
+        action="append",
+        metavar="CHECK=REASON",
+        help="a check known to fail, reported as an expected failure (repeatable)",
+    )
+    oracle.add_argument(
+        "--artifacts",
+        default="oracle-failures",
+        metavar="DIR",
+        help="where counterexamples are written (default oracle-failures)",
+    )
+    oracle.add_argument(
+        "--timeout", type=_positive_float, default=10.0, help="per-reply timeout for --cmd, s"
+    )
+    oracle.add_argument(
+        "--stop-on-failure", action="store_true", help="stop at the first failing check"
+    )
+    oracle.add_argument(
+        "--jobs",
+        type=int,
+        default=os.cpu_count() or 1,
+        metavar="N",
+        help="run the simulation checks in N processes (default: the number of CPUs; a "
+        "--cmd program is started once per process)",
+    )
+    oracle.set_defaults(func=_oracle)
+
+    serve = sub.add_parser(
+        "serve",
+        help="answer the oracle's JSON-lines protocol on stdin/stdout with a Python planner",
+        description="Run a Python planner as a program of the JSON-lines planner protocol "
+        "(docs/oracle-protocol.md): read reset/observe/bye on stdin, answer ready/command on "
+        "stdout. A fresh planner is built at every reset. Exit status 0 after bye, 2 on a "
+        "malformed message, 1 if the planner crashes.",
+    )
+    serve.add_argument(
+        "--planner",
+        required=True,
+        metavar="NAME",
+        help="a built-in planner name (see `ifgm-ref planners`) or module:attribute, a "
+        "callable that returns a new planner",
+    )
+    serve.set_defaults(func=_serve)
     return parser
 
 

@@ -21,3 +21,15 @@ class ParameterError(IfgmRefError, ValueError):
 
 class PlannerError(IfgmRefError):
     """A planner name is unknown or a planner broke its protocol."""
+
+
+class ProtocolError(IfgmRefError, ValueError):
+    """A JSON-lines protocol message is malformed (``docs/oracle-protocol.md``)."""
+
+
+class ImplementationError(IfgmRefError):
+    """An implementation under test cannot be loaded, or crashed, hung or answered garbage.
+
+    The oracle reports it as such, apart from property failures: it is not a counterexample
+    to a property but a program that could not be checked.
+    """

@@ -86,7 +86,7 @@ def test_builtin_world_name_works_and_options_apply() -> None:
     [
         (["simulate", "no-such-world.json", "--planner", "straight"], "no such world file"),
         (["simulate", "free", "--planner", "straight", "--dt", "0"], "must be a finite number > 0"),
-        (["simulate", "free", "--planner", "nope"], "invalid choice: 'nope'"),
+        (["simulate", "free", "--planner", "nope"], "'nope' is neither a built-in planner"),
         (["simulate", "BROKEN", "--planner", "straight"], "Expecting"),
     ],
 )

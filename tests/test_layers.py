@@ -35,6 +35,10 @@ MAP_FREE_PREFIXES = (
     "ifgm_ref.flowchart",
     "ifgm_ref.protocol",
     "ifgm_ref.laserscan",
+    # the protocol over JSON lines: both of its ends see what a planner sees, nothing more
+    "ifgm_ref.wire",
+    "ifgm_ref.serve",
+    "ifgm_ref.oracle.external",
 )
 
 
@@ -77,6 +81,7 @@ MAP_FREE = sorted(m for m in MODULES if m.startswith(MAP_FREE_PREFIXES))
 def test_map_free_layers_exist() -> None:
     assert "ifgm_ref.planners" in MAP_FREE
     assert "ifgm_ref.planners.straight" in MAP_FREE
+    assert "ifgm_ref.wire" in MAP_FREE
 
 
 @pytest.mark.parametrize("module", MAP_FREE)

@@ -1,0 +1,1 @@
+"""The oracle: property checks that any IFGM, IBA, FGM or Bug implementation can be run against."""

@@ -1,0 +1,565 @@
+"""The oracle's properties, one named check each, and which planners each applies to.
+
+A check draws an example with a Hypothesis strategy and raises :class:`CheckFailed` when the
+implementation breaks the property on it; the message says what was expected and what
+happened (``min_clearance=-0.3 ft, but should be >= 0 [ifgm in u world]``), and the
+:class:`Evidence` (world, trace, result) goes with it for the failure report.
+
+================================  ==============================================================
+check                             property (applies to)
+================================  ==============================================================
+``collision_free``                the swept robot disc never meets an obstacle, in every world
+                                  class (planners that promise collision-freedom: all of the
+                                  paper's)
+``converges_<class>``             in every world of ``<class>`` (open, u, h, symmetric, mixed)
+                                  the robot reaches the goal within :func:`time_bound` (the
+                                  classes the planner promises; not FGM and APF in U and H)
+``reports_unreachable``           with the goal enclosed, the planner stops with
+                                  ``goal_unreachable`` within the bound (Bug1, Bug2, DistBug,
+                                  IBA, IFGM)
+``rigid_motion_invariant``        rotating and translating the whole problem moves the
+                                  trajectory the same way, within :data:`INVARIANCE_TOL` ft
+                                  (after :data:`GENERIC_OFFSET` breaks exact symmetries),
+                                  with the same stop reason
+``ignores_unseen_obstacles``      an obstacle the sensor never sees does not change the
+                                  trajectory at all (decisions depend on percepts only)
+``passes_wide_gaps``              through a wall pierced by one gap wider than ``d_th`` + 1 ft,
+                                  off the start-goal line, the robot turns towards the gap
+                                  first and goes through it (section 4, Case-1; Figure 7a/c)
+                                  (IFGM)
+``deterministic``                 the same observations give the same commands, bit for bit
+                                  (one run recorded, replayed into a fresh planner)
+``eq1_gap_midpoint`` ...          the implementation's eqs. (1)-(4) agree with the reference
+                                  within :data:`EQUATION_TOL` (when it exposes them; the
+                                  ``*_literal`` forms when it exposes those)
+================================  ==============================================================
+
+Every simulation check runs with the simulator's defaults (``dt`` 0.1 s, goal tolerance 0.5 ft)
+and stops an episode at :func:`ifgm_ref.oracle.bounds.time_bound` of its world. A planner that
+raises, or answers an invalid command, fails the check it was running.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field, replace
+from enum import StrEnum
+from typing import Any
+
+import numpy as np
+import shapely
+from hypothesis import note
+from hypothesis import strategies as st
+
+from ifgm_ref import equations as reference
+from ifgm_ref.errors import IfgmRefError, ImplementationError
+from ifgm_ref.oracle.bounds import time_bound
+from ifgm_ref.oracle.implementation import Implementation
+from ifgm_ref.oracle.recording import RecordingPlanner
+from ifgm_ref.oracle.strategies import (
+    SOLVABLE_CLASSES,
+    any_solvable_worlds,
+    enclosed_worlds,
+    gap_walls,
+    placed,
+    placements,
+)
+from ifgm_ref.params import SimParams
+from ifgm_ref.pose import Point
+from ifgm_ref.protocol import Command, Planner
+from ifgm_ref.shapes import circle
+from ifgm_ref.simulator import Run, StopReason, TraceStep, simulate
+from ifgm_ref.world import Polygon, World
+
+#: Positions of a moved problem's trajectory may differ from the moved trajectory by this
+#: much, ft. Rotating the problem rounds every coordinate differently (1e-16), and a decision
+#: that sits on a tie can tip: measured, a wall-following robot's heading aligns exactly with
+#: the perpendicular of a wall, two rays return equal ranges, and the rounding picks the other
+#: ray, one angle increment (1.8 degrees) off for one step: 0.004 ft, damped afterwards. The
+#: tolerance allows about ten such tips; a frame or sign error moves the robot by feet.
+INVARIANCE_TOL = 0.05
+#: Headings may differ by this much, rad (three 1.8-degree ray increments).
+INVARIANCE_HEADING_TOL = 0.1
+#: The moved run may take this many steps more or fewer (a tipped tie shifts the arrival).
+INVARIANCE_STEPS = 2
+#: Before the invariance check the goal moves this far (ft) off the drawn start-goal line. An
+#: exactly symmetric problem (an obstacle centred on the line: shrinking finds them) is a tie
+#: that the planner breaks by a fixed rule, left or right; the rounding of rotated
+#: coordinates (1e-16) can tip such a tie either way, which no implementation can avoid. A
+#: 0.01 ft offset breaks every exact symmetry by far more than the rounding.
+GENERIC_OFFSET = 0.01
+#: ``passes_wide_gaps``: a commanded heading this far off the goal bearing (rad, 5 degrees)
+#: is the robot's first turn, which must be towards the gap (Case-1 steers at it).
+FIRST_TURN = math.radians(5.0)
+#: Equation outputs may differ from the reference by this much (ft, or rad modulo 2 pi).
+EQUATION_TOL = 1e-9
+
+
+class Kind(StrEnum):
+    """What a check exercises."""
+
+    SIMULATION = "simulation"
+    EQUATION = "equation"
+
+
+class CheckFailed(AssertionError):
+    """An implementation broke a property; the message says how."""
+
+
+@dataclass
+class Evidence:
+    """What the last failing example left behind, for the failure report."""
+
+    worlds: list[World] = field(default_factory=list)
+    runs: list[Run] = field(default_factory=list)
+    max_time: float | None = None
+    inputs: dict[str, Any] | None = None
+
+
+@dataclass
+class Recorder:
+    """Counts the examples a check ran and keeps the evidence of the last failure."""
+
+    examples: int = 0
+    worlds: set[World] = field(default_factory=set)
+    evidence: Evidence | None = None
+
+
+@dataclass(frozen=True)
+class Check:
+    """One property: its name, its sentence, its example strategy and its test."""
+
+    name: str
+    sentence: str
+    kind: Kind
+    strategy: Callable[[Implementation], st.SearchStrategy[Any]]
+    test: Callable[[Implementation, Any, Recorder], None]
+    applies: Callable[[Implementation], str | None]
+
+
+# -- simulation helpers ------------------------------------------------------------------------
+
+
+def episode(
+    impl: Implementation, world: World, recorder: Recorder, *, planner: Planner | None = None
+) -> Run:
+    """Run a fresh planner of ``impl`` (or ``planner``) in ``world`` up to its time bound."""
+    recorder.examples += 1
+    recorder.worlds.add(world)
+    max_time = time_bound(world)
+    note(f"world: {world}")
+    try:
+        run = simulate(world, planner or impl.factory(), SimParams(max_time=max_time))
+    except (ImplementationError, CheckFailed):
+        raise
+    except Exception as err:  # the planner crashed: that is a failure of this example
+        recorder.evidence = Evidence([world], [], max_time)
+        raise CheckFailed(
+            f"the planner raised {type(err).__name__}: {err} [{_where(impl, world)}]"
+        ) from err
+    recorder.evidence = Evidence([world], [run], max_time)
+    if run.result.stop_reason == StopReason.INVALID_COMMAND:
+        raise CheckFailed(f"invalid command: {run.result.detail} [{_where(impl, world)}]")
+    return run
+
+
+def _where(impl: Implementation, world: World) -> str:
+    start, goal = _xyt(world.start), _xy(world.goal)
+    return f"{impl.label} in {world.name or 'a'} world from {start} to {goal}"
+
+
+def _xy(p: Sequence[float]) -> str:
+    return f"({p[0]:.3f}, {p[1]:.3f})"
+
+
+def _xyt(p: Sequence[float]) -> str:
+    return f"({p[0]:.3f}, {p[1]:.3f}, {p[2]:.3f})"
+
+
+def _collision_test(impl: Implementation, world: World, recorder: Recorder) -> None:
+    run = episode(impl, world, recorder)
+    clearance = run.result.min_clearance
+    if run.result.collided or clearance < 0.0:
+        at = next(s for s in run.trace if s.clearance == clearance)
+        raise CheckFailed(
+            f"min_clearance={clearance:.3f} ft at t={at.t:.1f} s, but should be >= 0 "
+            f"[{_where(impl, world)}]"
+        )
+
+
+def _converges_test(impl: Implementation, world: World, recorder: Recorder) -> None:
+    run = episode(impl, world, recorder)
+    result = run.result
+    if not result.reached:
+        raise CheckFailed(
+            f"stop_reason={result.stop_reason!r} after {result.time_s:.1f} s, but should be "
+            f"'goal_reached' within the bound {time_bound(world):.1f} s "
+            f"(min clearance {result.min_clearance:.3f} ft) [{_where(impl, world)}]"
+        )
+
+
+def _unreachable_test(impl: Implementation, world: World, recorder: Recorder) -> None:
+    run = episode(impl, world, recorder)
+    result = run.result
+    if result.stop_reason != "goal_unreachable":
+        raise CheckFailed(
+            f"stop_reason={result.stop_reason!r} after {result.time_s:.1f} s, but should be "
+            f"'goal_unreachable' within the bound {time_bound(world):.1f} s "
+            f"[{_where(impl, world)}]"
+        )
+
+
+def _promised_worlds(impl: Implementation) -> st.SearchStrategy[World]:
+    """Worlds of the classes ``impl`` converges in (open worlds if none)."""
+    classes = [c for c in SOLVABLE_CLASSES if c in impl.promises.converges_in] or ["open"]
+    return st.one_of([SOLVABLE_CLASSES[c]() for c in classes])
+
+
+def _poses(trace: Sequence[TraceStep]) -> np.ndarray:
+    return np.array([(s.x, s.y, s.theta) for s in trace])
+
+
+def _generic(world: World) -> World:
+    """``world`` with the goal moved :data:`GENERIC_OFFSET` ft to the left of the start-goal
+    line, so that no obstacle lies exactly symmetric about it."""
+    sx, sy = world.start.position
+    gx, gy = world.goal
+    d = math.hypot(gx - sx, gy - sy)
+    goal = Point(gx - GENERIC_OFFSET * (gy - sy) / d, gy + GENERIC_OFFSET * (gx - sx) / d)
+    return replace(world, goal=goal)
+
+
+def _invariance_test(
+    impl: Implementation, example: tuple[World, tuple[float, tuple[float, float]]], rec: Recorder
+) -> None:
+    world, (angle, shift) = _generic(example[0]), example[1]
+    moved = placed(world, angle, shift)
+    first = episode(impl, world, rec)
+    second = episode(impl, moved, rec)
+    rec.evidence = Evidence([world, moved], [first, second], time_bound(world))
+    c, s = math.cos(angle), math.sin(angle)
+    a, b = _poses(first.trace), _poses(second.trace)
+    n = min(len(a), len(b))
+    expected = np.column_stack(
+        (c * a[:n, 0] - s * a[:n, 1] + shift[0], s * a[:n, 0] + c * a[:n, 1] + shift[1])
+    )
+    position_error = np.hypot(*(b[:n, :2] - expected).T)
+    heading_error = np.abs(np.angle(np.exp(1j * (b[:n, 2] - a[:n, 2] - angle))))
+    bad = np.flatnonzero(
+        (position_error > INVARIANCE_TOL) | (heading_error > INVARIANCE_HEADING_TOL)
+    )
+    where = f"{_where(impl, world)}, moved by {angle:.6f} rad and {_xy(shift)}"
+    if len(bad):
+        k = int(bad[0])
+        raise CheckFailed(
+            f"moved trajectory at t={first.trace[k].t:.1f} s is {position_error[k]:.3g} ft and "
+            f"{heading_error[k]:.3g} rad off the original one moved, but should be within "
+            f"{INVARIANCE_TOL:g} ft and {INVARIANCE_HEADING_TOL:g} rad [{where}]"
+        )
+    if first.result.stop_reason != second.result.stop_reason or (
+        abs(len(a) - len(b)) > INVARIANCE_STEPS
+    ):
+        raise CheckFailed(
+            f"moved run ended {second.result.stop_reason!r} after {len(b) - 1} steps, but should "
+            f"end like the original, {first.result.stop_reason!r} after {len(a) - 1} steps "
+            f"[{where}]"
+        )
+
+
+@st.composite
+def _unseen(draw: st.DrawFn, impl: Implementation) -> tuple[World, float, float, float]:
+    world = draw(_promised_worlds(impl))
+    direction = draw(st.floats(-math.pi, math.pi), label="unseen direction")
+    beyond = draw(st.floats(1.0, 20.0), label="unseen distance beyond sensor range")
+    radius = draw(st.floats(0.5, 5.0), label="unseen radius")
+    return world, direction, beyond, radius
+
+
+def _unseen_test(
+    impl: Implementation, example: tuple[World, float, float, float], rec: Recorder
+) -> None:
+    world, direction, beyond, radius = example
+    first = episode(impl, world, rec)
+    xy = _poses(first.trace)[:, :2]
+    centre = xy.mean(axis=0)
+    reach = float(np.hypot(*(xy - centre).T).max()) + world.sensor.range_max + radius + beyond
+    far = circle(
+        (centre[0] + reach * math.cos(direction), centre[1] + reach * math.sin(direction)), radius
+    )
+    extended = World(
+        start=world.start,
+        goal=world.goal,
+        obstacles=(*world.obstacles, far),
+        robot=world.robot,
+        sensor=world.sensor,
+        name=world.name,
+    )
+    second = episode(impl, extended, rec)
+    rec.evidence = Evidence([world, extended], [first, second], time_bound(world))
+    a, b = _poses(first.trace), _poses(second.trace)
+    if a.shape != b.shape or not np.array_equal(a, b):
+        n = min(len(a), len(b))
+        k = int(np.flatnonzero(np.any(a[:n] != b[:n], axis=1))[0]) if n else 0
+        raise CheckFailed(
+            f"adding an obstacle {reach - radius - world.sensor.range_max:.1f} ft beyond sensor "
+            f"range of every pose changed the trajectory at step {k}, but it should not change "
+            f"at all (decisions depend on percepts only) [{_where(impl, world)}]"
+        )
+
+
+def _gap_test(impl: Implementation, example: tuple[World, Polygon], rec: Recorder) -> None:
+    world, gap = example
+    run = episode(impl, world, rec)
+    path = shapely.LineString([(s.x, s.y) for s in run.trace])
+    where = f"{_where(impl, world)}, gap {_show_polygon(gap)}"
+    if not run.result.reached:
+        raise CheckFailed(
+            f"stop_reason={run.result.stop_reason!r}, but should be 'goal_reached' through "
+            f"the gap [{where}]"
+        )
+    if not path.intersects(gap.geometry):
+        raise CheckFailed(
+            f"path passed {path.distance(gap.geometry):.2f} ft from the gap, but should go "
+            f"through it [{where}]"
+        )
+    centre = gap.geometry.centroid
+    for step in run.trace[:-1]:
+        to_goal = math.atan2(world.goal.y - step.y, world.goal.x - step.x)
+        turn = math.remainder(step.heading_cmd - to_goal, 2.0 * math.pi)
+        if abs(turn) > FIRST_TURN:
+            side = math.remainder(
+                math.atan2(centre.y - step.y, centre.x - step.x) - to_goal, 2.0 * math.pi
+            )
+            if turn * side < 0.0:
+                raise CheckFailed(
+                    f"first turn off the goal bearing at t={step.t:.1f} s is "
+                    f"{math.degrees(turn):+.1f} deg, but should be towards the gap "
+                    f"({math.degrees(side):+.1f} deg) [{where}]"
+                )
+            break
+
+
+def _show_polygon(polygon: Polygon) -> str:
+    return "[" + ", ".join(_xy(v) for v in polygon.vertices) + "]"
+
+
+def _determinism_test(impl: Implementation, world: World, rec: Recorder) -> None:
+    """Run once, recording; replay the same observations into a fresh planner."""
+    recording = RecordingPlanner(impl.factory())
+    episode(impl, world, rec, planner=recording)
+    assert recording.reset_args is not None
+    replay = impl.factory()
+    replay.reset(*recording.reset_args)
+    for k, (observation, command) in enumerate(recording.steps):
+        again = replay.step(observation)
+        if _command_fields(again) != _command_fields(command):
+            raise CheckFailed(
+                f"replaying the same observations, step {k} (t={observation.t:.1f} s) answered "
+                f"{_command_fields(again)}, but the first run answered "
+                f"{_command_fields(command)} [{_where(impl, world)}]"
+            )
+
+
+def _command_fields(command: Command) -> tuple[object, ...]:
+    return (command.heading, command.speed, command.behaviour, command.branch, command.stop)
+
+
+# -- equation checks ---------------------------------------------------------------------------
+
+coordinates = st.floats(-20.0, 20.0)
+angles = st.floats(-math.pi, math.pi)
+points = st.tuples(coordinates, coordinates)
+weights = st.floats(0.1, 10.0)
+
+
+def _angle_gap(a: float, b: float) -> float:
+    return abs(math.remainder(a - b, 2.0 * math.pi))
+
+
+def _equation_check(
+    name: str, sentence: str, inputs: st.SearchStrategy[dict[str, Any]], *, angle: bool
+) -> Check:
+    """A check that ``impl.equations.<name>`` agrees with the reference on drawn inputs."""
+
+    def test(impl: Implementation, kwargs: dict[str, Any], rec: Recorder) -> None:
+        rec.examples += 1
+        rec.evidence = Evidence(inputs=kwargs)
+        try:
+            want = getattr(reference, name)(**kwargs)
+        except IfgmRefError:  # outside the equation's domain: nothing to compare
+            return
+        try:
+            got = getattr(impl.equations, name)(**kwargs)
+        except Exception as err:
+            raise CheckFailed(
+                f"{name}({_args(kwargs)}) raised {type(err).__name__}: {err}, but should be "
+                f"{want!r} [{impl.label}]"
+            ) from err
+        try:
+            if angle:
+                error = _angle_gap(float(got), want)
+            elif isinstance(want, tuple):
+                error = math.dist(tuple(got), want)
+            else:
+                error = abs(float(got) - want)
+        except (TypeError, ValueError) as err:
+            raise CheckFailed(
+                f"{name}({_args(kwargs)}) = {got!r}, but should be {want!r} [{impl.label}]"
+            ) from err
+        if not error <= EQUATION_TOL:
+            raise CheckFailed(
+                f"{name}({_args(kwargs)}) = {got!r}, but should be {want!r} within "
+                f"{EQUATION_TOL:g} [{impl.label}]"
+            )
+
+    def applies(impl: Implementation) -> str | None:
+        if impl.equations is None:
+            return "no equations given (equations=...)"
+        if not callable(getattr(impl.equations, name, None)):
+            return f"the equations object has no {name}"
+        return None
+
+    return Check(name, sentence, Kind.EQUATION, lambda impl: inputs, test, applies)
+
+
+def _args(kwargs: dict[str, Any]) -> str:
+    return ", ".join(f"{k}={v!r}" for k, v in kwargs.items())
+
+
+def _equation_checks() -> list[Check]:
+    gap_point = st.fixed_dictionaries({"x_g": coordinates, "y_g": coordinates})
+    positions = st.fixed_dictionaries({"current": points, "destination": points})
+    eq4_literal = {"theta_g": angles, "theta_d": angles, "w_g": weights, "w_d": weights}
+    eq4_literal["d_th"] = st.floats(2.0, 6.0)
+    eq4 = {**eq4_literal, "heading": angles}
+    return [
+        _equation_check(
+            "eq1_gap_midpoint",
+            "eq. (1): the gap midpoint is the mean of the two saved obstacle points",
+            st.fixed_dictionaries({"p1": points, "p2": points}),
+            angle=False,
+        ),
+        _equation_check(
+            "eq2_gap_angle", "eq. (2) as run: theta_g = atan2(y_g, x_g)", gap_point, angle=True
+        ),
+        _equation_check(
+            "eq2_gap_angle_literal", "eq. (2) as printed: y_g / x_g", gap_point, angle=False
+        ),
+        _equation_check(
+            "eq3_goal_angle",
+            "eq. (3) as run: the quadrant-aware bearing of the destination",
+            positions,
+            angle=True,
+        ),
+        _equation_check(
+            "eq3_goal_angle_literal",
+            "eq. (3) as printed: arctan((y_d - y_c) / (x_d - x_c))",
+            positions,
+            angle=False,
+        ),
+        _equation_check(
+            "eq4_final_heading",
+            "eq. (4) as run: the weighted mean of gap and goal directions, robot frame",
+            st.fixed_dictionaries(eq4),
+            angle=True,
+        ),
+        _equation_check(
+            "eq4_final_heading_literal",
+            "eq. (4) as printed: the weighted mean of the two angles as numbers",
+            st.fixed_dictionaries(eq4_literal),
+            angle=False,
+        ),
+    ]
+
+
+# -- the registry ------------------------------------------------------------------------------
+
+
+def _collision_applies(impl: Implementation) -> str | None:
+    return None if impl.promises.collision_free else "it does not promise collision-freedom"
+
+
+def _convergence_check(world_class: str) -> Check:
+    def applies(impl: Implementation) -> str | None:
+        if world_class in impl.promises.converges_in:
+            return None
+        return f"it does not promise convergence in {world_class} worlds"
+
+    return Check(
+        f"converges_{world_class}",
+        f"in every solvable {world_class} world the robot reaches the goal within the bound",
+        Kind.SIMULATION,
+        lambda impl: SOLVABLE_CLASSES[world_class](),
+        _converges_test,
+        applies,
+    )
+
+
+def _unreachable_applies(impl: Implementation) -> str | None:
+    return None if impl.promises.reports_unreachable else "it does not promise to report it"
+
+
+def _gaps_apply(impl: Implementation) -> str | None:
+    return None if impl.promises.passes_wide_gaps else "it does not promise to use gaps"
+
+
+def _always(impl: Implementation) -> str | None:
+    return None
+
+
+CHECKS: dict[str, Check] = {
+    check.name: check
+    for check in [
+        Check(
+            "collision_free",
+            "the swept robot disc never meets an obstacle",
+            Kind.SIMULATION,
+            lambda impl: st.one_of(any_solvable_worlds(), enclosed_worlds()),
+            _collision_test,
+            _collision_applies,
+        ),
+        *(_convergence_check(c) for c in SOLVABLE_CLASSES),
+        Check(
+            "reports_unreachable",
+            "with the goal enclosed, the planner stops with goal_unreachable",
+            Kind.SIMULATION,
+            lambda impl: enclosed_worlds(),
+            _unreachable_test,
+            _unreachable_applies,
+        ),
+        Check(
+            "rigid_motion_invariant",
+            "rotating and translating the problem moves the trajectory the same way",
+            Kind.SIMULATION,
+            lambda impl: st.tuples(_promised_worlds(impl), placements()),
+            _invariance_test,
+            _always,
+        ),
+        Check(
+            "ignores_unseen_obstacles",
+            "an obstacle the sensor never sees does not change the trajectory",
+            Kind.SIMULATION,
+            _unseen,
+            _unseen_test,
+            _always,
+        ),
+        Check(
+            "passes_wide_gaps",
+            "through a wall with one gap wider than d_th, the robot goes through the gap",
+            Kind.SIMULATION,
+            lambda impl: gap_walls(),
+            _gap_test,
+            _gaps_apply,
+        ),
+        Check(
+            "deterministic",
+            "the same observations give the same commands",
+            Kind.SIMULATION,
+            _promised_worlds,
+            _determinism_test,
+            _always,
+        ),
+        *_equation_checks(),
+    ]
+}

@@ -1,0 +1,471 @@
+"""A planner in another process: the oracle's side of the JSON-lines protocol.
+
+:class:`ExternalPlanner` is a :class:`~ifgm_ref.protocol.Planner` whose decisions come from a
+program in any language that speaks the protocol of ``docs/oracle-protocol.md`` on its stdin
+and stdout (``ifgm-ref serve`` is such a program for Python planners). The program is started
+at the first :meth:`~ExternalPlanner.reset` and kept for every episode after it;
+:meth:`~ExternalPlanner.close` (or leaving a ``with`` block) sends ``bye`` and expects exit
+status 0.
+
+The adapter never hangs: the program's stdout is read by a background thread into a queue,
+and every reply is awaited at most ``timeout`` seconds; its stderr is copied by another thread
+to ``log`` (if given), the last lines kept for error messages. Every way a program can fail --
+it cannot be started, exits, hangs, writes something that is not a protocol message, answers
+out of turn, exits non-zero at ``bye`` -- raises :class:`~ifgm_ref.errors.ImplementationError`
+saying what happened and at which message, and kills the program. A broken adapter stays
+broken: every later call raises the same error at once (:attr:`ExternalPlanner.failure`), so
+that the oracle never waits twice on a dead program.
+"""
+
+from __future__ import annotations
+
+import collections
+import contextlib
+import os
+import queue
+import shlex
+import signal
+import subprocess
+import threading
+import weakref
+from collections.abc import Sequence
+from types import TracebackType
+from typing import IO, Any, NoReturn, TextIO
+
+from ifgm_ref.errors import ImplementationError, ParameterError, ProtocolError
+from ifgm_ref.pose import Point, Pose
+from ifgm_ref.protocol import Command, EpisodeParams, Observation
+from ifgm_ref.wire import (
+    bye_message,
+    decode,
+    encode,
+    observe_message,
+    parse_command,
+    parse_ready,
+    quote,
+    reset_message,
+)
+
+__all__ = ["STDERR_TAIL", "ExternalPlanner"]
+
+#: How many of the program's last stderr lines an error message quotes: a Python traceback
+#: of a few frames fits, a chatty log does not drown the message.
+STDERR_TAIL = 20
+#: How long to wait for the stderr copier to drain after the program ended, s: the pipe is
+#: closed by then unless a grandchild still holds it, which must not stall the report.
+DRAIN_WAIT = 1.0
+#: How long to wait for a killed program to be reaped, s (SIGKILL cannot be ignored).
+REAP_WAIT = 5.0
+
+_EOF = None  # what the stdout reader queues when the program closes its stdout
+
+
+class ExternalPlanner:
+    """A :class:`~ifgm_ref.protocol.Planner` that asks a program over JSON lines.
+
+    Parameters
+    ----------
+    command : str or sequence of str
+        The program and its arguments; a string is split with :func:`shlex.split` (no shell).
+    timeout : float, default 10.0
+        Longest wait, in s, for each reply (the first ``ready`` includes the program's start)
+        and for the program's exit after ``bye``.
+    name : str, optional
+        The planner's name in results and reports; default: the command line.
+    log : text stream, optional
+        Where the program's stderr is copied, line by line, as it comes.
+    cwd : path, optional
+        The program's working directory.
+
+    Attributes
+    ----------
+    name : str
+        The planner's name.
+
+    Examples
+    --------
+    >>> import sys
+    >>> from ifgm_ref.scenarios import resolve_world
+    >>> from ifgm_ref.simulator import simulate
+    >>> serve = [sys.executable, "-m", "ifgm_ref", "serve", "--planner", "straight"]
+    >>> with ExternalPlanner(serve, name="straight") as planner:
+    ...     simulate(resolve_world("box"), planner).result.stop_reason
+    'collision'
+    """
+
+    def __init__(
+        self,
+        command: str | Sequence[str],
+        *,
+        timeout: float = 10.0,
+        name: str | None = None,
+        log: TextIO | None = None,
+        cwd: str | os.PathLike[str] | None = None,
+    ) -> None:
+        argv = tuple(shlex.split(command) if isinstance(command, str) else command)
+        if not argv or not all(isinstance(a, str) for a in argv):
+            raise ParameterError(
+                f"`command` must be a non-empty command line or list of strings, got {command!r}"
+            )
+        if isinstance(timeout, bool) or not isinstance(timeout, int | float) or not timeout > 0:
+            raise ParameterError(f"`timeout` must be a number > 0, got {timeout!r}")
+        self._argv = argv
+        self.timeout = float(timeout)
+        self.name = shlex.join(argv) if name is None else name
+        self._log = log
+        self._cwd = cwd
+        self._process: subprocess.Popen[str] | None = None
+        self._replies: queue.Queue[str | None] = queue.Queue()
+        self._outbox: queue.Queue[str | None] = queue.Queue()
+        self._stderr_tail: collections.deque[str] = collections.deque(maxlen=STDERR_TAIL)
+        self._threads: tuple[threading.Thread, ...] = ()
+        self._failure: ImplementationError | None = None
+        self._finalizer: weakref.finalize | None = None
+
+    # --- Planner ---------------------------------------------------------------------------
+
+    def reset(self, start: Pose, goal: Point, params: EpisodeParams) -> None:
+        """Start an episode: send ``reset`` (starting the program if needed), await ``ready``.
+
+        Raises
+        ------
+        ImplementationError
+            If the program cannot be started, fails or answers anything but ``ready``.
+        """
+        self._raise_if_failed()
+        if self._process is None:
+            self._start()
+        reply = self._exchange(reset_message(start, goal, params), "reset")
+        self._parse(parse_ready, reply, "reset")
+
+    def step(self, observation: Observation) -> Command:
+        """Send ``observe`` for one step and return the program's ``command``.
+
+        Raises
+        ------
+        ImplementationError
+            If the program was not reset, fails, or answers anything but a valid ``command``.
+        """
+        self._raise_if_failed()
+        what = f"observe at t={float(observation.t)!r} s"
+        if self._process is None:
+            raise ImplementationError(f"{what}: reset() was not called (no program running)")
+        reply = self._exchange(observe_message(observation), what)
+        return self._parse(parse_command, reply, what)  # type: ignore[no-any-return]
+
+    # --- lifetime --------------------------------------------------------------------------
+
+    def close(self) -> None:
+        """Send ``bye`` and wait for the program to exit with status 0.
+
+        Does nothing if the program is not running (never started, already closed, or killed
+        after a failure, which was raised then). A later :meth:`reset` starts it again.
+
+        Raises
+        ------
+        ImplementationError
+            If the program does not exit within ``timeout`` (it is killed), exits with a
+            non-zero status, or wrote something it was not asked for.
+        """
+        process = self._process
+        if process is None or self._failure is not None:
+            return
+        self._check_quiet("bye")
+        self._outbox.put(encode(bye_message()))
+        self._outbox.put(_EOF)  # then close its stdin
+        try:
+            status = process.wait(timeout=self.timeout)
+        except subprocess.TimeoutExpired:
+            self._fail(
+                f"program did not exit within {self.timeout!r} s after bye (program killed)",
+                tail=True,
+            )
+        self._drain()
+        if status != 0:
+            self._fail(f"program {_status(status)} after bye", tail=True)
+        self._check_quiet("bye", after=True)
+        self._forget()
+
+    def __enter__(self) -> ExternalPlanner:
+        return self
+
+    def __exit__(
+        self,
+        exc_type: type[BaseException] | None,
+        exc: BaseException | None,
+        tb: TracebackType | None,
+    ) -> None:
+        if exc is None:
+            self.close()
+        else:  # the error in flight is the story; just make sure the program is gone
+            self._kill()
+
+    # --- introspection ---------------------------------------------------------------------
+
+    @property
+    def argv(self) -> tuple[str, ...]:
+        """The program and its arguments."""
+        return self._argv
+
+    @property
+    def failure(self) -> ImplementationError | None:
+        """The error that broke this adapter, or ``None`` while it works."""
+        return self._failure
+
+    @property
+    def pid(self) -> int | None:
+        """The running program's process id, or ``None`` when none runs."""
+        return None if self._process is None else self._process.pid
+
+    def __repr__(self) -> str:
+        if self._failure is not None:
+            state = "failed"
+        elif self._process is None:
+            state = "not running"
+        else:
+            state = f"running as pid {self._process.pid}"
+        return (
+            f"ExternalPlanner({list(self._argv)!r}, timeout={self.timeout!r}, "
+            f"name={self.name!r}) <{state}>"
+        )
+
+    # --- the process -----------------------------------------------------------------------
+
+    def _start(self) -> None:
+        posix = os.name == "posix"
+        try:
+            process = subprocess.Popen(
+                self._argv,
+                stdin=subprocess.PIPE,
+                stdout=subprocess.PIPE,
+                stderr=subprocess.PIPE,
+                text=True,
+                encoding="utf-8",
+                errors="replace",
+                bufsize=1,
+                cwd=self._cwd,
+                # its own process group, so that a kill reaches what it started, too
+                start_new_session=posix,
+            )
+        except OSError as err:
+            self._failure = ImplementationError(
+                f"cannot start program {shlex.join(self._argv)!r}: {err}"
+            )
+            raise self._failure from None
+        self._process = process
+        self._replies = queue.Queue()
+        self._outbox = queue.Queue()
+        self._stderr_tail = collections.deque(maxlen=STDERR_TAIL)
+        assert process.stdin is not None
+        assert process.stdout is not None and process.stderr is not None
+        self._threads = (
+            threading.Thread(
+                target=_write_lines,
+                args=(process.stdin, self._outbox),
+                name=f"stdin of pid {process.pid}",
+                daemon=True,
+            ),
+            threading.Thread(
+                target=_read_lines,
+                args=(process.stdout, self._replies),
+                name=f"stdout of pid {process.pid}",
+                daemon=True,
+            ),
+            threading.Thread(
+                target=_copy_lines,
+                args=(process.stderr, self._stderr_tail, self._log),
+                name=f"stderr of pid {process.pid}",
+                daemon=True,
+            ),
+        )
+        for thread in self._threads:
+            thread.start()
+        self._finalizer = weakref.finalize(self, _kill_process, process)
+
+    def _exchange(self, message: dict[str, Any], what: str) -> str:
+        """Send ``message`` and return the reply line, or fail saying what went wrong."""
+        self._check_quiet(what)
+        self._outbox.put(encode(message))
+        try:
+            line = self._replies.get(timeout=self.timeout)
+        except queue.Empty:
+            self._fail(f"no reply within {self.timeout!r} s to {what} (program killed)", tail=True)
+        if line is _EOF:
+            self._wait_for_exit(what)
+        return line
+
+    def _parse(self, parser: Any, line: str, what: str) -> Any:
+        try:
+            return parser(decode(line, what=f"reply to {what}"))
+        except ProtocolError as err:
+            text = str(err)
+            if not text.startswith("reply to "):
+                text = f"reply to {what}: {text}; the reply: {quote(line)}"
+            self._fail(text)
+
+    def _check_quiet(self, what: str, *, after: bool = False) -> None:
+        """Fail if the program wrote a line nobody asked for (it would desynchronise replies)."""
+        try:
+            line = self._replies.get_nowait()
+        except queue.Empty:
+            return
+        if line is _EOF:
+            if after:
+                return
+            self._wait_for_exit(what)
+        when = f"after {what}" if after else f"before {what}"
+        self._fail(f"program wrote a line nobody asked for {when}: {quote(line)}")
+
+    def _wait_for_exit(self, what: str) -> NoReturn:
+        """The program closed its pipes: report its exit (killing it if it lingers)."""
+        process = self._process
+        assert process is not None
+        try:
+            status = process.wait(timeout=self.timeout)
+        except subprocess.TimeoutExpired:
+            self._fail(
+                f"program closed its stdout before answering {what} (program killed)", tail=True
+            )
+        self._drain()
+        self._fail(f"program {_status(status)} before answering {what}", tail=True)
+
+    def _drain(self) -> None:
+        """Let the stdout and stderr threads finish reading what the ended program wrote."""
+        for thread in self._threads[1:]:
+            thread.join(timeout=DRAIN_WAIT)
+
+    def _tail(self) -> str:
+        tail = self._stderr_tail.copy()  # atomic: the copier thread may still append
+        if not tail:
+            return "; no stderr output"
+        lines = "".join(f"\n    {line}" for line in tail)
+        return f"; last stderr:{lines}"
+
+    def _fail(self, text: str, *, tail: bool = False) -> NoReturn:
+        """Kill the program, record the failure (with its last stderr lines), raise it."""
+        self._kill()
+        self._failure = ImplementationError(f"{self.name}: {text}{self._tail() if tail else ''}")
+        raise self._failure
+
+    def _raise_if_failed(self) -> None:
+        if self._failure is not None:
+            raise self._failure
+
+    def _kill(self) -> None:
+        if self._process is not None:
+            _kill_process(self._process)
+            self._drain()
+        self._forget()
+
+    def _forget(self) -> None:
+        if self._finalizer is not None:
+            self._finalizer.detach()
+        self._finalizer = None
+        process, self._process = self._process, None
+        if process is None:
+            return
+        self._outbox.put(_EOF)  # lets the writer thread end if it waits for a line
+        # A pipe still used by its thread (blocked on a full pipe, or a grandchild holds it
+        # open) is left to that thread: closing a buffered stream under it would wait for it.
+        for pipe, thread in zip(
+            (process.stdin, process.stdout, process.stderr), self._threads, strict=True
+        ):
+            if pipe is not None and not thread.is_alive():
+                with contextlib.suppress(OSError, ValueError):
+                    pipe.close()
+
+
+def _write_lines(stream: IO[str], outbox: queue.Queue[str | None]) -> None:
+    """Write every line put in ``outbox`` to ``stream``, flushed; close it at ``_EOF`` (a thread).
+
+    Writing in a thread keeps the oracle free even if the program stops reading its stdin and
+    the pipe fills: the reply then does not come, and the timeout ends the program.
+    """
+    try:
+        while (line := outbox.get()) is not _EOF:
+            stream.write(line + "\n")
+            stream.flush()
+        stream.close()
+    except (OSError, ValueError):
+        pass  # the program is gone (broken pipe) or the pipe was closed: the reader sees it
+
+
+def _read_lines(stream: IO[str], replies: queue.Queue[str | None]) -> None:
+    """Queue every line of ``stream``, then ``_EOF`` (runs in a thread)."""
+    try:
+        for line in stream:
+            replies.put(line)
+    except (OSError, ValueError):
+        pass  # closed under us
+    replies.put(_EOF)
+
+
+def _copy_lines(stream: IO[str], tail: collections.deque[str], log: TextIO | None) -> None:
+    """Keep the last lines of ``stream`` in ``tail``, copying each to ``log`` (a thread)."""
+    try:
+        for line in stream:
+            tail.append(line.rstrip("\r\n"))
+            if log is not None:
+                log.write(line)
+                log.flush()
+    except (OSError, ValueError):
+        pass
+
+
+def _kill_process(process: subprocess.Popen[str]) -> None:
+    """Kill ``process`` and its process group if it still runs, and reap it."""
+    if process.poll() is None:
+        try:
+            if os.name == "posix":
+                os.killpg(process.pid, signal.SIGKILL)
+            else:
+                process.kill()
+        except (ProcessLookupError, PermissionError):
+            pass
+    with contextlib.suppress(subprocess.TimeoutExpired):
+        process.wait(timeout=REAP_WAIT)
+
+
+def _status(status: int) -> str:
+    """Say how a program ended from its ``returncode``.
+
+    >>> _status(3), _status(-9)
+    ('exited with status 3', 'was killed by signal SIGKILL')
+    """
+    if status >= 0:
+        return f"exited with status {status}"
+    try:
+        return f"was killed by signal {signal.Signals(-status).name}"
+    except ValueError:
+        return f"was killed by signal {-status}"
+
+
+class ExternalFactory:
+    """A planner factory for the oracle: one :class:`ExternalPlanner`, started once and
+    handed out for every episode (its program plays them one after another).
+
+    It holds only the command and the timeout until first called, so it can be copied into
+    another process.
+    """
+
+    def __init__(
+        self, command: str | Sequence[str], *, timeout: float = 10.0, name: str | None = None
+    ) -> None:
+        self.command = command
+        self.timeout = timeout
+        self.name = name
+        self._planner: ExternalPlanner | None = None
+
+    def __call__(self) -> ExternalPlanner:
+        if self._planner is None:
+            self._planner = ExternalPlanner(self.command, timeout=self.timeout, name=self.name)
+        return self._planner
+
+    def close(self) -> None:
+        """Send ``bye`` and wait for the program to exit (if it was started)."""
+        if self._planner is not None:
+            planner, self._planner = self._planner, None
+            planner.close()
+
+    def __getstate__(self) -> dict[str, Any]:
+        return {**self.__dict__, "_planner": None}

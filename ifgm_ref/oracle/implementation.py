@@ -1,0 +1,148 @@
+"""The implementation under test: how to make its planners, what it promises, its equations.
+
+Like scikit-learn's estimator tags, a planner declares what it promises, and the oracle
+generates only the checks that apply (:class:`Promises`). The paper's Table 1 and section 5
+say what each planner promises: the Bug family, IBA and IFGM converge in every solvable world
+class; FGM and APF do not promise convergence where U, H (and, for APF, symmetric) obstacles
+are (Table 1: "trapped"). A user's implementation promises what the planner it implements
+promises (``promises="ifgm"`` by default).
+"""
+
+from __future__ import annotations
+
+import shlex
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+
+from ifgm_ref.errors import ImplementationError
+from ifgm_ref.oracle.loading import load_factory
+from ifgm_ref.protocol import Planner
+
+#: Every solvable world class of :mod:`ifgm_ref.oracle.strategies`.
+ALL_CLASSES = frozenset({"open", "u", "h", "symmetric", "mixed"})
+
+
+@dataclass(frozen=True)
+class Promises:
+    """What a planner promises, and so which checks apply to it.
+
+    Parameters
+    ----------
+    converges_in : frozenset of str
+        The world classes (names of :data:`ifgm_ref.oracle.strategies.SOLVABLE_CLASSES`) in
+        which it reaches the goal within the time bound.
+    reports_unreachable : bool, default False
+        Whether it stops with ``goal_unreachable`` when the goal is enclosed.
+    collision_free : bool, default True
+        Whether its swept disc never meets an obstacle (every planner of the paper).
+    passes_wide_gaps : bool, default True
+        Whether it steers through a gap wider than IFGM's ``d_th`` rather than round the
+        obstacles (section 4, Case-1; IFGM only: FGM takes the widest gap, the Bug family
+        goes round).
+    """
+
+    converges_in: frozenset[str] = ALL_CLASSES
+    reports_unreachable: bool = False
+    collision_free: bool = True
+    passes_wide_gaps: bool = True
+
+    def __post_init__(self) -> None:
+        unknown = set(self.converges_in) - ALL_CLASSES
+        if unknown:
+            raise ImplementationError(
+                f"converges_in: unknown world classes {sorted(unknown)}; "
+                f"known: {', '.join(sorted(ALL_CLASSES))}"
+            )
+        object.__setattr__(self, "converges_in", frozenset(self.converges_in))
+
+
+#: What each built-in planner promises (paper Table 1 and section 5).
+PROMISES: dict[str, Promises] = {
+    "bug1": Promises(reports_unreachable=True, passes_wide_gaps=False),
+    "bug2": Promises(reports_unreachable=True, passes_wide_gaps=False),
+    "distbug": Promises(reports_unreachable=True, passes_wide_gaps=False),
+    "iba": Promises(reports_unreachable=True, passes_wide_gaps=False),
+    "ifgm": Promises(),  # Figure 3 has no "goal unreachable" exit
+    # FGM steers at the *widest* gap, which beside a wall is the open space past its end.
+    "fgm": Promises(converges_in=frozenset({"open", "symmetric"}), passes_wide_gaps=False),
+    "apf": Promises(converges_in=frozenset({"open"}), passes_wide_gaps=False),
+    "straight": Promises(converges_in=frozenset(), collision_free=False, passes_wide_gaps=False),
+}
+
+
+def promises_of(name: str) -> Promises:
+    """The promises of the built-in planner ``name``."""
+    try:
+        return PROMISES[name]
+    except KeyError:
+        known = ", ".join(sorted(PROMISES))
+        raise ImplementationError(f"no promises known for {name!r}; known: {known}") from None
+
+
+@dataclass
+class Implementation:
+    """A planner implementation to check.
+
+    Parameters
+    ----------
+    factory : callable
+        Returns a planner (``name``, ``reset``, ``step``) ready for a new episode; called
+        once per episode. An out-of-process planner's factory returns the same adapter every
+        time (its program runs once and plays every episode).
+    label : str
+        How reports name it (``ifgm``, ``mypkg.module:make_planner``, ``cmd: ./my_planner``).
+    promises : Promises
+        What it promises; decides which checks apply.
+    equations : object or None
+        Anything with the reference's equation functions as attributes (a module, say), to
+        check eqs. (1)-(4); ``None`` skips the equation checks.
+    """
+
+    factory: Callable[[], Planner]
+    label: str
+    promises: Promises = field(default_factory=Promises)
+    equations: object | None = None
+
+    @classmethod
+    def from_spec(
+        cls,
+        spec: str,
+        *,
+        promises: Promises | str | None = None,
+        equations: object | None = None,
+    ) -> Implementation:
+        """A Python planner named like ``ifgm-ref serve --planner``: built-in or module:attr.
+
+        ``promises`` defaults to the built-in planner's own, or IFGM's for anything else.
+        """
+        factory = load_factory(spec)
+        if promises is None:
+            promises = spec if spec in PROMISES else "ifgm"
+        if isinstance(promises, str):
+            promises = promises_of(promises)
+        return cls(factory, spec, promises, equations)
+
+    def close(self) -> None:
+        """Stop a program under test (a factory with ``close``, e.g. ``from_command``)."""
+        close = getattr(self.factory, "close", None)
+        if close is not None:
+            close()
+
+    @classmethod
+    def from_command(
+        cls,
+        command: str | Sequence[str],
+        *,
+        timeout: float = 10.0,
+        promises: Promises | str | None = None,
+        equations: object | None = None,
+    ) -> Implementation:
+        """A program speaking the JSON-lines protocol, started once (per process) and kept
+        for every episode; labelled ``cmd: COMMAND``. ``promises`` defaults to IFGM's."""
+        from ifgm_ref.oracle.external import ExternalFactory
+
+        if not isinstance(promises, Promises):
+            promises = promises_of(promises or "ifgm")
+        factory = ExternalFactory(command, timeout=timeout)
+        text = command if isinstance(command, str) else shlex.join(command)
+        return cls(factory, f"cmd: {text}", promises, equations)

@@ -1,0 +1,60 @@
+"""Find the implementation under test: a built-in planner name or ``module:attribute``.
+
+The oracle, ``ifgm-ref serve`` and the pytest plugin all name a Python planner the same way:
+either a built-in name (``ifgm``, see ``ifgm-ref planners``) or an import path to a factory,
+``package.module:make_planner``, i.e. any callable that takes no argument and returns a new
+object with ``name``, ``reset`` and ``step`` (:class:`ifgm_ref.protocol.Planner`). A class is
+such a callable.
+"""
+
+from __future__ import annotations
+
+import importlib
+from collections.abc import Callable
+
+from ifgm_ref.errors import ImplementationError
+from ifgm_ref.planners import PLANNERS
+from ifgm_ref.protocol import Planner
+
+
+def load_factory(spec: str) -> Callable[[], Planner]:
+    """Resolve ``spec`` to a planner factory, or raise :class:`ImplementationError`.
+
+    Examples
+    --------
+    >>> load_factory("ifgm")().name
+    'ifgm'
+    >>> load_factory("ifgm_ref.planners.iba:IBAPlanner")().name
+    'iba'
+    >>> load_factory("no_such_module_xyz:make")  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    ifgm_ref.errors.ImplementationError: cannot import 'no_such_module_xyz' (from ...): No ...
+    >>> load_factory("bogus")  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    ifgm_ref.errors.ImplementationError: 'bogus' is neither a built-in planner (...) nor ...
+    """
+    if spec in PLANNERS:
+        return PLANNERS[spec].factory
+    module_name, sep, attribute = spec.partition(":")
+    if not sep or not module_name or not attribute:
+        known = ", ".join(sorted(PLANNERS))
+        raise ImplementationError(
+            f"{spec!r} is neither a built-in planner ({known}) nor module:attribute"
+        )
+    try:
+        module = importlib.import_module(module_name)
+    except Exception as err:  # any import-time failure of user code is reported, not raised
+        raise ImplementationError(f"cannot import {module_name!r} (from {spec!r}): {err}") from err
+    target: object = module
+    for part in attribute.split("."):
+        try:
+            target = getattr(target, part)
+        except AttributeError:
+            raise ImplementationError(
+                f"module {module_name!r} has no attribute {attribute!r} (from {spec!r})"
+            ) from None
+    if not callable(target):
+        raise ImplementationError(f"{spec!r} is not callable, got {type(target).__name__}")
+    return target  # type: ignore[return-value]

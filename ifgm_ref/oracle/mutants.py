@@ -1,0 +1,88 @@
+"""Broken variants of the reference IFGM: the oracle must reject every one of them.
+
+A conformance suite is only as good as the bugs it catches. Each mutant here changes one
+thing a port could plausibly get wrong; ``tests/test_oracle.py`` asserts that the oracle
+rejects each, in process and through ``ifgm-ref serve`` (serve any of them with
+``ifgm-ref serve --planner ifgm_ref.oracle.mutants:GapAngleSignFlipped``).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+
+from ifgm_ref.equations import eq3_goal_angle_literal
+from ifgm_ref.percepts.clusters import Gap
+from ifgm_ref.planners.ifgm import IFGMPlanner
+from ifgm_ref.pose import Point, Pose
+from ifgm_ref.protocol import EpisodeParams, Observation
+
+
+class GapAngleSignFlipped(IFGMPlanner):
+    """Case-1 steers at the mirror image of the gap: eq. (2)'s sign flipped."""
+
+    name = "ifgm-gap-sign-flipped"
+
+    def gap_heading(self, pose: Pose, gap: Gap) -> float:
+        straight = super().gap_heading(pose, gap)
+        return pose.theta - (straight - pose.theta)
+
+
+class QuadrantBlindGoalAngle(IFGMPlanner):
+    """Eq. (3) as printed: ``arctan(dy / dx)``, blind to goals behind (errata row 5)."""
+
+    name = "ifgm-quadrant-blind"
+
+    def goal_bearing(self, pose: Pose) -> float:
+        dx = self.goal.x - pose.x
+        return eq3_goal_angle_literal(pose.position, self.goal) if dx != 0.0 else math.pi / 2
+
+
+class NeverLeavesEdge(IFGMPlanner):
+    """Once following an edge, never leaves it (no free path is ever seen)."""
+
+    name = "ifgm-never-leaves"
+
+    def _may_leave(self, observation: Observation) -> bool:
+        return False
+
+
+class IgnoresDObs(IFGMPlanner):
+    """``d_obs`` ignored: never "too close", so Case-1 steers through gaps to the end."""
+
+    name = "ifgm-ignores-d-obs"
+
+    def reset(self, start: Pose, goal: Point, params: EpisodeParams) -> None:
+        super().reset(start, goal, params)
+        self.d_obs = 0.0
+
+
+class PointRobot(IFGMPlanner):
+    """Plans for a robot of (almost) zero radius: clearances, ``d_th`` and the stand-off all
+    lose the robot's size."""
+
+    name = "ifgm-point-robot"
+
+    def reset(self, start: Pose, goal: Point, params: EpisodeParams) -> None:
+        point = replace(params.robot, radius=1e-6)
+        super().reset(start, goal, replace(params, robot=point))
+
+
+class GapAngleInWorldFrame(IFGMPlanner):
+    """Eq. (2)'s robot-frame gap angle used as a world heading (the pose's heading forgotten)."""
+
+    name = "ifgm-gap-world-frame"
+
+    def gap_heading(self, pose: Pose, gap: Gap) -> float:
+        return super().gap_heading(Pose(pose.x, pose.y, 0.0), gap)
+
+
+#: Every mutant by a short name.
+MUTANTS: dict[str, type[IFGMPlanner]] = {
+    "gap_sign_flipped": GapAngleSignFlipped,
+    "quadrant_blind": QuadrantBlindGoalAngle,
+    "never_leaves": NeverLeavesEdge,
+    "ignores_d_obs": IgnoresDObs,
+    "point_robot": PointRobot,
+    "gap_world_frame": GapAngleInWorldFrame,
+}

@@ -1,0 +1,204 @@
+"""The oracle as a pytest plugin (registered under the ``pytest11`` entry point).
+
+Run the whole suite against a Python planner, one test id per property::
+
+    pytest --pyargs ifgm_ref.oracle --ifgm-impl mypkg.module:make_planner
+
+or against a program in any language that speaks the JSON-lines protocol
+(``docs/oracle-protocol.md``)::
+
+    pytest --pyargs ifgm_ref.oracle --ifgm-cmd "./my_planner --flag"
+
+The pytest header names the implementation, the profile and the promises; a missing or
+unimportable implementation stops the run with a usage error before any test runs; the
+terminal summary says how much was checked.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+import pytest
+
+from ifgm_ref.errors import IfgmRefError
+from ifgm_ref.oracle.checks import CHECKS
+from ifgm_ref.oracle.implementation import PROMISES, Implementation
+from ifgm_ref.oracle.runner import PROFILES, CheckResult, Status, run_check
+
+#: The test module whose items need an implementation.
+SUITE = "test_conformance.py"
+
+
+def pytest_addoption(parser: pytest.Parser) -> None:
+    """The ``--ifgm-*`` options."""
+    group = parser.getgroup("ifgm-ref oracle", "ifgm-ref oracle (pytest --pyargs ifgm_ref.oracle)")
+    group.addoption(
+        "--ifgm-impl",
+        metavar="SPEC",
+        help="the Python planner under test: a built-in name or module:attribute (a factory)",
+    )
+    group.addoption(
+        "--ifgm-cmd",
+        metavar="COMMAND",
+        help="a program under test, speaking the JSON-lines protocol (docs/oracle-protocol.md)",
+    )
+    group.addoption(
+        "--ifgm-profile",
+        default="quick",
+        choices=sorted(PROFILES),
+        help="examples per check: quick 50 (default), default 200, thorough 1000",
+    )
+    group.addoption(
+        "--ifgm-promises",
+        metavar="PLANNER",
+        help="check what this built-in planner promises (default: the built-in's own, or ifgm)",
+    )
+    group.addoption(
+        "--ifgm-equations",
+        metavar="MODULE",
+        help="a module exposing eq1_gap_midpoint ... eq4_final_heading to check eqs. (1)-(4)",
+    )
+    group.addoption(
+        "--ifgm-xfails",
+        metavar="FILE",
+        help="expected failures: one check name per line, '# reason' after it",
+    )
+    group.addoption(
+        "--ifgm-artifacts",
+        default="oracle-failures",
+        metavar="DIR",
+        help="where counterexamples are written (default oracle-failures)",
+    )
+    group.addoption(
+        "--ifgm-timeout",
+        type=float,
+        default=10.0,
+        metavar="SECONDS",
+        help="per-reply timeout for --ifgm-cmd programs (default 10 s)",
+    )
+
+
+class OracleSession:
+    """The implementation under test and the results gathered in this pytest session."""
+
+    def __init__(self, config: pytest.Config) -> None:
+        self.config = config
+        self.results: list[CheckResult] = []
+        self.expected = _expected_failures(config.getoption("ifgm_xfails"))
+        self.implementation = _implementation(config)
+
+    @property
+    def profile(self) -> str:
+        return str(self.config.getoption("ifgm_profile"))
+
+    def run(self, check: str) -> CheckResult:
+        """Run ``check`` against the implementation under test."""
+        result = run_check(
+            CHECKS[check],
+            self.implementation,
+            self.profile,
+            artifacts=self.config.getoption("ifgm_artifacts"),
+            expected_failure=self.expected.get(check),
+        )
+        self.results.append(result)
+        return result
+
+    def close(self) -> None:
+        """Stop an external program (``--ifgm-cmd``)."""
+        self.implementation.close()
+
+
+def _expected_failures(path: str | None) -> dict[str, str]:
+    if path is None:
+        return {}
+    expected: dict[str, str] = {}
+    for number, line in enumerate(Path(path).read_text().splitlines(), start=1):
+        name, _, reason = line.partition("#")
+        name = name.strip()
+        if not name:
+            continue
+        if name not in CHECKS:
+            raise pytest.UsageError(f"{path}:{number}: no check named {name!r}")
+        expected[name] = reason.strip() or "listed in " + path
+    return expected
+
+
+def _implementation(config: pytest.Config) -> Implementation:
+    spec, cmd = config.getoption("ifgm_impl"), config.getoption("ifgm_cmd")
+    if (spec is None) == (cmd is None):
+        raise pytest.UsageError(
+            "the ifgm-ref oracle needs exactly one implementation to check: "
+            "--ifgm-impl module:factory (or a built-in planner name) or --ifgm-cmd 'PROGRAM'"
+        )
+    promises = config.getoption("ifgm_promises")
+    equations: object | None = None
+    try:
+        if config.getoption("ifgm_equations"):
+            import importlib
+
+            equations = importlib.import_module(config.getoption("ifgm_equations"))
+        if spec is not None:
+            return Implementation.from_spec(spec, promises=promises, equations=equations)
+        return Implementation.from_command(
+            cmd,
+            timeout=config.getoption("ifgm_timeout"),
+            promises=promises,
+            equations=equations,
+        )
+    except (IfgmRefError, ImportError) as err:
+        raise pytest.UsageError(f"ifgm-ref oracle: cannot load the implementation: {err}") from err
+
+
+def _suite_requested(items: list[pytest.Item]) -> bool:
+    return any(item.path.name == SUITE for item in items)
+
+
+_KEY = pytest.StashKey[OracleSession]()
+
+
+def pytest_collection_modifyitems(
+    session: pytest.Session, config: pytest.Config, items: list[pytest.Item]
+) -> None:
+    """Load the implementation (loudly) as soon as the suite is collected."""
+    if _suite_requested(items) and _KEY not in config.stash:
+        config.stash[_KEY] = OracleSession(config)
+
+
+@pytest.fixture(scope="session")
+def ifgm_oracle(request: pytest.FixtureRequest) -> Any:
+    """The :class:`OracleSession` of this run."""
+    oracle = request.config.stash[_KEY]
+    yield oracle
+    oracle.close()
+
+
+def pytest_report_header(config: pytest.Config) -> list[str]:
+    """Name the implementation under test and the profile, "to catch typos"."""
+    spec, cmd = config.getoption("ifgm_impl"), config.getoption("ifgm_cmd")
+    if spec is None and cmd is None:
+        return []
+    profile = config.getoption("ifgm_profile")
+    examples = PROFILES[profile].max_examples
+    promises = config.getoption("ifgm_promises") or (spec if spec in PROMISES else None)
+    return [
+        f"ifgm-ref oracle: implementation {spec or 'cmd: ' + cmd}",
+        f"ifgm-ref oracle: profile {profile} ({examples} examples per check), "
+        f"promises {promises or 'default'}, equations {config.getoption('ifgm_equations')}, "
+        f"artifacts {config.getoption('ifgm_artifacts')}",
+    ]
+
+
+def pytest_terminal_summary(terminalreporter: Any, exitstatus: int, config: pytest.Config) -> None:
+    """Say how much was checked."""
+    if _KEY not in config.stash or not config.stash[_KEY].results:
+        return
+    results = config.stash[_KEY].results
+    ran = [r for r in results if r.status is not Status.NOT_APPLICABLE]
+    terminalreporter.write_sep("-", "ifgm-ref oracle")
+    for result in results:
+        terminalreporter.write_line(result.line())
+    terminalreporter.write_line(
+        f"{config.stash[_KEY].implementation.label}: {len(ran)} properties checked, "
+        f"{sum(r.examples for r in ran)} examples, {sum(r.worlds for r in ran)} worlds"
+    )

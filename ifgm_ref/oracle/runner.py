@@ -1,0 +1,425 @@
+"""Run the oracle's checks against one implementation and report, scikit-learn style.
+
+:func:`check_planner` runs every check that applies to the implementation (its
+:class:`~ifgm_ref.oracle.implementation.Promises`) under a profile and returns one
+:class:`CheckResult` per check: passed, failed, expected failure (listed in
+``expected_failed_checks`` with a reason), unexpectedly passed, not applicable, or error (the
+implementation crashed, hung or answered garbage: it could not be checked). A failure leaves a
+folder under ``artifacts``: the shrunk counterexample as a world file, the trace (CSV), a
+plot, and a ``report.md`` that says how to replay it with ``ifgm-ref simulate``.
+"""
+
+from __future__ import annotations
+
+import re
+import sys
+import time
+from collections.abc import Callable, Iterable, Mapping
+from concurrent.futures import ProcessPoolExecutor, as_completed
+from dataclasses import dataclass, field, replace
+from enum import StrEnum
+from pathlib import Path
+from typing import Any
+
+from hypothesis import HealthCheck, Phase, given, settings
+from hypothesis.errors import Flaky
+
+from ifgm_ref.errors import ImplementationError
+from ifgm_ref.oracle.checks import CHECKS, Check, CheckFailed, Evidence, Kind, Recorder
+from ifgm_ref.oracle.implementation import Implementation, Promises, promises_of
+from ifgm_ref.protocol import Planner
+from ifgm_ref.worldfile import save_world
+
+
+@dataclass(frozen=True)
+class Profile:
+    """How hard to look: examples per check, derandomized draws, and whether a failing
+    example is shrunk (to the simplest world that still fails) before it is reported."""
+
+    name: str
+    max_examples: int
+    derandomize: bool = True
+    shrink: bool = True
+
+    def settings(self) -> settings:
+        """Hypothesis settings of this profile (no deadline, no example database)."""
+        phases = [Phase.explicit, Phase.reuse, Phase.generate]
+        return settings(
+            max_examples=self.max_examples,
+            phases=[*phases, Phase.shrink] if self.shrink else phases,
+            derandomize=self.derandomize,
+            deadline=None,
+            database=None,
+            print_blob=False,
+            suppress_health_check=[
+                HealthCheck.too_slow,
+                HealthCheck.filter_too_much,
+                HealthCheck.data_too_large,
+            ],
+        )
+
+
+#: The profiles: ``quick`` for CI (50 examples per check), ``default``, ``thorough``. All are
+#: derandomized: the same implementation gives the same verdicts on every run.
+PROFILES: dict[str, Profile] = {
+    p.name: p for p in (Profile("quick", 50), Profile("default", 200), Profile("thorough", 1000))
+}
+
+
+class Status(StrEnum):
+    """The verdict of one check."""
+
+    PASSED = "passed"
+    FAILED = "failed"
+    EXPECTED_FAILURE = "expected failure"
+    UNEXPECTED_PASS = "unexpectedly passed"
+    NOT_APPLICABLE = "not applicable"
+    ERROR = "error"
+
+
+@dataclass(frozen=True)
+class CheckResult:
+    """The outcome of one check.
+
+    ``examples`` counts the examples run (shrinking included), ``worlds`` the distinct worlds
+    simulated; ``message`` says what failed, or why the check did not apply; ``artifacts`` is
+    the folder holding the counterexample of a failure.
+    """
+
+    check: str
+    status: Status
+    examples: int = 0
+    worlds: int = 0
+    seconds: float = 0.0
+    message: str = ""
+    artifacts: Path | None = None
+
+    @property
+    def ok(self) -> bool:
+        """Whether this verdict lets the run pass."""
+        return self.status in (Status.PASSED, Status.EXPECTED_FAILURE, Status.NOT_APPLICABLE)
+
+    def line(self) -> str:
+        """One line for a terminal."""
+        counts = f"{self.examples} examples, {self.worlds} worlds, {self.seconds:.1f} s"
+        text = f"{self.status.upper():<19} {self.check:<26} {counts}"
+        if self.message and self.status is not Status.PASSED:
+            text += f"\n    {self.message}"
+        if self.artifacts is not None:
+            text += f"\n    counterexample: {self.artifacts}"
+        return text
+
+
+@dataclass(frozen=True)
+class Report:
+    """Every check's result for one implementation under one profile."""
+
+    implementation: str
+    profile: str
+    results: tuple[CheckResult, ...] = field(default_factory=tuple)
+
+    @property
+    def ok(self) -> bool:
+        """Whether every check passed, failed as expected or did not apply."""
+        return all(r.ok for r in self.results)
+
+    def __getitem__(self, check: str) -> CheckResult:
+        for result in self.results:
+            if result.check == check:
+                return result
+        raise KeyError(check)
+
+    def summary(self) -> str:
+        """How much was checked and what came of it, in one line."""
+        ran = [r for r in self.results if r.status is not Status.NOT_APPLICABLE]
+        counts: dict[str, int] = {}
+        for r in self.results:
+            counts[r.status] = counts.get(r.status, 0) + 1
+        verdicts = ", ".join(f"{n} {status}" for status, n in counts.items())
+        return (
+            f"{self.implementation} (profile {self.profile}): {len(ran)} properties checked, "
+            f"{sum(r.examples for r in ran)} examples, {sum(r.worlds for r in ran)} worlds: "
+            f"{verdicts}"
+        )
+
+    def text(self) -> str:
+        """Every result's line, then the summary."""
+        return "\n".join([*(r.line() for r in self.results), self.summary()])
+
+
+def _slug(text: str) -> str:
+    return re.sub(r"[^A-Za-z0-9_.-]+", "_", text).strip("_")[:60] or "implementation"
+
+
+def run_check(
+    check: Check,
+    impl: Implementation,
+    profile: Profile | str = "quick",
+    *,
+    artifacts: str | Path | None = "oracle-failures",
+    expected_failure: str | None = None,
+    progress: Callable[[int], None] | None = None,
+) -> CheckResult:
+    """Run one check against ``impl``; see :func:`check_planner`."""
+    profile = PROFILES[profile] if isinstance(profile, str) else profile
+    reason = check.applies(impl)
+    if reason is not None:
+        return CheckResult(check.name, Status.NOT_APPLICABLE, message=reason)
+    recorder = Recorder()
+
+    @profile.settings()
+    @given(check.strategy(impl))
+    def prop(example: Any) -> None:
+        check.test(impl, example, recorder)
+        if progress is not None:
+            progress(1)
+
+    started = time.perf_counter()
+    failure: Exception | None = None
+    try:
+        prop()
+    except (CheckFailed, Flaky) as err:
+        failure = err
+    except ImplementationError as err:
+        seconds = time.perf_counter() - started
+        return CheckResult(
+            check.name, Status.ERROR, recorder.examples, len(recorder.worlds), seconds, str(err)
+        )
+    seconds = time.perf_counter() - started
+    common = (check.name, recorder.examples, len(recorder.worlds), seconds)
+    if failure is None:
+        if expected_failure is not None:
+            return _result(*common, Status.UNEXPECTED_PASS, f"expected to fail: {expected_failure}")
+        return _result(*common, Status.PASSED, "")
+    message = str(failure).split("\n")[0]
+    if isinstance(failure, Flaky):
+        message = f"nondeterministic: a failing example passed when replayed ({message})"
+    folder = None
+    if artifacts is not None and recorder.evidence is not None:
+        folder = Path(artifacts) / _slug(impl.label) / check.name
+        write_evidence(folder, recorder.evidence, check, impl, message)
+    if expected_failure is not None:
+        message = f"{message} (expected: {expected_failure})"
+        return _result(*common, Status.EXPECTED_FAILURE, message, folder)
+    return _result(*common, Status.FAILED, message, folder)
+
+
+def _pooled_check(
+    name: str,
+    impl: Implementation,
+    profile: Profile | str,
+    artifacts: str | Path | None,
+    expected_failure: str | None,
+) -> CheckResult:
+    """Run one check in a worker process (checks are looked up by name: they hold lambdas)."""
+    try:
+        return run_check(
+            CHECKS[name], impl, profile, artifacts=artifacts, expected_failure=expected_failure
+        )
+    finally:
+        impl.close()
+
+
+def _run_pooled(
+    names: list[str],
+    impl: Implementation,
+    profile: Profile | str,
+    artifacts: str | Path | None,
+    expected: Mapping[str, str],
+    jobs: int,
+    finished: Callable[[CheckResult], CheckResult],
+    stop_on_failure: bool,
+) -> dict[str, CheckResult]:
+    """Run simulation checks in ``jobs`` worker processes (the platform's default start)."""
+    shipped = replace(impl, equations=None)  # modules do not pickle; equation checks ran here
+    done: dict[str, CheckResult] = {}
+    with ProcessPoolExecutor(max_workers=jobs) as pool:
+        futures = {
+            pool.submit(_pooled_check, n, shipped, profile, artifacts, expected.get(n)): n
+            for n in names
+        }
+        for future in as_completed(futures):
+            result = finished(future.result())
+            done[futures[future]] = result
+            if stop_on_failure and not result.ok:
+                for other in futures:
+                    other.cancel()
+                break
+    return done
+
+
+def _result(
+    check: str,
+    examples: int,
+    worlds: int,
+    seconds: float,
+    status: Status,
+    message: str,
+    folder: Path | None = None,
+) -> CheckResult:
+    return CheckResult(check, status, examples, worlds, seconds, message, folder)
+
+
+def write_evidence(
+    folder: Path, evidence: Evidence, check: Check, impl: Implementation, message: str
+) -> None:
+    """Write a failure's counterexample: world files, traces, plots and ``report.md``."""
+    folder.mkdir(parents=True, exist_ok=True)
+    lines = [f"# {check.name}: failed", "", f"Property: {check.sentence}.", "", message, ""]
+    if evidence.inputs is not None:
+        lines += ["Inputs:", "", f"    {evidence.inputs!r}", ""]
+    names = ["world", "world_moved"][: len(evidence.worlds)]
+    for k, world in enumerate(evidence.worlds):
+        save_world(world, folder / f"{names[k]}.json")
+    for k, run in enumerate(evidence.runs):
+        stem = names[min(k, len(names) - 1)] + ("_rerun" if k >= len(names) else "")
+        (folder / f"{stem}_trace.csv").write_text(run.trace_csv())
+        _plot(evidence.worlds[min(k, len(names) - 1)], run, folder / f"{stem}.png")
+    if evidence.worlds:
+        planner = impl.label if not impl.label.startswith("cmd: ") else None
+        how = f"--planner {planner}" if planner else f'--cmd "{impl.label[5:]}"'
+        limit = f" --max-time {evidence.max_time:.6g}" if evidence.max_time else ""
+        lines += ["Replay:", ""]
+        for name in names:
+            lines.append(
+                f"    ifgm-ref simulate {folder / name}.json {how}{limit} "
+                f"--plot {name}.png --trace {name}_trace.csv"
+            )
+        lines.append("")
+    (folder / "report.md").write_text("\n".join(lines))
+
+
+def _plot(world: Any, run: Any, path: Path) -> None:
+    from ifgm_ref.plotting import plot_run, save_figure
+
+    save_figure(plot_run(world, run.trace, run.result, colour_by="branch"), path)
+
+
+def _implementation(
+    planner: Callable[[], Planner] | Implementation | str,
+    promises: Promises | str | None,
+    equations: object | None,
+) -> Implementation:
+    if isinstance(planner, Implementation):
+        return planner
+    if isinstance(planner, str):
+        return Implementation.from_spec(planner, promises=promises, equations=equations)
+    name = getattr(planner, "__qualname__", None) or repr(planner)
+    label = f"{getattr(planner, '__module__', '')}:{name}".lstrip(":")
+    if isinstance(promises, str) or promises is None:
+        promises = promises_of(promises or "ifgm")
+    return Implementation(planner, label, promises, equations)
+
+
+def check_planner(
+    planner: Callable[[], Planner] | Implementation | str,
+    *,
+    profile: Profile | str = "quick",
+    promises: Promises | str | None = None,
+    equations: object | None = None,
+    expected_failed_checks: Mapping[str, str] | None = None,
+    checks: Iterable[str] | None = None,
+    artifacts: str | Path | None = "oracle-failures",
+    on_fail: str | None = None,
+    progress: bool = False,
+    stop_on_failure: bool = False,
+    jobs: int = 1,
+) -> Report:
+    """Check a planner implementation against every property it promises.
+
+    Parameters
+    ----------
+    planner : callable, Implementation or str
+        A factory returning a new planner (a class will do), an :class:`Implementation`, or a
+        spec: a built-in name or ``module:attribute``.
+    profile : {"quick", "default", "thorough"} or Profile, default "quick"
+        Examples per check: 50, 200 or 1000.
+    promises : Promises or str, optional
+        What the planner promises, or the name of the built-in planner whose promises it
+        shares; default: IFGM's (or the built-in planner's own, for a built-in spec).
+    equations : object, optional
+        A module or object exposing the reference's equation functions
+        (``eq1_gap_midpoint`` ...) to check eqs. (1)-(4).
+    expected_failed_checks : mapping of str to str, optional
+        ``{check: reason}``: checks known to fail; they report "expected failure".
+    checks : iterable of str, optional
+        Run only these checks (names of :data:`ifgm_ref.oracle.checks.CHECKS`).
+    artifacts : path or None, default "oracle-failures"
+        Where counterexamples are written; ``None`` writes nothing.
+    on_fail : {None, "raise", "warn"}, default None
+        Raise :class:`AssertionError` or warn when a check failed or errored.
+    progress : bool, default False
+        Print each check's result on stderr as it finishes.
+    stop_on_failure : bool, default False
+        Stop after the first check that fails or errors (the rest are not reported).
+    jobs : int, default 1
+        Run the simulation checks in this many worker processes (each check is drawn from
+        its own derandomized seed, so the verdicts do not depend on ``jobs``). The planner
+        factory must then be picklable (a class, a module-level function,
+        :class:`~ifgm_ref.oracle.external.ExternalFactory`); a program under test is started
+        once per worker.
+
+    Returns
+    -------
+    Report
+        One :class:`CheckResult` per check, and a :meth:`Report.summary`.
+    """
+    impl = _implementation(planner, promises, equations)
+    expected = dict(expected_failed_checks or {})
+    names = list(CHECKS) if checks is None else list(checks)
+    unknown = [n for n in [*names, *expected] if n not in CHECKS]
+    if unknown:
+        raise ImplementationError(f"unknown check(s) {unknown}; known: {', '.join(CHECKS)}")
+    profile_name = profile if isinstance(profile, str) else profile.name
+    if profile_name not in PROFILES and isinstance(profile, str):
+        raise ImplementationError(f"unknown profile {profile!r}; known: {', '.join(PROFILES)}")
+    if isinstance(jobs, bool) or not isinstance(jobs, int) or jobs < 1:
+        raise ImplementationError(f"`jobs` must be an integer >= 1, got {jobs!r}")
+
+    def finished(result: CheckResult) -> CheckResult:
+        if progress:
+            print(result.line(), file=sys.stderr, flush=True)
+        return result
+
+    pooled = [n for n in names if CHECKS[n].kind is Kind.SIMULATION] if jobs > 1 else []
+    done: dict[str, CheckResult] = {}
+    for name in names:
+        if name in pooled:
+            continue
+        done[name] = finished(
+            run_check(
+                CHECKS[name],
+                impl,
+                profile,
+                artifacts=artifacts,
+                expected_failure=expected.get(name),
+            )
+        )
+        if stop_on_failure and not done[name].ok:
+            pooled = []
+            break
+    if pooled:
+        done.update(
+            _run_pooled(pooled, impl, profile, artifacts, expected, jobs, finished, stop_on_failure)
+        )
+    results = [done[n] for n in names if n in done]
+    report = Report(impl.label, profile_name, tuple(results))
+    if not report.ok and on_fail is not None:
+        if on_fail == "raise":
+            raise AssertionError(report.text())
+        import warnings
+
+        warnings.warn(report.text(), stacklevel=2)
+    return report
+
+
+__all__ = [
+    "PROFILES",
+    "CheckResult",
+    "Kind",
+    "Profile",
+    "Report",
+    "Status",
+    "check_planner",
+    "run_check",
+]

@@ -1,0 +1,394 @@
+"""Hypothesis strategies for the oracle's world classes, solvable by construction and checked.
+
+Every strategy draws one navigation problem of a class the paper talks about (section 5:
+"obstacles of simple but different shapes", "critical shaped" U and H obstacles, Figure 7's
+symmetric obstacles) and returns a :class:`~ifgm_ref.world.World`:
+
+=======================  ==========================================================================
+strategy                 class
+=======================  ==========================================================================
+:func:`open_worlds`      1-4 simple convex obstacles (discs, rectangles, regular polygons) near the
+                         start-goal line, every passage between them wider than the robot
+:func:`u_worlds`         a U across the line, opening towards the start (Figure 8)
+:func:`h_worlds`         an H across the line, one cavity facing the start (Figure 8)
+:func:`symmetric_worlds` three equal discs or squares across the line, symmetric about it
+                         (Figure 7), their gaps either wider than the IFGM gap threshold or
+                         narrower than the robot
+:func:`mixed_worlds`     two or three of the above in a row, 30 ft apart
+:func:`enclosed_worlds`  the goal inside a closed box: unsolvable, for planners that report it
+=======================  ==========================================================================
+
+Solvability. The plane is unbounded (``bounds=None``), obstacles of one feature keep at least
+:data:`PASSAGE` ft from those of another (so the robot disc fits between any two), U and H
+cavities are wider than the robot, and start and goal keep :data:`START_GOAL_CLEARANCE` ft
+from every obstacle. Then the obstacles inflated by the robot radius are disjoint, simply
+connected sets, whose complement is connected: a path exists. :func:`solvable` checks it
+independently with shapely (free space = a box minus the inflated obstacles; start and goal in
+one connected part), and every strategy asserts it.
+
+Shrinking. A candidate obstacle that would come too close to another or to the start or goal
+is dropped, not rejected, so draws are never wasted; lists shrink to fewer obstacles, kinds
+to discs (the first choice), numbers to the low end of their ranges, the placement rotation
+to 0: a failing world shrinks towards one simple obstacle straight on the line.
+
+Placement. The class is drawn in a canonical frame (start at the origin facing +x, goal on
++x) and then moved by a drawn rigid motion (:func:`placed`), so that goals lie in every
+direction: a quadrant-blind arctan or a frame mix-up cannot hide.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Sequence
+
+import shapely
+from hypothesis import strategies as st
+
+from ifgm_ref.pose import Point, Pose, wrap_angle
+from ifgm_ref.shapes import circle, h_shape, rectangle, regular_polygon, u_shape
+from ifgm_ref.world import Circle, Obstacle, Polygon, World
+
+#: Robot radius of every generated world, ft (the default :class:`RobotParams`).
+ROBOT_RADIUS = 1.0
+#: Minimum distance between obstacles of different features, ft: the robot's diameter plus
+#: one foot, so the disc passes between any two with half a foot either side.
+PASSAGE = 2.0 * ROBOT_RADIUS + 1.0
+#: Minimum distance from the start and the goal to any obstacle, ft: the robot's radius plus
+#: two feet, so the robot starts free and the goal can be reached from every side.
+START_GOAL_CLEARANCE = ROBOT_RADIUS + 2.0
+#: Symmetric triples (Figure 7): a narrow gap is below the robot's diameter minus this margin,
+#: a wide one above IFGM's default gap threshold ``2 r + 1`` plus it, ft. Gaps in between
+#: (the robot fits, barely) are not drawn: from afar they look wider than they are (Figure 7
+#: notes in :mod:`ifgm_ref.scenarios`), which no planner of the paper is built to judge.
+SYMMETRIC_GAP_MARGIN = 0.5
+
+WorldClass = Callable[..., st.SearchStrategy[World]]
+
+
+def _clear_of(candidate: Obstacle, others: Sequence[Obstacle], gap: float) -> bool:
+    geometry = candidate.geometry
+    return all(shapely.distance(geometry, other.geometry) >= gap for other in others)
+
+
+def _clear_of_points(candidate: Obstacle, points: Sequence[tuple[float, float]]) -> bool:
+    return all(candidate.distance(p) >= START_GOAL_CLEARANCE for p in points)
+
+
+def _keep(
+    candidates: Sequence[Obstacle],
+    kept: list[Obstacle],
+    points: Sequence[tuple[float, float]],
+) -> list[Obstacle]:
+    """Add the candidates that keep :data:`PASSAGE` from ``kept`` and clear of ``points``."""
+    for candidate in candidates:
+        if _clear_of_points(candidate, points) and _clear_of(candidate, kept, PASSAGE):
+            kept.append(candidate)
+    return kept
+
+
+@st.composite
+def convex_obstacles(
+    draw: st.DrawFn,
+    *,
+    x: tuple[float, float],
+    y: tuple[float, float] = (-8.0, 8.0),
+    size: tuple[float, float] = (1.0, 6.0),
+) -> Obstacle:
+    """One simple convex obstacle (disc, rectangle or regular polygon) centred in ``x`` x ``y``.
+
+    ``size`` bounds the diameter (discs, polygons) or the side lengths (rectangles), ft.
+    """
+    kind = draw(st.sampled_from(("disc", "rectangle", "polygon")), label="kind")
+    cx = draw(st.floats(*x), label="centre x")
+    cy = draw(st.floats(*y), label="centre y")
+    extent = draw(st.floats(*size), label="size")
+    if kind == "disc":
+        return circle((cx, cy), extent / 2.0)
+    if kind == "rectangle":
+        other = draw(st.floats(*size), label="other side")
+        return rectangle((cx, cy), extent, other, draw(st.floats(0.0, math.pi), label="angle"))
+    sides = draw(st.integers(3, 8), label="sides")
+    return regular_polygon((cx, cy), extent / 2.0, sides, draw(st.floats(0.0, math.pi)))
+
+
+def _clutter(length: float, max_size: int) -> st.SearchStrategy[list[Obstacle]]:
+    return st.lists(convex_obstacles(x=(0.2 * length, 0.8 * length)), max_size=max_size)
+
+
+def solvable(world: World) -> bool:
+    """Whether the robot disc can get from start to goal (shapely, obstacles inflated by r).
+
+    Circles are inflated with 64 chords per quarter: chords make an inflated disc slightly
+    *smaller* than the true one, by under ``r * 1.2e-4`` ft, far below the strategies'
+    margins.
+
+    >>> solvable(World(start=(0, 0, 0), goal=(20, 0), obstacles=[circle((10, 0), 2)]))
+    True
+    """
+    r = world.robot.radius
+    start, goal = shapely.Point(world.start.position), shapely.Point(world.goal)
+    if not world.obstacles:
+        return True
+    inflated = shapely.union_all([ob.geometry.buffer(r, quad_segs=64) for ob in world.obstacles])
+    if inflated.intersects(start) or inflated.intersects(goal):
+        return False
+    box = shapely.box(*inflated.union(start).union(goal).bounds).buffer(10.0)
+    free = box.difference(inflated)
+    parts = getattr(free, "geoms", [free])
+    return any(part.contains(start) and part.contains(goal) for part in parts)
+
+
+def _mover(angle: float, shift: tuple[float, float]) -> Callable[[Sequence[float]], Point]:
+    c, s = math.cos(angle), math.sin(angle)
+    return lambda p: Point(c * p[0] - s * p[1] + shift[0], s * p[0] + c * p[1] + shift[1])
+
+
+def placed_obstacle(obstacle: Obstacle, angle: float, shift: tuple[float, float]) -> Obstacle:
+    """``obstacle`` rotated by ``angle`` about the origin, then shifted by ``shift`` (ft)."""
+    move = _mover(angle, shift)
+    if isinstance(obstacle, Circle):
+        return Circle(move(obstacle.center), obstacle.radius)
+    return Polygon(tuple(move(v) for v in obstacle.vertices))
+
+
+def placed(world: World, angle: float, shift: tuple[float, float]) -> World:
+    """``world`` rotated by ``angle`` about the origin, then shifted by ``shift`` (ft).
+
+    The whole problem moves: obstacles, start pose (heading included) and goal.
+
+    >>> moved = placed(World(start=(0, 0, 0), goal=(10, 0)), math.pi / 2, (1.0, 2.0))
+    >>> [round(v, 12) for v in (*moved.start, *moved.goal)]
+    [1.0, 2.0, 1.570796326795, 1.0, 12.0]
+    """
+    move = _mover(angle, shift)
+    return World(
+        start=Pose(*move(world.start.position), wrap_angle(world.start.theta + angle)),
+        goal=move(world.goal),
+        obstacles=tuple(placed_obstacle(ob, angle, shift) for ob in world.obstacles),
+        bounds=None,
+        robot=world.robot,
+        sensor=world.sensor,
+        name=world.name,
+    )
+
+
+@st.composite
+def placements(draw: st.DrawFn) -> tuple[float, tuple[float, float]]:
+    """A rigid motion: a rotation in ``[-pi, pi]`` and a shift of up to 50 ft per axis."""
+    angle = draw(st.floats(-math.pi, math.pi), label="placement angle")
+    shift = (
+        draw(st.floats(-50.0, 50.0), label="placement dx"),
+        draw(st.floats(-50.0, 50.0), label="placement dy"),
+    )
+    return angle, shift
+
+
+def _canonical(
+    draw: st.DrawFn, name: str, length: float, features: list[Obstacle], clutter: list[Obstacle]
+) -> World:
+    """A world from the origin to ``(length, 0)``, dropping conflicting clutter."""
+    heading = draw(st.floats(-math.pi / 4, math.pi / 4), label="start heading")
+    obstacles = _keep(clutter, list(features), ((0.0, 0.0), (length, 0.0)))
+    return World(
+        start=Pose(0.0, 0.0, heading),
+        goal=Point(length, 0.0),
+        obstacles=tuple(obstacles),
+        name=name,
+    )
+
+
+def _world(
+    draw: st.DrawFn, name: str, length: float, features: list[Obstacle], clutter: list[Obstacle]
+) -> World:
+    """Assemble a canonical-frame world, place it, check it."""
+    angle, shift = draw(placements())
+    world = placed(_canonical(draw, name, length, features, clutter), angle, shift)
+    assert solvable(world) == (name != "enclosed"), f"strategy {name} built {world}"
+    return world
+
+
+@st.composite
+def open_worlds(draw: st.DrawFn, *, max_obstacles: int = 4) -> World:
+    """Open worlds: 1 to ``max_obstacles`` simple convex obstacles near the start-goal line.
+
+    The start is at the origin facing within 45 degrees of the goal, 20-40 ft away along +x
+    (before placement); obstacle centres lie in the middle 60 % of the way, within 8 ft of the
+    line. Every two obstacles keep :data:`PASSAGE` apart.
+    """
+    length = draw(st.floats(20.0, 40.0), label="start-goal distance")
+    first = draw(convex_obstacles(x=(0.3 * length, 0.7 * length), y=(-2.0, 2.0)), label="first")
+    clutter = draw(_clutter(length, max_obstacles - 1), label="clutter")
+    features = _keep([first], [], ((0.0, 0.0), (length, 0.0)))
+    return _world(draw, "open", length, features, clutter)
+
+
+@st.composite
+def u_shapes(draw: st.DrawFn, *, at: float) -> Obstacle:
+    """A U centred near ``(at, 0)``, its mouth towards the start (within 30 degrees).
+
+    Outer size 8-20 ft across the mouth, 5-14 ft deep, walls 0.5-2 ft thick: the cavity is
+    at least 4 ft wide, twice the robot.
+    """
+    return u_shape(
+        (at, draw(st.floats(-3.0, 3.0), label="U offset")),
+        width=draw(st.floats(8.0, 20.0), label="U width"),
+        depth=draw(st.floats(5.0, 14.0), label="U depth"),
+        thickness=draw(st.floats(0.5, 2.0), label="U wall"),
+        opening=math.pi + draw(st.floats(-math.pi / 6, math.pi / 6), label="U tilt"),
+    )
+
+
+@st.composite
+def h_shapes(draw: st.DrawFn, *, at: float) -> Obstacle:
+    """An H centred near ``(at, 0)``, a cavity towards the start (within 30 degrees).
+
+    Walls 8-16 ft long and 8-20 ft apart (outer), 0.5-2 ft thick; the crossbar 0.5-2 ft.
+    """
+    return h_shape(
+        (at, draw(st.floats(-3.0, 3.0), label="H offset")),
+        width=draw(st.floats(8.0, 20.0), label="H width"),
+        height=draw(st.floats(8.0, 16.0), label="H length"),
+        thickness=draw(st.floats(0.5, 2.0), label="H wall"),
+        bar_thickness=draw(st.floats(0.5, 2.0), label="H bar"),
+        orientation=math.pi / 2 + draw(st.floats(-math.pi / 6, math.pi / 6), label="H tilt"),
+    )
+
+
+@st.composite
+def symmetric_triples(draw: st.DrawFn, *, at: float) -> list[Obstacle]:
+    """Three equal discs or squares across the line at ``x = at``, the middle one on it."""
+    size = draw(st.floats(3.0, 8.0), label="triple size")
+    narrow = (0.3, 2.0 * ROBOT_RADIUS - SYMMETRIC_GAP_MARGIN)
+    wide = (2.0 * ROBOT_RADIUS + 1.0 + SYMMETRIC_GAP_MARGIN, 7.0)
+    gap = draw(st.one_of(st.floats(*narrow), st.floats(*wide)), label="triple gap")
+    pitch = size + gap
+    if draw(st.booleans(), label="squares"):
+        return [rectangle((at, k * pitch), size, size) for k in (-1, 0, 1)]
+    return [circle((at, k * pitch), size / 2.0) for k in (-1, 0, 1)]
+
+
+@st.composite
+def u_worlds(draw: st.DrawFn, *, max_clutter: int = 0) -> World:
+    """A U in the way, opening towards the start, plus up to ``max_clutter`` convex obstacles.
+
+    No clutter by default: the reference IFGM livelocks between a post and an H cavity
+    (``tests/worlds/ifgm_h_post_livelock.json``, errata row 25).
+
+    Start-goal distance 35-50 ft (before placement).
+    """
+    length = draw(st.floats(35.0, 50.0), label="start-goal distance")
+    u = draw(u_shapes(at=length / 2.0), label="U")
+    return _world(draw, "u", length, [u], draw(_clutter(length, max_clutter), label="clutter"))
+
+
+@st.composite
+def h_worlds(draw: st.DrawFn, *, max_clutter: int = 0) -> World:
+    """An H in the way, a cavity facing the start, plus up to ``max_clutter`` convex obstacles.
+
+    No clutter by default, as for :func:`u_worlds`.
+
+    Start-goal distance 35-50 ft (before placement).
+    """
+    length = draw(st.floats(35.0, 50.0), label="start-goal distance")
+    h = draw(h_shapes(at=length / 2.0), label="H")
+    return _world(draw, "h", length, [h], draw(_clutter(length, max_clutter), label="clutter"))
+
+
+@st.composite
+def symmetric_worlds(draw: st.DrawFn) -> World:
+    """Figure 7's class: three equal obstacles across the line, symmetric about it.
+
+    Start-goal distance 30-50 ft (before placement); the triple halfway.
+    """
+    length = draw(st.floats(30.0, 50.0), label="start-goal distance")
+    triple = draw(symmetric_triples(at=length / 2.0), label="triple")
+    return _world(draw, "symmetric", length, triple, [])
+
+
+#: The features a mixed world strings together, by name.
+_FEATURES = ("convex", "u", "h", "symmetric")
+
+
+@st.composite
+def mixed_worlds(draw: st.DrawFn) -> World:
+    """Two or three features (convex clusters, U, H, symmetric triple) in a row, 30 ft apart.
+
+    The start-goal distance is 30 ft per feature plus 10 (a tilted H reaches 12 ft either
+    side of its centre, so neighbours keep over 6 ft apart).
+    """
+    kinds = draw(st.lists(st.sampled_from(_FEATURES), min_size=2, max_size=3), label="features")
+    length = 30.0 * len(kinds) + 10.0
+    features: list[Obstacle] = []
+    clutter: list[Obstacle] = []
+    for k, kind in enumerate(kinds):
+        at = 20.0 + 30.0 * k
+        if kind == "convex":
+            clutter += draw(st.lists(convex_obstacles(x=(at - 5.0, at + 5.0)), max_size=3))
+        elif kind == "u":
+            features.append(draw(u_shapes(at=at)))
+        elif kind == "h":
+            features.append(draw(h_shapes(at=at)))
+        else:
+            features += draw(symmetric_triples(at=at))
+    return _world(draw, "mixed", length, features, clutter)
+
+
+@st.composite
+def enclosed_worlds(draw: st.DrawFn) -> World:
+    """The unsolvable case: the goal inside a closed box of four overlapping walls.
+
+    The box's inner half-size is 4-8 ft, its walls 0.5-2 ft thick; the goal is at its centre,
+    20-40 ft from the start (before placement).
+    """
+    length = draw(st.floats(20.0, 40.0), label="start-goal distance")
+    half = draw(st.floats(4.0, 8.0), label="box half-size")
+    wall = draw(st.floats(0.5, 2.0), label="box wall")
+    outer = 2.0 * (half + wall)
+    mid = half + wall / 2.0
+    box = [
+        rectangle((length - mid, 0.0), wall, outer),
+        rectangle((length + mid, 0.0), wall, outer),
+        rectangle((length, -mid), outer, wall),
+        rectangle((length, mid), outer, wall),
+    ]
+    return _world(draw, "enclosed", length, box, [])
+
+
+@st.composite
+def gap_walls(draw: st.DrawFn) -> tuple[World, Polygon]:
+    """A wall across the line pierced by one gap of 3-4.5 robot diameters, off the line;
+    returns the world and the gap (the box between the wall's ends).
+
+    The wall is two rectangles 1-2 ft thick, each reaching 25 ft beyond the gap, halfway
+    along a 30-45 ft start-goal line (before placement); the gap's centre is 1.5-4 ft to
+    either side of the line, so a mirrored (sign-flipped) gap angle points at the wall. Why
+    not narrower, down to ``d_th``: eq. (4) steers between the gap and the goal, not at the
+    gap's middle, and the robot meets a gap of 2 diameters (4 ft) off-centre, too close to
+    its edge, and goes round (``tests/worlds/gap_4ft_off_line.json``).
+    """
+    length = draw(st.floats(30.0, 45.0), label="start-goal distance")
+    width = draw(st.floats(6.0 * ROBOT_RADIUS, 9.0 * ROBOT_RADIUS), label="gap width")
+    offset = draw(st.floats(1.5, 4.0), label="gap offset") * draw(st.sampled_from((1, -1)))
+    thick = draw(st.floats(1.0, 2.0), label="wall thickness")
+    x, low, high = length / 2.0, offset - width / 2.0, offset + width / 2.0
+    wall = [rectangle((x, low - 12.5), thick, 25.0), rectangle((x, high + 12.5), thick, 25.0)]
+    gap = rectangle((x, offset), thick, width)
+    angle, shift = draw(placements())
+    world = placed(_canonical(draw, "gap_wall", length, wall, []), angle, shift)
+    assert solvable(world), f"strategy gap_walls built {world}"
+    return world, placed_obstacle(gap, angle, shift)
+
+
+#: The solvable classes by the names checks and reports use.
+SOLVABLE_CLASSES: dict[str, WorldClass] = {
+    "open": open_worlds,
+    "u": u_worlds,
+    "h": h_worlds,
+    "symmetric": symmetric_worlds,
+    "mixed": mixed_worlds,
+}
+
+
+def any_solvable_worlds() -> st.SearchStrategy[World]:
+    """A world of any solvable class (open first, so failures shrink towards it)."""
+    return st.one_of([make() for make in SOLVABLE_CLASSES.values()])

@@ -1,0 +1,33 @@
+"""The oracle's conformance suite: one test per property, run against the implementation named
+by ``--ifgm-impl`` or ``--ifgm-cmd`` (see :mod:`ifgm_ref.oracle.pytest_plugin`)::
+
+    pytest --pyargs ifgm_ref.oracle --ifgm-impl mypkg.module:make_planner
+"""
+
+from __future__ import annotations
+
+import pytest
+
+from ifgm_ref.oracle.checks import CHECKS
+from ifgm_ref.oracle.pytest_plugin import OracleSession
+from ifgm_ref.oracle.runner import Status
+
+
+@pytest.mark.parametrize("check", list(CHECKS))
+def test_property(check: str, ifgm_oracle: OracleSession) -> None:
+    """The implementation under test has the property ``check`` (its sentence in the id's
+    docstring: ``ifgm_ref.oracle.checks.CHECKS[check].sentence``)."""
+    __tracebackhide__ = True
+    result = ifgm_oracle.run(check)
+    if result.status is Status.NOT_APPLICABLE:
+        pytest.skip(f"{check}: {result.message}")
+    if result.status is Status.EXPECTED_FAILURE:
+        pytest.xfail(result.message)
+    if not result.ok:
+        where = ""
+        if result.artifacts is not None:
+            where = f"\ncounterexample and replay: {result.artifacts}/report.md"
+        pytest.fail(
+            f"{check} ({CHECKS[check].sentence}) {result.status}: {result.message}{where}",
+            pytrace=False,
+        )

@@ -1,0 +1,332 @@
+"""The oracle has teeth: the reference passes, known-bad planners are caught, failures are
+reported with replayable counterexamples, and the plugin and the CLI work.
+
+The reference IFGM's own quick-profile run is the shipped suite itself
+(``ifgm_ref/oracle/test_conformance.py``, run in CI through ``--ifgm-impl ifgm`` in
+``pyproject.toml``).
+"""
+
+from __future__ import annotations
+
+import math
+import subprocess
+import sys
+import textwrap
+import types
+from pathlib import Path
+
+import pytest
+import shapely
+from hypothesis import find, given, settings
+
+import ifgm_ref.equations as reference
+from ifgm_ref.oracle.bounds import time_bound
+from ifgm_ref.oracle.checks import CHECKS, Kind
+from ifgm_ref.oracle.implementation import Implementation, promises_of
+from ifgm_ref.oracle.mutants import MUTANTS
+from ifgm_ref.oracle.runner import Profile, Status, check_planner, run_check
+from ifgm_ref.oracle.strategies import (
+    PASSAGE,
+    SOLVABLE_CLASSES,
+    enclosed_worlds,
+    open_worlds,
+    solvable,
+)
+from ifgm_ref.params import SimParams
+from ifgm_ref.planners import make_planner
+from ifgm_ref.simulator import simulate
+from ifgm_ref.world import Circle
+from ifgm_ref.worldfile import load_world
+
+WORLDS = Path(__file__).parent / "worlds"
+SIMULATION = [name for name, check in CHECKS.items() if check.kind is Kind.SIMULATION]
+#: Mutant hunting: the same 50 examples, but no shrinking (speed; the report is not needed).
+HUNT = Profile("hunt", 50, shrink=False)
+#: The checks a mutant is hunted with, cheapest first.
+HUNTING = ["passes_wide_gaps", "converges_symmetric", "collision_free", "converges_u"]
+
+
+def _serve(spec: str) -> list[str]:
+    return [sys.executable, "-m", "ifgm_ref", "serve", "--planner", spec]
+
+
+# -- strategies ------------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("world_class", sorted(SOLVABLE_CLASSES))
+def test_strategies_draw_solvable_worlds(world_class: str) -> None:
+    @settings(max_examples=40)
+    @given(SOLVABLE_CLASSES[world_class]())
+    def check(world) -> None:
+        assert solvable(world)
+        assert world.bounds is None
+
+    check()
+
+
+@settings(max_examples=20)
+@given(enclosed_worlds())
+def test_enclosed_worlds_are_unsolvable(world) -> None:
+    assert not solvable(world)
+
+
+def test_open_worlds_keep_passages_wider_than_the_robot() -> None:
+    @settings(max_examples=60)
+    @given(open_worlds())
+    def check(world) -> None:
+        geoms = [ob.geometry for ob in world.obstacles]
+        for i, a in enumerate(geoms):
+            for b in geoms[i + 1 :]:
+                assert a.distance(b) >= PASSAGE - 1e-9
+
+    check()
+
+
+def test_a_failing_world_shrinks_to_one_disc_on_the_line() -> None:
+    # Any open world "fails": the simplest one is what a counterexample shrinks towards.
+    world = find(open_worlds(), lambda w: True, settings=settings(database=None))
+    assert len(world.obstacles) == 1 and isinstance(world.obstacles[0], Circle)
+    assert world.start == (0.0, 0.0, 0.0) and world.goal.y == 0.0
+
+
+# -- the reference passes --------------------------------------------------------------------
+
+
+def test_reference_iba_passes_every_property_it_promises() -> None:
+    report = check_planner("iba", profile="quick", checks=SIMULATION, artifacts=None, jobs=2)
+    assert report.ok, report.text()
+    assert report["passes_wide_gaps"].status is Status.NOT_APPLICABLE  # IBA goes round
+    for result in report.results:
+        if result.check != "passes_wide_gaps":
+            assert result.status is Status.PASSED, result.line()
+            assert result.examples >= 50, result.line()
+
+
+def test_reference_equations_pass_and_broken_ones_fail() -> None:
+    names = [n for n, c in CHECKS.items() if c.kind is Kind.EQUATION]
+    good = check_planner("ifgm", equations=reference, checks=names, artifacts=None)
+    assert [r.status for r in good.results] == [Status.PASSED] * len(names), good.text()
+
+    def blind(current, destination):  # eq. (3) with the quadrant-blind arctan
+        dx, dy = destination[0] - current[0], destination[1] - current[1]
+        return math.atan(dy / dx) if dx else math.copysign(math.pi / 2, dy)
+
+    broken = types.SimpleNamespace(eq3_goal_angle=blind)
+    bad = check_planner("ifgm", equations=broken, checks=["eq3_goal_angle"], artifacts=None)
+    result = bad["eq3_goal_angle"]
+    assert result.status is Status.FAILED
+    assert result.message.startswith("eq3_goal_angle(current=")
+    assert "but should be" in result.message
+
+
+# -- the suite has teeth ---------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("planner", ["fgm", "apf"])
+def test_fgm_and_apf_are_caught_in_u_worlds(planner: str, tmp_path: Path) -> None:
+    impl = Implementation.from_spec(planner, promises=promises_of("ifgm"))
+    result = run_check(CHECKS["converges_u"], impl, HUNT, artifacts=tmp_path)
+    assert result.status is Status.FAILED, result.line()
+    assert "but should be 'goal_reached'" in result.message
+    # The counterexample replays: the saved world traps the planner again.
+    world = load_world(result.artifacts / "world.json")
+    replay = simulate(world, make_planner(planner), SimParams(max_time=60.0)).result
+    assert not replay.reached
+    report = (result.artifacts / "report.md").read_text()
+    assert f"ifgm-ref simulate {result.artifacts / 'world.json'} --planner {planner}" in report
+    assert (result.artifacts / "world.png").stat().st_size > 0
+    assert (result.artifacts / "world_trace.csv").read_text().startswith("t,x,y,theta")
+
+
+def test_fgm_does_not_promise_u_worlds() -> None:
+    result = check_planner("fgm", checks=["converges_u"], artifacts=None)["converges_u"]
+    assert result.status is Status.NOT_APPLICABLE
+
+
+@pytest.mark.parametrize("mutant", sorted(MUTANTS))
+def test_broken_ifgm_variants_are_rejected_in_process(mutant: str) -> None:
+    report = check_planner(
+        MUTANTS[mutant], profile=HUNT, checks=HUNTING, artifacts=None, stop_on_failure=True
+    )
+    assert not report.ok, report.text()
+    assert report.results[-1].status is Status.FAILED
+
+
+@pytest.mark.parametrize("mutant", ["gap_sign_flipped", "point_robot", "never_leaves"])
+def test_broken_ifgm_variants_are_rejected_through_serve(mutant: str) -> None:
+    spec = f"ifgm_ref.oracle.mutants:{MUTANTS[mutant].__name__}"
+    inside = check_planner(spec, profile=HUNT, checks=HUNTING, artifacts=None, stop_on_failure=True)
+    impl = Implementation.from_command(_serve(spec), timeout=30.0)
+    try:
+        outside = check_planner(
+            impl, profile=HUNT, checks=HUNTING, artifacts=None, stop_on_failure=True
+        )
+    finally:
+        impl.close()
+    assert not outside.ok
+    # Same verdicts, same examples, same message (but for the label): same trajectories.
+    assert [(r.check, r.status, r.examples) for r in outside.results] == [
+        (r.check, r.status, r.examples) for r in inside.results
+    ]
+    assert outside.results[-1].message.split(" [")[0] == inside.results[-1].message.split(" [")[0]
+
+
+def test_serve_gives_the_in_process_verdicts_for_the_reference() -> None:
+    small = Profile("small", 8)
+    checks = ["converges_symmetric", "deterministic"]
+    inside = check_planner("ifgm", profile=small, checks=checks, artifacts=None)
+    impl = Implementation.from_command(_serve("ifgm"), timeout=30.0)
+    try:
+        outside = check_planner(impl, profile=small, checks=checks, artifacts=None)
+    finally:
+        impl.close()
+    assert [(r.status, r.examples, r.worlds) for r in outside.results] == [
+        (r.status, r.examples, r.worlds) for r in inside.results
+    ]
+    assert outside.ok
+
+
+# -- misbehaving programs ----------------------------------------------------------------------
+
+PROGRAMS = {
+    "exits": ("import sys; sys.stdin.readline(); sys.exit(3)", "exited with status 3"),
+    "hangs": (
+        'import sys, time\nsys.stdin.readline()\nprint(\'{"type": "ready"}\', flush=True)\n'
+        "time.sleep(60)",
+        "no reply within 1",
+    ),
+    "garbage": (
+        "import sys\nsys.stdin.readline()\nprint('hello', flush=True)\nsys.stdin.readline()",
+        "'hello'",
+    ),
+    "nan": (
+        'import sys\nsys.stdin.readline()\nprint(\'{"type": "ready"}\', flush=True)\n'
+        "sys.stdin.readline()\n"
+        'print(\'{"type": "command", "heading": NaN, "speed": 1.0}\', flush=True)\n'
+        "sys.stdin.readline()",
+        "NaN",
+    ),
+}
+
+
+@pytest.mark.parametrize("program", sorted(PROGRAMS))
+def test_a_misbehaving_program_is_reported_within_the_timeout(program: str, tmp_path: Path) -> None:
+    source, phrase = PROGRAMS[program]
+    script = tmp_path / "bad.py"
+    script.write_text(textwrap.dedent(source))
+    impl = Implementation.from_command([sys.executable, str(script)], timeout=1.0)
+    try:
+        report = check_planner(impl, checks=["collision_free", "deterministic"], artifacts=None)
+    finally:
+        impl.close()
+    first = report["collision_free"]
+    assert first.status is Status.ERROR, first.line()
+    assert phrase in first.message
+    assert report["deterministic"].status is Status.ERROR  # the dead program is not retried
+
+
+# -- regressions the oracle found (saved world files) ----------------------------------------
+
+
+@pytest.mark.parametrize(
+    ("world", "planner"),
+    [
+        (world, planner)
+        for world in ("two_posts_in_line", "post_before_u", "post_on_line", "small_u")
+        for planner in ("ifgm", "iba")
+    ]
+    + [("tilted_h", "ifgm"), ("mixed_u_h", "ifgm")],
+)
+def test_oracle_counterexamples_now_reach_the_goal(world: str, planner: str) -> None:
+    w = load_world(WORLDS / f"{world}.json")
+    result = simulate(w, make_planner(planner), SimParams(max_time=time_bound(w))).result
+    assert result.reached and not result.collided, result
+
+
+@pytest.mark.xfail(strict=True, reason="errata row 25: IFGM livelocks between a post and an H")
+def test_known_ifgm_failure() -> None:
+    w = load_world(WORLDS / "ifgm_h_post_livelock.json")
+    assert simulate(w, make_planner("ifgm"), SimParams(max_time=time_bound(w))).result.reached
+
+
+@pytest.mark.xfail(strict=True, reason="errata row 25: IBA closes a false loop in an H cavity")
+def test_known_iba_false_unreachable() -> None:
+    w = load_world(WORLDS / "iba_h_post_false_unreachable.json")
+    assert simulate(w, make_planner("iba"), SimParams(max_time=time_bound(w))).result.reached
+
+
+# -- plugin and command line -----------------------------------------------------------------
+
+
+def test_plugin_needs_an_implementation(pytester: pytest.Pytester) -> None:
+    result = pytester.runpytest_subprocess("--pyargs", "ifgm_ref.oracle", "-p", "no:cacheprovider")
+    assert result.ret == pytest.ExitCode.USAGE_ERROR
+    result.stderr.fnmatch_lines(["*needs exactly one implementation*"])
+    result = pytester.runpytest_subprocess(
+        "--pyargs", "ifgm_ref.oracle", "--ifgm-impl", "no_such_pkg_xyz:make"
+    )
+    assert result.ret == pytest.ExitCode.USAGE_ERROR
+    result.stderr.fnmatch_lines(["*cannot import 'no_such_pkg_xyz'*"])
+
+
+def test_plugin_runs_one_test_per_property(pytester: pytest.Pytester) -> None:
+    result = pytester.runpytest_subprocess(
+        "--pyargs",
+        "ifgm_ref.oracle",
+        "--ifgm-impl",
+        "ifgm",
+        "--ifgm-equations",
+        "ifgm_ref.equations",
+        "-k",
+        "eq1 or eq2_gap_angle or reports_unreachable",
+        "-v",
+        "-p",
+        "no:cacheprovider",
+    )
+    result.stdout.fnmatch_lines(
+        [
+            "ifgm-ref oracle: implementation ifgm",
+            "ifgm-ref oracle: profile quick (50 examples per check)*",
+            "*test_property?reports_unreachable? SKIPPED*",
+            "*test_property?eq1_gap_midpoint? PASSED*",
+            "*ifgm: 3 properties checked, 150 examples*",
+        ]
+    )
+    result.assert_outcomes(passed=3, skipped=1)
+
+
+def test_oracle_command_reports_and_exits(tmp_path: Path) -> None:
+    run = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "ifgm_ref",
+            "oracle",
+            "--planner",
+            "straight",
+            "--promises",
+            "ifgm",
+            "--check",
+            "collision_free",
+            "--check",
+            "deterministic",
+            "--artifacts",
+            str(tmp_path),
+        ],
+        capture_output=True,
+        text=True,
+        timeout=600,
+    )
+    assert run.returncode == 1, run.stderr
+    assert "FAILED              collision_free" in run.stdout
+    assert "PASSED              deterministic" in run.stdout
+    assert "min_clearance=-" in run.stdout and "but should be >= 0" in run.stdout
+    assert (tmp_path / "straight" / "collision_free" / "world.json").exists()
+
+
+@pytest.mark.xfail(strict=True, reason="errata row 27: eq. (4) meets a 4 ft gap off-centre")
+def test_known_ifgm_gap_limit() -> None:
+    w = load_world(WORLDS / "gap_4ft_off_line.json")
+    run = simulate(w, make_planner("ifgm"), SimParams(max_time=time_bound(w)))
+    gap = shapely.box(54.483, 40.266, 55.565, 44.266)
+    assert shapely.LineString([(s.x, s.y) for s in run.trace]).intersects(gap)
