@@ -330,3 +330,22 @@ def test_known_ifgm_gap_limit() -> None:
     run = simulate(w, make_planner("ifgm"), SimParams(max_time=time_bound(w)))
     gap = shapely.box(54.483, 40.266, 55.565, 44.266)
     assert shapely.LineString([(s.x, s.y) for s in run.trace]).intersects(gap)
+
+
+def test_plugin_reads_expected_failures(
+    pytester: pytest.Pytester, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    pytester.makepyfile(broken_eqs="def eq1_gap_midpoint(p1, p2):\n    return (p1[0], p1[1])\n")
+    monkeypatch.setenv("PYTHONPATH", str(pytester.path))
+    pytester.path.joinpath("xfails.txt").write_text("eq1_gap_midpoint  # returns p1\n")
+    args = ["--pyargs", "ifgm_ref.oracle", "--ifgm-impl", "ifgm", "-p", "no:cacheprovider"]
+    args += ["--ifgm-equations", "broken_eqs", "-k", "eq1", "--ifgm-artifacts", "out"]
+    result = pytester.runpytest_subprocess(*args, "--ifgm-xfails", "xfails.txt")
+    result.assert_outcomes(xfailed=1)
+    result = pytester.runpytest_subprocess(*args)
+    result.assert_outcomes(failed=1)
+    result.stdout.fnmatch_lines(["*eq1_gap_midpoint(p1=*, but should be*"])
+    pytester.path.joinpath("xfails.txt").write_text("eq9_typo\n")
+    result = pytester.runpytest_subprocess(*args, "--ifgm-xfails", "xfails.txt")
+    assert result.ret == pytest.ExitCode.USAGE_ERROR
+    result.stderr.fnmatch_lines(["*xfails.txt:1: no check named 'eq9_typo'*"])
