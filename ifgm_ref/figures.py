@@ -22,7 +22,6 @@ import math
 from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass
 from functools import cache
-from itertools import pairwise
 from pathlib import Path
 
 import matplotlib
@@ -34,9 +33,9 @@ from tqdm import tqdm
 from ifgm_ref.params import PAPER_FREE_DISTANCE_FT, PAPER_FREE_TIME_S
 from ifgm_ref.planners import make_planner
 from ifgm_ref.plotting import draw_path, draw_world
-from ifgm_ref.pose import distance, wrap_angle
+from ifgm_ref.pose import distance
 from ifgm_ref.scenarios import resolve_world
-from ifgm_ref.simulator import Run, TraceStep, simulate
+from ifgm_ref.simulator import Run, TraceStep, simulate, total_turning
 
 matplotlib.rcParams["svg.hashsalt"] = "ifgm-ref"  # stable SVG ids: same figures, same files
 
@@ -65,11 +64,6 @@ def run(world: str, planner: str) -> Run:
 def distance_to_goal(trace: Sequence[TraceStep], goal: tuple[float, float]) -> list[float]:
     """The robot's distance to ``goal`` at every sample, ft."""
     return [distance((s.x, s.y), goal) for s in trace]
-
-
-def total_turning(trace: Sequence[TraceStep]) -> float:
-    """Smoothness: the total absolute heading change along the path, radians."""
-    return sum(abs(wrap_angle(b.theta - a.theta)) for a, b in pairwise(trace))
 
 
 def trajectory_gap(a: Sequence[TraceStep], b: Sequence[TraceStep]) -> float:

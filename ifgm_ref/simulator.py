@@ -15,15 +15,17 @@ import csv
 import io
 import json
 import math
+from collections.abc import Sequence
 from dataclasses import asdict, dataclass, field
 from enum import StrEnum
+from itertools import pairwise
 from typing import Any
 
 from tqdm import tqdm
 
 from ifgm_ref.collision import ClearanceChecker
 from ifgm_ref.params import SimParams
-from ifgm_ref.pose import Pose, distance
+from ifgm_ref.pose import Pose, distance, wrap_angle
 from ifgm_ref.protocol import Command, EpisodeParams, Observation, Planner
 from ifgm_ref.robot import advance
 from ifgm_ref.sensor import IRSensor
@@ -61,6 +63,18 @@ class TraceStep:
 
 
 TRACE_FIELDS = tuple(TraceStep.__dataclass_fields__)
+
+
+def total_turning(trace: Sequence[TraceStep]) -> float:
+    """Smoothness: the total absolute heading change along a trace, rad (turns on the spot too).
+
+    >>> headings = [0.0, 0.5, -0.5, 3.0, -3.0]
+    >>> trace = [TraceStep(0.1 * k, 0, 0, th, None, None, None, None, 1.0)
+    ...          for k, th in enumerate(headings)]
+    >>> round(total_turning(trace), 6)  # 0.5 + 1.0 + (2 pi - 3.5) + (2 pi - 6): the short way
+    4.566371
+    """
+    return float(sum(abs(wrap_angle(b.theta - a.theta)) for a, b in pairwise(trace)))
 
 
 @dataclass(frozen=True)

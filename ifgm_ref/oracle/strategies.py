@@ -1,6 +1,10 @@
-"""Hypothesis strategies for the oracle's world classes, solvable by construction and checked.
+"""The oracle's world classes, solvable by construction and checked: generators and strategies.
 
-Every strategy draws one navigation problem of a class the paper talks about (section 5:
+Every class is one generator, a function of a :class:`~ifgm_ref.oracle.draws.Draw` (the
+source of its random choices), wrapped twice: as a Hypothesis strategy (``*_worlds()``, for
+the property checks; failing worlds shrink) and as plain seeded sampling
+(:func:`random_world`, for the benchmark; the same seed gives the same world). Each draws one
+navigation problem of a class the paper talks about (section 5:
 "obstacles of simple but different shapes", "critical shaped" U and H obstacles, Figure 7's
 symmetric obstacles) and returns a :class:`~ifgm_ref.world.World`:
 
@@ -38,12 +42,16 @@ direction: a quadrant-blind arctan or a frame mix-up cannot hide.
 
 from __future__ import annotations
 
+import functools
 import math
 from collections.abc import Callable, Sequence
 
+import numpy as np
 import shapely
 from hypothesis import strategies as st
 
+from ifgm_ref.errors import WorldError
+from ifgm_ref.oracle.draws import Draw, RandomDraw, strategy
 from ifgm_ref.pose import Point, Pose, wrap_angle
 from ifgm_ref.shapes import circle, h_shape, rectangle, regular_polygon, u_shape
 from ifgm_ref.world import Circle, Obstacle, Polygon, World
@@ -62,7 +70,7 @@ START_GOAL_CLEARANCE = ROBOT_RADIUS + 2.0
 #: notes in :mod:`ifgm_ref.scenarios`), which no planner of the paper is built to judge.
 SYMMETRIC_GAP_MARGIN = 0.5
 
-WorldClass = Callable[..., st.SearchStrategy[World]]
+WorldClass = Callable[[], st.SearchStrategy[World]]
 
 
 def _clear_of(candidate: Obstacle, others: Sequence[Obstacle], gap: float) -> bool:
@@ -86,9 +94,8 @@ def _keep(
     return kept
 
 
-@st.composite
-def convex_obstacles(
-    draw: st.DrawFn,
+def convex_obstacle(
+    d: Draw,
     *,
     x: tuple[float, float],
     y: tuple[float, float] = (-8.0, 8.0),
@@ -98,21 +105,25 @@ def convex_obstacles(
 
     ``size`` bounds the diameter (discs, polygons) or the side lengths (rectangles), ft.
     """
-    kind = draw(st.sampled_from(("disc", "rectangle", "polygon")), label="kind")
-    cx = draw(st.floats(*x), label="centre x")
-    cy = draw(st.floats(*y), label="centre y")
-    extent = draw(st.floats(*size), label="size")
+    kind = d.choice(("disc", "rectangle", "polygon"), "kind")
+    cx = d.floats(*x, "centre x")
+    cy = d.floats(*y, "centre y")
+    extent = d.floats(*size, "size")
     if kind == "disc":
         return circle((cx, cy), extent / 2.0)
     if kind == "rectangle":
-        other = draw(st.floats(*size), label="other side")
-        return rectangle((cx, cy), extent, other, draw(st.floats(0.0, math.pi), label="angle"))
-    sides = draw(st.integers(3, 8), label="sides")
-    return regular_polygon((cx, cy), extent / 2.0, sides, draw(st.floats(0.0, math.pi)))
+        other = d.floats(*size, "other side")
+        return rectangle((cx, cy), extent, other, d.floats(0.0, math.pi, "angle"))
+    sides = d.integers(3, 8, "sides")
+    return regular_polygon((cx, cy), extent / 2.0, sides, d.floats(0.0, math.pi, "angle"))
 
 
-def _clutter(length: float, max_size: int) -> st.SearchStrategy[list[Obstacle]]:
-    return st.lists(convex_obstacles(x=(0.2 * length, 0.8 * length)), max_size=max_size)
+def _clutter(d: Draw, length: float, max_size: int) -> list[Obstacle]:
+    return d.repeat(
+        lambda d: convex_obstacle(d, x=(0.2 * length, 0.8 * length)),
+        max_size=max_size,
+        label="clutter",
+    )
 
 
 def solvable(world: World) -> bool:
@@ -172,22 +183,18 @@ def placed(world: World, angle: float, shift: tuple[float, float]) -> World:
     )
 
 
-@st.composite
-def placements(draw: st.DrawFn) -> tuple[float, tuple[float, float]]:
+def placement(d: Draw) -> tuple[float, tuple[float, float]]:
     """A rigid motion: a rotation in ``[-pi, pi]`` and a shift of up to 50 ft per axis."""
-    angle = draw(st.floats(-math.pi, math.pi), label="placement angle")
-    shift = (
-        draw(st.floats(-50.0, 50.0), label="placement dx"),
-        draw(st.floats(-50.0, 50.0), label="placement dy"),
-    )
+    angle = d.floats(-math.pi, math.pi, "placement angle")
+    shift = (d.floats(-50.0, 50.0, "placement dx"), d.floats(-50.0, 50.0, "placement dy"))
     return angle, shift
 
 
 def _canonical(
-    draw: st.DrawFn, name: str, length: float, features: list[Obstacle], clutter: list[Obstacle]
+    d: Draw, name: str, length: float, features: list[Obstacle], clutter: list[Obstacle]
 ) -> World:
     """A world from the origin to ``(length, 0)``, dropping conflicting clutter."""
-    heading = draw(st.floats(-math.pi / 4, math.pi / 4), label="start heading")
+    heading = d.floats(-math.pi / 4, math.pi / 4, "start heading")
     obstacles = _keep(clutter, list(features), ((0.0, 0.0), (length, 0.0)))
     return World(
         start=Pose(0.0, 0.0, heading),
@@ -198,77 +205,72 @@ def _canonical(
 
 
 def _world(
-    draw: st.DrawFn, name: str, length: float, features: list[Obstacle], clutter: list[Obstacle]
+    d: Draw, name: str, length: float, features: list[Obstacle], clutter: list[Obstacle]
 ) -> World:
     """Assemble a canonical-frame world, place it, check it."""
-    angle, shift = draw(placements())
-    world = placed(_canonical(draw, name, length, features, clutter), angle, shift)
-    assert solvable(world) == (name != "enclosed"), f"strategy {name} built {world}"
+    angle, shift = placement(d)
+    world = placed(_canonical(d, name, length, features, clutter), angle, shift)
+    assert solvable(world) == (name != "enclosed"), f"world class {name} built {world}"
     return world
 
 
-@st.composite
-def open_worlds(draw: st.DrawFn, *, max_obstacles: int = 4) -> World:
+def open_world(d: Draw, *, max_obstacles: int = 4) -> World:
     """Open worlds: 1 to ``max_obstacles`` simple convex obstacles near the start-goal line.
 
     The start is at the origin facing within 45 degrees of the goal, 20-40 ft away along +x
     (before placement); obstacle centres lie in the middle 60 % of the way, within 8 ft of the
     line. Every two obstacles keep :data:`PASSAGE` apart.
     """
-    length = draw(st.floats(20.0, 40.0), label="start-goal distance")
-    first = draw(convex_obstacles(x=(0.3 * length, 0.7 * length), y=(-2.0, 2.0)), label="first")
-    clutter = draw(_clutter(length, max_obstacles - 1), label="clutter")
+    length = d.floats(20.0, 40.0, "start-goal distance")
+    first = convex_obstacle(d, x=(0.3 * length, 0.7 * length), y=(-2.0, 2.0))
+    clutter = _clutter(d, length, max_obstacles - 1)
     features = _keep([first], [], ((0.0, 0.0), (length, 0.0)))
-    return _world(draw, "open", length, features, clutter)
+    return _world(d, "open", length, features, clutter)
 
 
-@st.composite
-def u_shapes(draw: st.DrawFn, *, at: float) -> Obstacle:
+def u_feature(d: Draw, *, at: float) -> Obstacle:
     """A U centred near ``(at, 0)``, its mouth towards the start (within 30 degrees).
 
     Outer size 8-20 ft across the mouth, 5-14 ft deep, walls 0.5-2 ft thick: the cavity is
     at least 4 ft wide, twice the robot.
     """
     return u_shape(
-        (at, draw(st.floats(-3.0, 3.0), label="U offset")),
-        width=draw(st.floats(8.0, 20.0), label="U width"),
-        depth=draw(st.floats(5.0, 14.0), label="U depth"),
-        thickness=draw(st.floats(0.5, 2.0), label="U wall"),
-        opening=math.pi + draw(st.floats(-math.pi / 6, math.pi / 6), label="U tilt"),
+        (at, d.floats(-3.0, 3.0, "U offset")),
+        width=d.floats(8.0, 20.0, "U width"),
+        depth=d.floats(5.0, 14.0, "U depth"),
+        thickness=d.floats(0.5, 2.0, "U wall"),
+        opening=math.pi + d.floats(-math.pi / 6, math.pi / 6, "U tilt"),
     )
 
 
-@st.composite
-def h_shapes(draw: st.DrawFn, *, at: float) -> Obstacle:
+def h_feature(d: Draw, *, at: float) -> Obstacle:
     """An H centred near ``(at, 0)``, a cavity towards the start (within 30 degrees).
 
     Walls 8-16 ft long and 8-20 ft apart (outer), 0.5-2 ft thick; the crossbar 0.5-2 ft.
     """
     return h_shape(
-        (at, draw(st.floats(-3.0, 3.0), label="H offset")),
-        width=draw(st.floats(8.0, 20.0), label="H width"),
-        height=draw(st.floats(8.0, 16.0), label="H length"),
-        thickness=draw(st.floats(0.5, 2.0), label="H wall"),
-        bar_thickness=draw(st.floats(0.5, 2.0), label="H bar"),
-        orientation=math.pi / 2 + draw(st.floats(-math.pi / 6, math.pi / 6), label="H tilt"),
+        (at, d.floats(-3.0, 3.0, "H offset")),
+        width=d.floats(8.0, 20.0, "H width"),
+        height=d.floats(8.0, 16.0, "H length"),
+        thickness=d.floats(0.5, 2.0, "H wall"),
+        bar_thickness=d.floats(0.5, 2.0, "H bar"),
+        orientation=math.pi / 2 + d.floats(-math.pi / 6, math.pi / 6, "H tilt"),
     )
 
 
-@st.composite
-def symmetric_triples(draw: st.DrawFn, *, at: float) -> list[Obstacle]:
+def symmetric_triple(d: Draw, *, at: float) -> list[Obstacle]:
     """Three equal discs or squares across the line at ``x = at``, the middle one on it."""
-    size = draw(st.floats(3.0, 8.0), label="triple size")
+    size = d.floats(3.0, 8.0, "triple size")
     narrow = (0.3, 2.0 * ROBOT_RADIUS - SYMMETRIC_GAP_MARGIN)
     wide = (2.0 * ROBOT_RADIUS + 1.0 + SYMMETRIC_GAP_MARGIN, 7.0)
-    gap = draw(st.one_of(st.floats(*narrow), st.floats(*wide)), label="triple gap")
+    gap = d.floats(*d.choice((narrow, wide), "triple gap kind"), "triple gap")
     pitch = size + gap
-    if draw(st.booleans(), label="squares"):
+    if d.boolean("squares"):
         return [rectangle((at, k * pitch), size, size) for k in (-1, 0, 1)]
     return [circle((at, k * pitch), size / 2.0) for k in (-1, 0, 1)]
 
 
-@st.composite
-def u_worlds(draw: st.DrawFn, *, max_clutter: int = 0) -> World:
+def u_world(d: Draw, *, max_clutter: int = 0) -> World:
     """A U in the way, opening towards the start, plus up to ``max_clutter`` convex obstacles.
 
     No clutter by default: the reference IFGM livelocks between a post and an H cavity
@@ -276,73 +278,71 @@ def u_worlds(draw: st.DrawFn, *, max_clutter: int = 0) -> World:
 
     Start-goal distance 35-50 ft (before placement).
     """
-    length = draw(st.floats(35.0, 50.0), label="start-goal distance")
-    u = draw(u_shapes(at=length / 2.0), label="U")
-    return _world(draw, "u", length, [u], draw(_clutter(length, max_clutter), label="clutter"))
+    length = d.floats(35.0, 50.0, "start-goal distance")
+    u = u_feature(d, at=length / 2.0)
+    return _world(d, "u", length, [u], _clutter(d, length, max_clutter))
 
 
-@st.composite
-def h_worlds(draw: st.DrawFn, *, max_clutter: int = 0) -> World:
+def h_world(d: Draw, *, max_clutter: int = 0) -> World:
     """An H in the way, a cavity facing the start, plus up to ``max_clutter`` convex obstacles.
 
-    No clutter by default, as for :func:`u_worlds`.
+    No clutter by default, as for :func:`u_world`.
 
     Start-goal distance 35-50 ft (before placement).
     """
-    length = draw(st.floats(35.0, 50.0), label="start-goal distance")
-    h = draw(h_shapes(at=length / 2.0), label="H")
-    return _world(draw, "h", length, [h], draw(_clutter(length, max_clutter), label="clutter"))
+    length = d.floats(35.0, 50.0, "start-goal distance")
+    h = h_feature(d, at=length / 2.0)
+    return _world(d, "h", length, [h], _clutter(d, length, max_clutter))
 
 
-@st.composite
-def symmetric_worlds(draw: st.DrawFn) -> World:
+def symmetric_world(d: Draw) -> World:
     """Figure 7's class: three equal obstacles across the line, symmetric about it.
 
     Start-goal distance 30-50 ft (before placement); the triple halfway.
     """
-    length = draw(st.floats(30.0, 50.0), label="start-goal distance")
-    triple = draw(symmetric_triples(at=length / 2.0), label="triple")
-    return _world(draw, "symmetric", length, triple, [])
+    length = d.floats(30.0, 50.0, "start-goal distance")
+    return _world(d, "symmetric", length, symmetric_triple(d, at=length / 2.0), [])
 
 
 #: The features a mixed world strings together, by name.
 _FEATURES = ("convex", "u", "h", "symmetric")
 
 
-@st.composite
-def mixed_worlds(draw: st.DrawFn) -> World:
+def mixed_world(d: Draw) -> World:
     """Two or three features (convex clusters, U, H, symmetric triple) in a row, 30 ft apart.
 
     The start-goal distance is 30 ft per feature plus 10 (a tilted H reaches 12 ft either
     side of its centre, so neighbours keep over 6 ft apart).
     """
-    kinds = draw(st.lists(st.sampled_from(_FEATURES), min_size=2, max_size=3), label="features")
+    kinds = d.repeat(
+        lambda d: d.choice(_FEATURES, "feature"), min_size=2, max_size=3, label="features"
+    )
     length = 30.0 * len(kinds) + 10.0
     features: list[Obstacle] = []
     clutter: list[Obstacle] = []
     for k, kind in enumerate(kinds):
         at = 20.0 + 30.0 * k
         if kind == "convex":
-            clutter += draw(st.lists(convex_obstacles(x=(at - 5.0, at + 5.0)), max_size=3))
+            cluster = functools.partial(convex_obstacle, x=(at - 5.0, at + 5.0))
+            clutter += d.repeat(cluster, max_size=3, label="cluster")
         elif kind == "u":
-            features.append(draw(u_shapes(at=at)))
+            features.append(u_feature(d, at=at))
         elif kind == "h":
-            features.append(draw(h_shapes(at=at)))
+            features.append(h_feature(d, at=at))
         else:
-            features += draw(symmetric_triples(at=at))
-    return _world(draw, "mixed", length, features, clutter)
+            features += symmetric_triple(d, at=at)
+    return _world(d, "mixed", length, features, clutter)
 
 
-@st.composite
-def enclosed_worlds(draw: st.DrawFn) -> World:
+def enclosed_world(d: Draw) -> World:
     """The unsolvable case: the goal inside a closed box of four overlapping walls.
 
     The box's inner half-size is 4-8 ft, its walls 0.5-2 ft thick; the goal is at its centre,
     20-40 ft from the start (before placement).
     """
-    length = draw(st.floats(20.0, 40.0), label="start-goal distance")
-    half = draw(st.floats(4.0, 8.0), label="box half-size")
-    wall = draw(st.floats(0.5, 2.0), label="box wall")
+    length = d.floats(20.0, 40.0, "start-goal distance")
+    half = d.floats(4.0, 8.0, "box half-size")
+    wall = d.floats(0.5, 2.0, "box wall")
     outer = 2.0 * (half + wall)
     mid = half + wall / 2.0
     box = [
@@ -351,11 +351,10 @@ def enclosed_worlds(draw: st.DrawFn) -> World:
         rectangle((length, -mid), outer, wall),
         rectangle((length, mid), outer, wall),
     ]
-    return _world(draw, "enclosed", length, box, [])
+    return _world(d, "enclosed", length, box, [])
 
 
-@st.composite
-def gap_walls(draw: st.DrawFn) -> tuple[World, Polygon]:
+def gap_wall(d: Draw) -> tuple[World, Polygon]:
     """A wall across the line pierced by one gap of 3-4.5 robot diameters, off the line;
     returns the world and the gap (the box between the wall's ends).
 
@@ -366,20 +365,63 @@ def gap_walls(draw: st.DrawFn) -> tuple[World, Polygon]:
     gap's middle, and the robot meets a gap of 2 diameters (4 ft) off-centre, too close to
     its edge, and goes round (``tests/worlds/gap_4ft_off_line.json``).
     """
-    length = draw(st.floats(30.0, 45.0), label="start-goal distance")
-    width = draw(st.floats(6.0 * ROBOT_RADIUS, 9.0 * ROBOT_RADIUS), label="gap width")
-    offset = draw(st.floats(1.5, 4.0), label="gap offset") * draw(st.sampled_from((1, -1)))
-    thick = draw(st.floats(1.0, 2.0), label="wall thickness")
+    length = d.floats(30.0, 45.0, "start-goal distance")
+    width = d.floats(6.0 * ROBOT_RADIUS, 9.0 * ROBOT_RADIUS, "gap width")
+    offset = d.floats(1.5, 4.0, "gap offset") * d.choice((1, -1), "gap side")
+    thick = d.floats(1.0, 2.0, "wall thickness")
     x, low, high = length / 2.0, offset - width / 2.0, offset + width / 2.0
     wall = [rectangle((x, low - 12.5), thick, 25.0), rectangle((x, high + 12.5), thick, 25.0)]
     gap = rectangle((x, offset), thick, width)
-    angle, shift = draw(placements())
-    world = placed(_canonical(draw, "gap_wall", length, wall, []), angle, shift)
-    assert solvable(world), f"strategy gap_walls built {world}"
+    angle, shift = placement(d)
+    world = placed(_canonical(d, "gap_wall", length, wall, []), angle, shift)
+    assert solvable(world), f"world class gap_wall built {world}"
     return world, placed_obstacle(gap, angle, shift)
 
 
-#: The solvable classes by the names checks and reports use.
+# Hypothesis strategies of the same classes (failing examples shrink).
+
+
+def open_worlds(*, max_obstacles: int = 4) -> st.SearchStrategy[World]:
+    """Strategy of :func:`open_world`."""
+    return strategy(functools.partial(open_world, max_obstacles=max_obstacles))
+
+
+def u_worlds(*, max_clutter: int = 0) -> st.SearchStrategy[World]:
+    """Strategy of :func:`u_world`."""
+    return strategy(functools.partial(u_world, max_clutter=max_clutter))
+
+
+def h_worlds(*, max_clutter: int = 0) -> st.SearchStrategy[World]:
+    """Strategy of :func:`h_world`."""
+    return strategy(functools.partial(h_world, max_clutter=max_clutter))
+
+
+def symmetric_worlds() -> st.SearchStrategy[World]:
+    """Strategy of :func:`symmetric_world`."""
+    return strategy(symmetric_world)
+
+
+def mixed_worlds() -> st.SearchStrategy[World]:
+    """Strategy of :func:`mixed_world`."""
+    return strategy(mixed_world)
+
+
+def enclosed_worlds() -> st.SearchStrategy[World]:
+    """Strategy of :func:`enclosed_world`."""
+    return strategy(enclosed_world)
+
+
+def gap_walls() -> st.SearchStrategy[tuple[World, Polygon]]:
+    """Strategy of :func:`gap_wall`."""
+    return strategy(gap_wall)
+
+
+def placements() -> st.SearchStrategy[tuple[float, tuple[float, float]]]:
+    """Strategy of :func:`placement`."""
+    return strategy(placement)
+
+
+#: The solvable classes (their strategies) by the names checks and reports use.
 SOLVABLE_CLASSES: dict[str, WorldClass] = {
     "open": open_worlds,
     "u": u_worlds,
@@ -392,3 +434,29 @@ SOLVABLE_CLASSES: dict[str, WorldClass] = {
 def any_solvable_worlds() -> st.SearchStrategy[World]:
     """A world of any solvable class (open first, so failures shrink towards it)."""
     return st.one_of([make() for make in SOLVABLE_CLASSES.values()])
+
+
+#: The solvable classes' generators, by the same names (for seeded plain sampling).
+GENERATORS: dict[str, Callable[[Draw], World]] = {
+    "open": open_world,
+    "u": u_world,
+    "h": h_world,
+    "symmetric": symmetric_world,
+    "mixed": mixed_world,
+}
+
+
+def random_world(world_class: str, seed: int | np.random.SeedSequence) -> World:
+    """One world of ``world_class`` (a :data:`GENERATORS` name), sampled uniformly from a seed.
+
+    The same seed gives the same world on every machine (numpy's PCG64).
+
+    >>> random_world("u", 3) == random_world("u", np.random.SeedSequence(3))
+    True
+    """
+    try:
+        generate = GENERATORS[world_class]
+    except KeyError:
+        known = ", ".join(GENERATORS)
+        raise WorldError(f"unknown world class {world_class!r}; known: {known}") from None
+    return generate(RandomDraw(np.random.default_rng(seed)))

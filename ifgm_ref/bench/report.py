@@ -1,0 +1,291 @@
+"""The benchmark's outputs: the table (CSV), summaries per planner and class, Markdown, plots.
+
+Files written by :func:`write_report` into the output folder:
+
+==========================  =================================================================
+``results.csv``             one row per (planner, world): :class:`~ifgm_ref.bench.tasks.Row`
+``summary.csv``             one row per (planner, class): :class:`Summary`
+``summary.md``              the run's settings and machine, the summary tables, the failures
+``success_by_class.png``    success rate per class, one bar per planner
+``path_ratio.png``          path length / optimal of the successful episodes, per class
+``worlds/NAME.json``        every world some planner failed in, to replay with ``simulate``
+``results.partial.csv``     the rows so far, as they arrive (removed when the run completes)
+==========================  =================================================================
+"""
+
+from __future__ import annotations
+
+import contextlib
+import csv
+import math
+import os
+import platform
+from collections.abc import Sequence
+from dataclasses import astuple, dataclass, fields
+from pathlib import Path
+
+import numpy as np
+
+from ifgm_ref.bench.tasks import Row, WorldSpec
+from ifgm_ref.worldfile import save_world
+
+#: The pseudo-class that pools every world.
+ALL = "all"
+#: The file that collects rows as they arrive, in completion order.
+PARTIAL = "results.partial.csv"
+
+
+@dataclass(frozen=True)
+class Summary:
+    """One planner on one class of worlds (or on all of them: ``world_class == "all"``).
+
+    ``success_rate`` is the fraction of episodes that reached the goal; the path-ratio
+    statistics are over those episodes (``None`` when there is none); ``collisions`` counts
+    episodes that ended in a collision and ``errors`` those whose planner raised.
+    """
+
+    planner: str
+    world_class: str
+    worlds: int
+    success_rate: float
+    collisions: int
+    errors: int
+    path_ratio_median: float | None
+    path_ratio_p90: float | None
+    time_median_s: float | None
+    heading_change_median: float | None
+    min_clearance_min: float | None
+    decisions_per_cpu_s_median: float | None
+
+    @classmethod
+    def columns(cls) -> tuple[str, ...]:
+        """The column names, in order."""
+        return tuple(f.name for f in fields(cls))
+
+
+def _median(values: list[float]) -> float | None:
+    return float(np.median(values)) if values else None
+
+
+def summarize_rows(planner: str, world_class: str, rows: Sequence[Row]) -> Summary:
+    """The :class:`Summary` of ``rows`` (all of one planner)."""
+    reached = [r for r in rows if r.reached]
+    ratios = [r.path_ratio for r in reached if r.path_ratio is not None]
+    clearances = [r.min_clearance for r in rows if r.min_clearance is not None]
+    speeds = [r.decisions_per_cpu_s for r in rows if r.decisions_per_cpu_s is not None]
+    return Summary(
+        planner=planner,
+        world_class=world_class,
+        worlds=len(rows),
+        success_rate=len(reached) / len(rows),
+        collisions=sum(r.collided for r in rows),
+        errors=sum(r.stop_reason == "error" for r in rows),
+        path_ratio_median=_median(ratios),
+        path_ratio_p90=float(np.percentile(ratios, 90)) if ratios else None,
+        time_median_s=_median([r.time_s for r in reached]),
+        heading_change_median=_median([r.heading_change for r in reached]),
+        min_clearance_min=min(clearances) if clearances else None,
+        decisions_per_cpu_s_median=_median(speeds),
+    )
+
+
+def summarize(rows: Sequence[Row]) -> list[Summary]:
+    """Per planner (in first-seen order): one summary per class (first-seen order), then all."""
+    planners = list(dict.fromkeys(r.planner for r in rows))
+    classes = list(dict.fromkeys(r.world_class for r in rows))
+    out = []
+    for planner in planners:
+        mine = [r for r in rows if r.planner == planner]
+        for world_class in classes:
+            of_class = [r for r in mine if r.world_class == world_class]
+            if of_class:
+                out.append(summarize_rows(planner, world_class, of_class))
+        if len(classes) > 1:
+            out.append(summarize_rows(planner, ALL, mine))
+    return out
+
+
+def _cell(value: object) -> object:
+    if value is None or (isinstance(value, float) and math.isnan(value)):
+        return ""
+    return value
+
+
+def write_csv(
+    path: Path, columns: Sequence[str], records: Sequence[object], *, append: bool = False
+) -> None:
+    """Write dataclass ``records`` as CSV (empty cells for missing values); with ``append``,
+    add them to ``path``, writing the header only if the file is new."""
+    header = not (append and path.exists())
+    with path.open("a" if append else "w", newline="") as out:
+        writer = csv.writer(out, lineterminator="\n")
+        if header:
+            writer.writerow(columns)
+        writer.writerows([_cell(v) for v in astuple(r)] for r in records)  # type: ignore[call-overload]
+
+
+def read_rows(path: str | Path) -> list[Row]:
+    """Read ``results.csv`` back into rows (the inverse of :func:`write_csv` for rows)."""
+    kinds = {f.name: f.type for f in fields(Row)}
+    rows = []
+    with Path(path).open(newline="") as source:
+        for record in csv.DictReader(source):
+            values: dict[str, object] = {}
+            for name, text in record.items():
+                kind = str(kinds[name])
+                if text == "":
+                    values[name] = math.nan if kind == "float" else None
+                elif kind == "bool":
+                    values[name] = text == "True"
+                elif kind == "int":
+                    values[name] = int(text)
+                elif "float" in kind:
+                    values[name] = float(text)
+                else:
+                    values[name] = text
+            rows.append(Row(**values))  # type: ignore[arg-type]
+    return rows
+
+
+def _fmt(value: float | None, spec: str) -> str:
+    return "-" if value is None else format(value, spec)
+
+
+def summary_markdown(summaries: Sequence[Summary], rows: Sequence[Row], header: str) -> str:
+    """The Markdown summary: ``header`` (settings, machine), a table per class, failures."""
+    lines = [header.rstrip(), ""]
+    classes = list(dict.fromkeys(s.world_class for s in summaries))
+    for world_class in classes:
+        mine = [s for s in summaries if s.world_class == world_class]
+        lines += [
+            f"## {world_class} ({mine[0].worlds} worlds)",
+            "",
+            "| planner | success | collisions | errors | path/optimal median | p90 | "
+            "time median s | turning median rad | min clearance ft | decisions/CPU s |",
+            "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|",
+        ]
+        lines += [
+            f"| {s.planner} | {s.success_rate:.1%} | {s.collisions} | {s.errors} | "
+            f"{_fmt(s.path_ratio_median, '.3f')} | {_fmt(s.path_ratio_p90, '.3f')} | "
+            f"{_fmt(s.time_median_s, '.1f')} | {_fmt(s.heading_change_median, '.2f')} | "
+            f"{_fmt(s.min_clearance_min, '.3f')} | {_fmt(s.decisions_per_cpu_s_median, ',.0f')} |"
+            for s in mine
+        ]
+        lines.append("")
+    failed = [r for r in rows if not r.reached]
+    lines += [f"## Episodes that did not reach the goal ({len(failed)})", ""]
+    if failed:
+        lines += ["| planner | world | stop reason | time s | detail |", "|---|---|---|---:|---|"]
+        lines += [
+            f"| {r.planner} | {r.world} | {r.stop_reason} | {_fmt(r.time_s, '.1f')} | "
+            f"{r.detail or ''} |"
+            for r in failed
+        ]
+    else:
+        lines.append("None.")
+    return "\n".join(lines) + "\n"
+
+
+def plot_success(summaries: Sequence[Summary], path: Path) -> None:
+    """Grouped bars: success rate per class, one bar per planner."""
+    import matplotlib.pyplot as plt
+
+    per_class = [s for s in summaries if s.world_class != ALL]
+    classes = list(dict.fromkeys(s.world_class for s in per_class))
+    planners = list(dict.fromkeys(s.planner for s in per_class))
+    rate = {(s.planner, s.world_class): s.success_rate for s in per_class}
+    width = 0.8 / len(planners)
+    fig, ax = plt.subplots(figsize=(1.6 + 1.4 * len(classes), 4.2), layout="constrained")
+    for k, planner in enumerate(planners):
+        xs = np.arange(len(classes)) + (k - (len(planners) - 1) / 2) * width
+        ys = [100.0 * rate.get((planner, c), math.nan) for c in classes]
+        bars = ax.bar(xs, ys, width, label=planner)
+        ax.bar_label(bars, fmt="%.0f", fontsize=6, padding=1)
+    ax.set_xticks(np.arange(len(classes)), classes)
+    ax.set_ylim(0, 110)
+    ax.set_ylabel("reached the goal (%)")
+    ax.set_title("Success rate by world class")
+    fig.legend(loc="outside lower center", ncols=min(len(planners), 7), fontsize="small")
+    fig.savefig(path, dpi=110, metadata={"Software": None})
+    plt.close(fig)
+
+
+def plot_path_ratio(rows: Sequence[Row], path: Path) -> None:
+    """Box plots of path length / optimal over the successful episodes, a panel per class."""
+    import matplotlib.pyplot as plt
+
+    classes = list(dict.fromkeys(r.world_class for r in rows))
+    planners = list(dict.fromkeys(r.planner for r in rows))
+    columns = min(len(classes), 2)
+    lines = math.ceil(len(classes) / columns)
+    fig, axes = plt.subplots(
+        lines, columns, figsize=(1.0 + 0.6 * len(planners) * columns, 0.5 + 3.3 * lines),
+        sharey=True, squeeze=False, layout="constrained",
+    )  # fmt: skip
+    for ax in axes.flat[len(classes) :]:
+        ax.set_visible(False)
+    for ax, world_class in zip(axes.flat, classes, strict=False):
+        data = [
+            [r.path_ratio for r in rows if r.planner == p and r.world_class == world_class
+             and r.path_ratio is not None]
+            for p in planners
+        ]  # fmt: skip
+        ax.boxplot([d or [math.nan] for d in data], tick_labels=planners, whis=(0, 100))
+        ax.axhline(1.0, color="0.5", linewidth=0.8, linestyle="--")
+        ax.set_title(world_class)
+        ax.tick_params(axis="x", labelrotation=60)
+    for ax in axes[:, 0]:
+        ax.set_ylabel("path / optimal (reached only)")
+    fig.suptitle("Path length against the shortest collision-free path")
+    fig.savefig(path, dpi=110, metadata={"Software": None})
+    plt.close(fig)
+
+
+def save_failed_worlds(rows: Sequence[Row], specs: Sequence[WorldSpec], folder: Path) -> int:
+    """Write every world in which some episode failed to ``folder/NAME.json``; the count."""
+    failed = {r.world for r in rows if not r.reached}
+    chosen = [spec for spec in specs if spec.name in failed]
+    if chosen:
+        folder.mkdir(parents=True, exist_ok=True)
+    for spec in chosen:
+        save_world(spec.build(), folder / f"{spec.name}.json")
+    return len(chosen)
+
+
+def machine() -> str:
+    """One line on where a benchmark ran: CPU, CPU count, OS, Python and numpy versions."""
+    cpu = platform.processor() or platform.machine()
+    with contextlib.suppress(OSError):
+        for line in Path("/proc/cpuinfo").read_text().splitlines():
+            if line.startswith("model name"):
+                cpu = line.partition(":")[2].strip()
+                break
+    return (
+        f"{cpu}, {os.cpu_count()} logical CPUs, {platform.system()} {platform.release()}, "
+        f"Python {platform.python_version()}, numpy {np.__version__}"
+    )
+
+
+def write_report(
+    rows: Sequence[Row], specs: Sequence[WorldSpec], out: str | Path, header: str
+) -> list[Path]:
+    """Write every output file (see the module docstring) into ``out``; return their paths."""
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    summaries = summarize(rows)
+    files = {
+        "results": out / "results.csv",
+        "summary": out / "summary.csv",
+        "markdown": out / "summary.md",
+        "success": out / "success_by_class.png",
+        "ratio": out / "path_ratio.png",
+    }
+    write_csv(files["results"], Row.columns(), rows)
+    write_csv(files["summary"], Summary.columns(), summaries)
+    files["markdown"].write_text(summary_markdown(summaries, rows, header))
+    plot_success(summaries, files["success"])
+    plot_path_ratio(rows, files["ratio"])
+    written = list(files.values())
+    if save_failed_worlds(rows, specs, out / "worlds"):
+        written.append(out / "worlds")
+    return written

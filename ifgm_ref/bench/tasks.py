@@ -1,0 +1,212 @@
+"""One benchmark task: a world, its shortest path, and every chosen planner's episode in it.
+
+A task is described by plain, picklable data (:class:`WorldSpec`, planner names, an optional
+time limit), so the same task runs in this process, in a local process pool or on a Dask
+worker, and gives the same row there: the simulation is deterministic, and a generated world
+is rebuilt from its own seed, ``numpy.random.SeedSequence(seed, spawn_key=(class_id, index))``
+-- the ``index``-th child of the ``class_id``-th child of ``SeedSequence(seed)``, what
+``SeedSequence(seed).spawn(...)`` hands out -- never from a generator shared between tasks.
+World ``u-0007`` is the same world whether 10 or 500 worlds per class are asked for, and
+whichever worker builds it.
+
+Each (planner, world) pair gives one :class:`Row`. A planner that raises is recorded as a
+row with stop reason ``error`` and the message in ``detail``, so one crash loses nothing else.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import asdict, dataclass, fields
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from ifgm_ref.bench.optimal import optimal_path
+from ifgm_ref.errors import WorldError
+from ifgm_ref.oracle.bounds import time_bound
+from ifgm_ref.oracle.loading import load_factory
+from ifgm_ref.oracle.strategies import GENERATORS, random_world
+from ifgm_ref.params import SimParams
+from ifgm_ref.protocol import Command, EpisodeParams, Observation, Planner
+from ifgm_ref.scenarios import BUILTIN_WORLDS
+from ifgm_ref.simulator import simulate, total_turning
+from ifgm_ref.world import World
+from ifgm_ref.worldfile import load_world
+
+#: The generated world classes, in the order that fixes their seeds' ``class_id``.
+CLASS_IDS: dict[str, int] = {name: k for k, name in enumerate(GENERATORS)}
+#: Stop reason of a row whose planner raised an exception.
+ERROR = "error"
+
+
+@dataclass(frozen=True)
+class WorldSpec:
+    """Where a benchmark world comes from.
+
+    ``kind`` is a generated class (``open``, ``u``, ``h``, ``symmetric``, ``mixed``: then
+    ``seed`` and ``index`` rebuild it), ``builtin`` (``source`` is the name) or ``file``
+    (``source`` is the path).
+    """
+
+    name: str
+    kind: str
+    source: str | None = None
+    seed: int | None = None
+    index: int | None = None
+
+    @classmethod
+    def generated(cls, world_class: str, seed: int, index: int) -> WorldSpec:
+        """The ``index``-th world of ``world_class`` for ``seed`` (named ``CLASS-NNNN``)."""
+        if world_class not in CLASS_IDS:
+            known = ", ".join(CLASS_IDS)
+            raise WorldError(f"unknown world class {world_class!r}; known: {known}")
+        return cls(f"{world_class}-{index:04d}", world_class, None, seed, index)
+
+    def build(self) -> World:
+        """The world itself."""
+        if self.kind == "builtin":
+            return BUILTIN_WORLDS[str(self.source)].build()
+        if self.kind == "file":
+            return load_world(str(self.source))
+        assert self.seed is not None and self.index is not None
+        seq = np.random.SeedSequence(self.seed, spawn_key=(CLASS_IDS[self.kind], self.index))
+        return random_world(self.kind, seq)
+
+
+def generated_specs(classes: list[str], per_class: int, seed: int) -> list[WorldSpec]:
+    """``per_class`` generated worlds of each class in ``classes``, class by class."""
+    return [WorldSpec.generated(c, seed, i) for c in classes for i in range(per_class)]
+
+
+def builtin_specs() -> list[WorldSpec]:
+    """Every built-in world (``ifgm-ref worlds``)."""
+    return [WorldSpec(name, "builtin", name) for name in BUILTIN_WORLDS]
+
+
+def folder_specs(folder: str | Path) -> list[WorldSpec]:
+    """Every ``*.json`` world file in ``folder``, by file name; each is checked on loading."""
+    paths = sorted(Path(folder).glob("*.json"))
+    if not paths:
+        raise WorldError(f"no world files (*.json) in {folder}")
+    for path in paths:
+        load_world(path)
+    return [WorldSpec(path.stem, "file", str(path)) for path in paths]
+
+
+@dataclass(frozen=True)
+class Row:
+    """One episode of the benchmark table (one line of ``results.csv``).
+
+    Lengths in ft, times in s, angles in rad. ``path_ratio`` is ``path_length /
+    optimal_length`` for an episode that reached the goal, else empty; ``heading_change`` is
+    the total absolute change of heading along the path (smoothness: less is smoother);
+    ``decisions_per_cpu_s`` counts the planner's ``step`` calls per second of CPU spent in
+    them (the only column that varies between runs).
+    """
+
+    planner: str
+    world: str
+    world_class: str
+    reached: bool
+    collided: bool
+    stop_reason: str
+    time_s: float
+    path_length: float
+    optimal_length: float | None
+    path_ratio: float | None
+    min_clearance: float | None
+    heading_change: float
+    steps: int
+    decisions_per_cpu_s: float | None
+    detail: str | None = None
+
+    @classmethod
+    def columns(cls) -> tuple[str, ...]:
+        """The column names, in order."""
+        return tuple(f.name for f in fields(cls))
+
+    def as_dict(self) -> dict[str, Any]:
+        """The row as a mapping of column names to values."""
+        return asdict(self)
+
+
+class _Timed:
+    """A planner whose ``step`` calls are counted and timed in CPU seconds of this thread."""
+
+    def __init__(self, planner: Planner) -> None:
+        self.planner = planner
+        self.name = planner.name
+        self.cpu_s = 0.0
+        self.decisions = 0
+
+    def reset(self, start: Any, goal: Any, params: EpisodeParams) -> None:
+        self.planner.reset(start, goal, params)
+
+    def step(self, observation: Observation) -> Command:
+        begin = time.thread_time()
+        command = self.planner.step(observation)
+        self.cpu_s += time.thread_time() - begin
+        self.decisions += 1
+        return command
+
+
+def optimal_length(world: World, goal_tolerance: float) -> float:
+    """The shortest collision-free path from the start to within ``goal_tolerance`` of the
+    goal (where an episode ends), ft: the path to the goal less the tolerance.
+
+    The last leg of the shortest path to the goal is straight, and the goal keeps more than
+    the tolerance from every obstacle (the world classes keep 3 ft), so cutting the last
+    ``goal_tolerance`` ft of it gives the shortest path to the goal disc.
+    """
+    return max(0.0, optimal_path(world).length - goal_tolerance)
+
+
+def run_world(
+    spec: WorldSpec, planners: tuple[str, ...], max_time: float | None = None
+) -> list[Row]:
+    """Build ``spec``'s world, find its shortest path, run each planner there: one row each.
+
+    The time limit is ``max_time`` s or, by default, the oracle's convergence budget for the
+    world (:func:`ifgm_ref.oracle.bounds.time_bound`: Bug1's path bound driven slowly).
+    """
+    world = spec.build()
+    sim = SimParams(max_time=max_time or time_bound(world))
+    try:
+        optimal: float | None = optimal_length(world, sim.goal_tolerance)
+    except WorldError:
+        optimal = None
+    return [_episode(spec, world, name, optimal, sim) for name in planners]
+
+
+def _episode(
+    spec: WorldSpec, world: World, planner: str, optimal: float | None, sim: SimParams
+) -> Row:
+    timed = _Timed(load_factory(planner)())
+    try:
+        run = simulate(world, timed, sim)
+    except Exception as err:  # a crashing planner is a result, not the end of the benchmark
+        return Row(
+            planner, spec.name, spec.kind, False, False, ERROR, math.nan, math.nan, optimal,
+            None, None, math.nan, timed.decisions, None, f"{type(err).__name__}: {err}",
+        )  # fmt: skip
+    result = run.result
+    ratio = result.path_length / optimal if result.reached and optimal else None
+    return Row(
+        planner=planner,
+        world=spec.name,
+        world_class=spec.kind,
+        reached=result.reached,
+        collided=result.collided,
+        stop_reason=result.stop_reason,
+        time_s=result.time_s,
+        path_length=result.path_length,
+        optimal_length=optimal,
+        path_ratio=ratio,
+        min_clearance=result.min_clearance if math.isfinite(result.min_clearance) else None,
+        heading_change=total_turning(run.trace),
+        steps=result.steps,
+        decisions_per_cpu_s=timed.decisions / timed.cpu_s if timed.cpu_s > 0 else None,
+        detail=result.detail,
+    )
