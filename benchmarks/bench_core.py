@@ -36,7 +36,6 @@ import argparse
 import importlib.util
 import math
 import os
-import platform
 import statistics
 import sys
 import time
@@ -52,6 +51,7 @@ if importlib.util.find_spec("ifgm_ref") is None:  # run from a checkout without 
 import numpy as np
 import shapely
 
+from ifgm_ref.bench.report import machine
 from ifgm_ref.params import SensorParams, SimParams
 from ifgm_ref.planners.straight import StraightPlanner
 from ifgm_ref.pose import Point, Pose
@@ -214,22 +214,6 @@ MEASUREMENTS: tuple[Callable[[Setup], Rate], ...] = (
     cast_rate,
     sim_step_rate,
 )
-
-
-def machine() -> str:
-    """One line naming the machine and the software measured."""
-    cpu = platform.processor() or platform.machine()
-    try:
-        with open("/proc/cpuinfo") as info:
-            names = [line.split(":", 1)[1] for line in info if line.startswith("model name")]
-        cpu = names[0].strip() if names else cpu
-    except OSError:
-        pass
-    return (
-        f"{cpu}, {os.cpu_count()} logical CPUs, {platform.system()} {platform.release()}; "
-        f"Python {platform.python_version()}, numpy {np.__version__}, "
-        f"load average {' '.join(f'{v:.2f}' for v in os.getloadavg())}"
-    )
 
 
 def main(argv: Sequence[str] | None = None) -> int:

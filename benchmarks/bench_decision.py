@@ -57,7 +57,6 @@ import argparse
 import gc
 import importlib.util
 import os
-import platform
 import statistics
 import sys
 import time
@@ -75,6 +74,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 import ifgm_ref
+from ifgm_ref.bench.report import machine
 from ifgm_ref.laserscan import LaserScan
 from ifgm_ref.oracle.recording import RecordingPlanner
 from ifgm_ref.params import SimParams
@@ -449,22 +449,6 @@ def count_operations(name: str, episodes: Sequence[Episode], every: int) -> list
 
     replay(name, episodes, count, counting_observation)
     return [OpCount(*a, *b) for a, b in zip(traced, counted, strict=True)]
-
-
-def machine() -> str:
-    """One line naming the machine and the software measured."""
-    cpu = platform.processor() or platform.machine()
-    try:
-        with open("/proc/cpuinfo") as info:
-            names = [line.split(":", 1)[1] for line in info if line.startswith("model name")]
-        cpu = names[0].strip() if names else cpu
-    except OSError:
-        pass
-    return (
-        f"{cpu}, {os.cpu_count()} logical CPUs, {platform.system()} {platform.release()}; "
-        f"Python {platform.python_version()}, numpy {np.__version__}, "
-        f"load average {' '.join(f'{v:.2f}' for v in os.getloadavg())}"
-    )
 
 
 def _median_max(values: Iterable[int]) -> str:

@@ -13,11 +13,11 @@ from __future__ import annotations
 
 import argparse
 import os
-import platform
 import statistics
 import time
 
 import ifgm_ref.equations
+from ifgm_ref.bench.report import machine
 from ifgm_ref.oracle.checks import CHECKS, Kind
 from ifgm_ref.oracle.runner import Status, check_planner
 
@@ -29,7 +29,7 @@ def main() -> None:
     parser.add_argument("--jobs", type=int, default=os.cpu_count() or 1, help="worker processes")
     parser.add_argument("--planner", action="append", help="planner(s) (default ifgm and iba)")
     args = parser.parse_args()
-    print(f"{platform.processor() or platform.machine()}, {os.cpu_count()} CPUs, jobs={args.jobs}")
+    print(f"machine: {machine()}; jobs={args.jobs}")
     for planner in args.planner or ["ifgm", "iba"]:
         seconds = []
         for _ in range(args.repeats):

@@ -21,8 +21,8 @@ which is a hit in front of the sensor iff ``t >= 0``. The kernel keeps ``q = 1 /
 (s_B - s_A) / c`` and takes the largest ``q`` per ray: no division by zero (a ray parallel to
 the segment has ``s_B = s_A``, so ``q = 0``, "no hit"), and rays behind (``q < 0``) drop out.
 
-The side value ``s`` of each distinct vertex is computed *once* per ray (one matrix product over
-the vertices) and shared by every edge that ends there, so a ray through a polygon vertex cannot
+The side value ``s`` of each distinct vertex is computed *once* per ray (one product over the
+vertices) and shared by every edge that ends there, so a ray through a polygon vertex cannot
 slip between its two edges whatever the rounding: the test is watertight, and hits at segment
 endpoints count.
 
@@ -244,7 +244,7 @@ class RayCaster:
         """
         c, s = math.cos(heading), math.sin(heading)
         turn = np.array(((-s, -c), (c, -s), (s, c)))
-        return self._cast_rows(float(origin[0]), float(origin[1]), turn @ fan.unit)
+        return self._cast_rows(float(origin[0]), float(origin[1]), dot2(turn, fan.unit))
 
     def _cast_rows(self, x: float, y: float, rows: NDArray[np.float64]) -> NDArray[np.float64]:
         """Distances along the rays whose normals and directions are ``rows`` (see cast)."""
@@ -273,7 +273,7 @@ class RayCaster:
             return np.full(k, self._q_floor)
         ends = ends.reshape(-1)  # starts, then ends
         rel = self._points - np.array([[x], [y]])  # (2, vertices)
-        side = rel.T @ rows[:2]  # side[v, i] = cross(d_i, P_v - O): once per vertex
+        side = dot2(rel.T, rows[:2])  # side[v, i] = cross(d_i, P_v - O): once per vertex
         ab = rel.take(ends, axis=1)
         cross_ab = ab[0, :n] * ab[1, n:] - ab[1, :n] * ab[0, n:]
         along: NDArray[np.float64] | None = None
@@ -315,8 +315,8 @@ class RayCaster:
         if not np.count_nonzero(near):
             return q
         rel, g, r2 = rel[near], g[near], self._radii2[near]
-        ahead = rel @ rows[1:]
-        disc = rel @ rows[:2]
+        ahead = dot2(rel, rows[1:])
+        disc = dot2(rel, rows[:2])
         disc *= disc
         np.subtract(r2[:, None], disc, out=disc)  # r^2 - h^2
         touching = disc >= 0.0
@@ -325,6 +325,22 @@ class RayCaster:
         disc *= (1.0 / g)[:, None]
         disc *= touching
         return np.maximum(q, disc.max(axis=0), out=q)
+
+
+def dot2(a: NDArray[np.float64], b: NDArray[np.float64]) -> NDArray[np.float64]:
+    """``a @ b`` for ``a`` of shape ``(m, 2)`` and ``b`` of shape ``(2, n)``, elementwise: two
+    products and a sum per entry, rounded the same way on every machine and memory layout.
+
+    A matrix product goes to BLAS, whose kernels (fused multiply-adds, blocking, threads)
+    depend on the arrays' alignment: the same scan then differed in the last bit from one
+    process to another, and a planner's trajectory with it.
+
+    >>> a = np.array([[1.0, 2.0], [3.0, 4.0], [5.0, 6.0]])
+    >>> b = np.array([[1.0, 0.0, 2.0], [0.0, 1.0, 3.0]])
+    >>> dot2(a, b).tolist() == (a @ b).tolist()
+    True
+    """
+    return a[:, :1] * b[0] + a[:, 1:] * b[1]
 
 
 def _as_array(name: str, value: ArrayLike, shape: tuple[int, ...]) -> NDArray[np.float64]:
@@ -349,7 +365,7 @@ def _along_edge_inverse_distances(
     (``(e, k)``). A ray meets such an edge only if it runs exactly along it, and then first
     meets the nearer endpoint in front of it.
     """
-    ahead = ends.T @ rows[1:]
+    ahead = dot2(ends.T, rows[1:])
     on_ray = (side == 0.0) & (ahead > 0.0)
     inv = np.divide(1.0, ahead, out=np.zeros_like(ahead), where=on_ray)
     return inv.max(axis=0)

@@ -253,7 +253,8 @@ def save_failed_worlds(rows: Sequence[Row], specs: Sequence[WorldSpec], folder: 
 
 
 def machine() -> str:
-    """One line on where a benchmark ran: CPU, CPU count, OS, Python and numpy versions."""
+    """One line on where a benchmark ran: CPU, CPU count, OS, Python and numpy versions, and
+    the load average (other jobs on the machine slow a benchmark down)."""
     cpu = platform.processor() or platform.machine()
     with contextlib.suppress(OSError):
         for line in Path("/proc/cpuinfo").read_text().splitlines():
@@ -262,7 +263,8 @@ def machine() -> str:
                 break
     return (
         f"{cpu}, {os.cpu_count()} logical CPUs, {platform.system()} {platform.release()}, "
-        f"Python {platform.python_version()}, numpy {np.__version__}"
+        f"Python {platform.python_version()}, numpy {np.__version__}, "
+        f"load average {' '.join(f'{v:.2f}' for v in os.getloadavg())}"
     )
 
 
