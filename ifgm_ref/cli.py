@@ -253,6 +253,23 @@ def _bench(args: argparse.Namespace) -> int:
     return 0
 
 
+def _trace_matrix(args: argparse.Namespace) -> int:
+    from ifgm_ref.traceability import build_matrix, render_markdown
+
+    text = render_markdown(build_matrix(args.root))
+    out = Path(args.root) / args.out
+    if args.check:
+        current = out.read_text(encoding="utf-8") if out.is_file() else ""
+        if current != text:
+            print(f"{out} is out of date: run `ifgm-ref trace-matrix`", file=sys.stderr)
+            return 1
+        print(f"{out} is current", file=sys.stderr)
+        return 0
+    out.write_text(text, encoding="utf-8")
+    print(f"wrote {out}", file=sys.stderr)
+    return 0
+
+
 def _positive_float(text: str) -> float:
     try:
         value = float(text)
@@ -448,6 +465,26 @@ def build_parser() -> argparse.ArgumentParser:
         "--out", default="bench-results", metavar="DIR", help="output folder (bench-results)"
     )
     bench.set_defaults(func=_bench)
+
+    matrix = sub.add_parser(
+        "trace-matrix",
+        help="write the traceability matrix: each paper element's code, proofs, tests, figures",
+        description="Gather the paper-element markers of the code (@traces), proofs, tests "
+        "(@pytest.mark.paper) and notebooks of the project folder ROOT into a Markdown "
+        "matrix (docs/trace-matrix.md). With --check, only compare: exit 1 if the file is "
+        "out of date.",
+    )
+    matrix.add_argument(
+        "--root", default=".", metavar="DIR", help="the project folder (default: here)"
+    )
+    matrix.add_argument(
+        "--out",
+        default="docs/trace-matrix.md",
+        metavar="FILE",
+        help="output file, relative to --root (default docs/trace-matrix.md)",
+    )
+    matrix.add_argument("--check", action="store_true", help="compare instead of writing")
+    matrix.set_defaults(func=_trace_matrix)
 
     serve = sub.add_parser(
         "serve",

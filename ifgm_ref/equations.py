@@ -44,6 +44,7 @@ from __future__ import annotations
 import math
 
 from ifgm_ref.errors import ParameterError
+from ifgm_ref.paper import traces
 from ifgm_ref.pose import Point, wrap_angle
 
 __all__ = [
@@ -64,6 +65,7 @@ __all__ = [
 # --------------------------------------------------------------------------------------------
 
 
+@traces("eq1")
 def eq1_gap_midpoint(p1: tuple[float, float], p2: tuple[float, float]) -> Point:
     r"""Return the midpoint of the gap between two obstacle points, equation (1).
 
@@ -105,6 +107,7 @@ def eq1_gap_midpoint(p1: tuple[float, float], p2: tuple[float, float]) -> Point:
 # --------------------------------------------------------------------------------------------
 
 
+@traces("eq2")
 def eq2_gap_angle_literal(x_g: float, y_g: float) -> float:
     r"""Return ``theta_g`` exactly as printed in equation (2): the ratio ``y_g / x_g``.
 
@@ -154,6 +157,7 @@ def eq2_gap_angle_literal(x_g: float, y_g: float) -> float:
     return y_g / x_g
 
 
+@traces("eq2")
 def eq2_gap_angle(x_g: float, y_g: float) -> float:
     r"""Return the gap centre angle ``theta_g = atan2(y_g, x_g)``, equation (2) as run.
 
@@ -202,6 +206,7 @@ def eq2_gap_angle(x_g: float, y_g: float) -> float:
     return math.atan2(y_g, x_g)
 
 
+@traces("fgm")
 def fgm_gap_centre_angle(d1: float, phi1: float, d2: float, phi2: float) -> float:
     r"""Return FGM's gap centre angle from the two gap borders (cosine and Apollonius theorems).
 
@@ -284,6 +289,7 @@ def fgm_gap_centre_angle(d1: float, phi1: float, d2: float, phi2: float) -> floa
 # --------------------------------------------------------------------------------------------
 
 
+@traces("eq3")
 def eq3_goal_angle_literal(current: tuple[float, float], destination: tuple[float, float]) -> float:
     r"""Return ``theta_d`` exactly as printed in equation (3): the arctan of a ratio.
 
@@ -335,6 +341,7 @@ def eq3_goal_angle_literal(current: tuple[float, float], destination: tuple[floa
     return math.atan((y_d - y_c) / (x_d - x_c))
 
 
+@traces("eq3")
 def eq3_goal_angle(current: tuple[float, float], destination: tuple[float, float]) -> float:
     r"""Return the destination angle ``theta_d = atan2(y_d - y_c, x_d - x_c)``, eq. (3) as run.
 
@@ -414,6 +421,7 @@ def _check_angles(**angles: float) -> None:
             raise ParameterError(f"`{name}` must be finite, got {value!r}")
 
 
+@traces("eq4")
 def eq4_final_heading_literal(
     theta_g: float, theta_d: float, *, w_g: float, w_d: float, d_th: float
 ) -> float:
@@ -484,6 +492,7 @@ def _robot_frame_mean(
     return _wrap(heading + mean)
 
 
+@traces("eq4")
 def eq4_final_heading(
     theta_g: float,
     theta_d: float,
@@ -552,6 +561,7 @@ def eq4_final_heading(
     return _robot_frame_mean(theta_g, theta_d, w_g / d_th, w_d, heading)
 
 
+@traces("fgm")
 def eq4_final_heading_fgm(
     theta_g: float,
     theta_d: float,

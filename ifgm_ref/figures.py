@@ -30,6 +30,7 @@ import shapely
 from matplotlib.figure import Figure
 from tqdm import tqdm
 
+from ifgm_ref.paper import traces
 from ifgm_ref.params import PAPER_FREE_DISTANCE_FT, PAPER_FREE_TIME_S
 from ifgm_ref.planners import make_planner
 from ifgm_ref.plotting import draw_path, draw_world
@@ -122,6 +123,7 @@ def _distance_time(title: str, world_name: str, planners: Iterable[tuple[str, st
     return fig
 
 
+@traces("s5.free_run")
 def figure4() -> Figure:
     """Figure 4: trajectories in Scenario 1 of (a) any algorithm, no obstacle, (b) Bug-1,
     (c) Bug-2."""
@@ -132,6 +134,7 @@ def figure4() -> Figure:
     )
 
 
+@traces("s5.iba_beats_distbug", "s5.fgm_equals_ifgm", "s5.ifgm_smoothest")
 def figure5() -> Figure:
     """Figure 5: trajectories in Scenario 1 of (a) Dist-Bug, (b) IBA, (c) FGM, (d) IFGM."""
     return _panels(
@@ -146,6 +149,7 @@ def figure5() -> Figure:
     )
 
 
+@traces("s5.scenario1_times")
 def figure6() -> Figure:
     """Figure 6: distance to the destination against time in Scenario 1."""
     return _distance_time(
@@ -161,6 +165,7 @@ def figure6() -> Figure:
     )
 
 
+@traces("s5.symmetric")
 def figure7() -> Figure:
     """Figure 7: IFGM among three symmetric obstacles, far apart (a, c) and close (b, d)."""
     return _panels(
@@ -175,6 +180,7 @@ def figure7() -> Figure:
     )
 
 
+@traces("s5.fgm_trapped", "s5.ifgm_u_h")
 def figure8() -> Figure:
     """Figure 8: (a) FGM trapped in the U, (b) IFGM through the U and the H."""
     return _panels(
@@ -184,6 +190,7 @@ def figure8() -> Figure:
     )
 
 
+@traces("s5.scenario2_times")
 def figure9() -> Figure:
     """Figure 9: distance to the destination against time in Scenario 2, FGM and IFGM."""
     return _distance_time(
@@ -235,6 +242,15 @@ def _time_row(planner: str) -> Row:
     )
 
 
+@traces(
+    "s5.free_run",
+    "s5.scenario1_times",
+    "s5.iba_beats_distbug",
+    "s5.fgm_equals_ifgm",
+    "s5.ifgm_smoothest",
+    "s5.fgm_trapped",
+    "s5.ifgm_u_h",
+)
 def reproduction_rows() -> list[Row]:
     """Every number and qualitative claim of section 5, the paper's against ours."""
     s1 = resolve_world("scenario1")
@@ -400,7 +416,9 @@ def write_all(out: str | Path = "paper_figs", *, progress: bool | None = None) -
             (".svg", {"metadata": {"Date": None}}),
         ):
             path = out / f"{stem}{suffix}"
-            fig.savefig(path, dpi=110, **extra)
+            # a fixed salt for the SVG's clip-path ids, else random: the same bytes every run
+            with plt.rc_context({"svg.hashsalt": "ifgm-ref"}):
+                fig.savefig(path, dpi=110, **extra)
             written.append(path)
         plt.close(fig)
     rows = reproduction_rows()

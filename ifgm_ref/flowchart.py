@@ -25,6 +25,8 @@ from typing import Any
 
 import numpy as np
 
+from ifgm_ref.paper import traces
+
 
 class Branch(StrEnum):
     """The branches of the reconstructed Figure 3, as they appear in traces."""
@@ -120,6 +122,7 @@ IBA_BRANCHES = frozenset(
 )
 
 
+@traces("fig3.partition", "fig3.both_conditions")
 def decide(atoms: Atoms) -> Branch:
     """The one Figure 3 branch whose guard holds for ``atoms`` (plain or numpy booleans).
 

@@ -15,6 +15,7 @@ from dataclasses import dataclass, fields
 from typing import Any, Self
 
 from ifgm_ref.errors import ParameterError
+from ifgm_ref.paper import traces
 
 #: Straight-line source-to-destination distance of the paper's Scenario 1, ft (section 5.1).
 PAPER_FREE_DISTANCE_FT = 197.0
@@ -87,6 +88,7 @@ class RobotParams(_Block):
         _require("max_turn_rate", self.max_turn_rate, positive=True)
 
 
+@traces("sensor.fov")
 @dataclass(frozen=True)
 class SensorParams(_Block):
     """The paper's IR range sensor on a stepper motor (section 4, Figure 2).

@@ -18,6 +18,7 @@ from enum import StrEnum
 from typing import Any, Protocol, runtime_checkable
 
 from ifgm_ref.laserscan import LaserScan
+from ifgm_ref.paper import traces
 from ifgm_ref.params import RobotParams, SensorParams
 from ifgm_ref.pose import Point, Pose
 
@@ -44,6 +45,7 @@ class EpisodeParams:
     goal_tolerance: float = 0.5
 
 
+@traces("s3.no_map")
 @dataclass(frozen=True)
 class Observation:
     """What a planner sees at one step: time (s), pose, goal and scan."""

@@ -14,6 +14,7 @@ import functools
 import sympy as sp
 
 from ifgm_ref.equations import eq1_gap_midpoint
+from ifgm_ref.paper import traces
 from proofs._util import Derivation, entry_points
 
 __all__ = ["claims", "derivation", "main"]
@@ -28,6 +29,7 @@ def _sq(v: sp.Matrix) -> sp.Expr:
     return (v.T * v)[0, 0]
 
 
+@traces("eq1")
 @functools.cache
 def derivation() -> Derivation:
     """Build the derivation of eq. (1), checking every claim (raises ``ClaimFailed``)."""

@@ -25,6 +25,7 @@ from ifgm_ref.equations import (
     eq2_gap_angle_literal,
     fgm_gap_centre_angle,
 )
+from ifgm_ref.paper import traces
 from proofs._util import Derivation, entry_points, held_eq
 
 __all__ = ["claims", "derivation", "main"]
@@ -35,6 +36,7 @@ def expand_trig_then_simplify(expr: sp.Basic) -> sp.Basic:
     return sp.simplify(sp.expand_trig(expr))
 
 
+@traces("eq2")
 @functools.cache
 def derivation() -> Derivation:
     """Build the derivation of eq. (2), checking every claim (raises ``ClaimFailed``)."""

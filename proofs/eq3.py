@@ -15,11 +15,13 @@ import math
 import sympy as sp
 
 from ifgm_ref.equations import eq3_goal_angle, eq3_goal_angle_literal
+from ifgm_ref.paper import traces
 from proofs._util import Derivation, entry_points, held_eq
 
 __all__ = ["claims", "derivation", "main"]
 
 
+@traces("eq3")
 @functools.cache
 def derivation() -> Derivation:
     """Build the derivation of eq. (3), checking every claim (raises ``ClaimFailed``)."""

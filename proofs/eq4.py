@@ -19,6 +19,7 @@ from ifgm_ref.equations import (
     eq4_final_heading_fgm,
     eq4_final_heading_literal,
 )
+from ifgm_ref.paper import traces
 from proofs._util import Derivation, entry_points, held_eq, wrap_exact
 
 __all__ = ["claims", "derivation", "main"]
@@ -31,6 +32,7 @@ def final_heading(
     return ((w_g / d_th) * theta_g + w_d * theta_d) / (w_g / d_th + w_d)
 
 
+@traces("eq4")
 @functools.cache
 def derivation() -> Derivation:
     """Build the derivation of eq. (4), checking every claim (raises ``ClaimFailed``)."""

@@ -19,6 +19,7 @@ import sympy as sp
 from sympy.logic.inference import satisfiable
 
 from ifgm_ref.flowchart import GUARDS, Atoms, Branch
+from ifgm_ref.paper import traces
 from ifgm_ref.planners.ifgm import DEAD_END_MAX_STEPS, DEAD_END_STEP
 from proofs._util import Derivation, entry_points
 
@@ -30,6 +31,7 @@ def _never(formula: sp.Basic) -> sp.Basic:
     return sp.true if satisfiable(formula) is False else sp.false
 
 
+@traces("fig3.partition", "fig3.both_conditions", "fig3.dead_end", "fig3.case2")
 def build(guards: dict[Branch, object] | None = None) -> Derivation:
     """Check every claim about ``guards`` (default: the code's); raises ``ClaimFailed``."""
     guards = GUARDS if guards is None else guards
@@ -78,14 +80,51 @@ def build(guards: dict[Branch, object] | None = None) -> Derivation:
         _never(g[Branch.CASE1_GAP].subs(a.wide, sp.false)),
         "with no gap wider than d_th, Case-1 is never taken, whatever the other atoms",
     )
-    d.prove_true(
-        "dead_end_turns_end_at_a_half_turn",
-        sp.true if math.pi == DEAD_END_MAX_STEPS * DEAD_END_STEP else sp.false,
-        f"the dead-end rule turns at most {DEAD_END_MAX_STEPS} steps of 45 degrees: 180 "
-        "degrees (exact in floating point: 4 * (pi / 4) == pi); then it goes the 180-degree "
-        "way, where it came from",
-    )
+    _dead_end_claims(d)
     return d
+
+
+def _dead_end_claims(d: Derivation) -> None:
+    """The 45-degree rule (section 4, section 5.2) as the code runs it (``_dead_end``): step
+    ``k`` turns to ``theta_0 + s * k * DEAD_END_STEP``; while the way ahead is not free and
+    ``k < DEAD_END_MAX_STEPS`` it takes the next step, else it drives the way it faces."""
+    step = sp.nsimplify(DEAD_END_STEP / math.pi) * sp.pi  # the code's float, as a multiple of pi
+    steps = sp.Integer(DEAD_END_MAX_STEPS)
+    k, theta0 = sp.symbols("k theta_0", real=True)
+    d.text(
+        f"""
+        The dead-end rule, from the code's constants: a step of {step} rad, at most {steps}
+        steps. Turn k faces theta_0 + s k step (s = +1 or -1, towards the freer side); it
+        turns again only while the way ahead is not free and k < {steps}.
+        """
+    )
+    d.prove_equal(
+        "dead_end_step_is_45_degrees", step, sp.pi / 4, "each turn is 45 degrees (section 4)"
+    )
+    turns = sp.Matrix([j * step for j in range(1, DEAD_END_MAX_STEPS + 1)])
+    d.prove_true(
+        "dead_end_turns_45_90_135_180",
+        sp.Eq(turns, sp.Matrix([sp.pi / 4, sp.pi / 2, 3 * sp.pi / 4, sp.pi])),
+        "the turns face 45, 90, 135 and 180 degrees from the heading at the dead end, and no more",
+        shown=turns,
+    )
+    variant = steps - k
+    half = steps * step  # the last turn, either way
+    d.prove_equal(
+        "dead_end_terminates",
+        variant.subs(k, k + 1) - variant,
+        sp.Integer(-1),
+        f"the variant {steps} - k, a natural number while k <= {steps}, drops by 1 at every "
+        f"turn that finds no free way: the rule ends after at most {steps} turns",
+    )
+    d.prove_equal(
+        "no_free_direction_turns_back",
+        sp.Matrix([[sp.cos(theta0 + a), sp.sin(theta0 + a)] for a in (half, -half)]),
+        -sp.Matrix([[sp.cos(theta0), sp.sin(theta0)]] * 2),
+        "when no direction is free, the last turn faces exactly back the way the robot came "
+        "(for either turning side), and the robot drives that way (section 5.2: 'starts "
+        "moving back')",
+    )
 
 
 @functools.cache

@@ -133,6 +133,7 @@ def test_rows_of_one_world() -> None:
     assert straight.collided and straight.stop_reason == "collision"
 
 
+@pytest.mark.paper("t1.fgm_u", "s5.fgm_trapped")
 def test_fgm_is_trapped_only_by_a_u_that_fills_its_view() -> None:
     """Table 1 and Figure 8: FGM is trapped in a U. It is in ``u_trap`` (24 ft across, 16 ft
     deep, met mouth first on the line); in the benchmark's smaller U (u-0000: 16 ft across)
@@ -142,6 +143,29 @@ def test_fgm_is_trapped_only_by_a_u_that_fills_its_view() -> None:
     assert not trapped.reached and trapped.stop_reason == "time_limit" and not trapped.collided
     (escaped,) = run_world(WorldSpec.generated("u", 0, 0), ("fgm",))
     assert escaped.reached
+
+
+@pytest.mark.paper("t1.bug_long_paths", "s3.shorter")
+@pytest.mark.parametrize("index", [0, 1, 2])
+def test_bug1_takes_the_longest_way_round(index: int) -> None:
+    """Table 1: with the Bug algorithms "the trajectories followed are sometimes very long";
+    section 3: the approach "offers comparatively lesser trajectory". In the benchmark's U
+    worlds u-0000 to u-0002 (seed 0) every boundary follower and IFGM arrives; Bug1, which
+    goes round the whole U before leaving, has the largest ratio of path to shortest path of
+    the five, and IFGM's is below both Bug1's and Bug2's (measured: Bug1 3.03, 2.56, 3.73;
+    Bug2 1.68, 1.61, 1.96; IFGM 1.19, 1.30, 1.54)."""
+    rows = run_world(WorldSpec.generated("u", 0, index), ("bug1", "bug2", "distbug", "iba", "ifgm"))
+    ratio: dict[str, float] = {}
+    for row in rows:
+        assert row.reached and not row.collided and row.path_ratio is not None, row
+        ratio[row.planner] = row.path_ratio
+    others = {p: v for p, v in ratio.items() if p != "bug1"}
+    assert all(ratio["bug1"] > v for v in others.values()), (
+        f"bug1={ratio['bug1']:.3f}, but should be the largest ratio {ratio}"
+    )
+    assert ratio["ifgm"] < min(ratio["bug1"], ratio["bug2"]), (
+        f"ifgm={ratio['ifgm']:.3f}, but should be below bug1 and bug2 {ratio}"
+    )
 
 
 @settings(max_examples=8, deadline=None)

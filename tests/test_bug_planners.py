@@ -275,6 +275,7 @@ def test_bug2_path_is_within_d_plus_half_the_crossed_perimeters(world_name: str)
 
 
 # -- leaving points ---------------------------------------------------------------------------
+@pytest.mark.paper("bug1")
 @pytest.mark.parametrize("world_name", [*BOUND_WORLDS, "pocket"])
 def test_bug1_leaves_each_obstacle_at_its_point_nearest_the_goal(world_name: str) -> None:
     """Q is the point of the followed curve (the obstacle buffered by the stand-off) nearest
@@ -296,6 +297,7 @@ def test_bug1_leaves_each_obstacle_at_its_point_nearest_the_goal(world_name: str
         )
 
 
+@pytest.mark.paper("bug1")
 def test_bug1_goes_round_once_then_follows_to_q() -> None:
     branches = [s.branch for s in run("bug1", "box").trace]
     first = {b: branches.index(b) for b in set(branches) - {None}}
@@ -305,6 +307,7 @@ def test_bug1_goes_round_once_then_follows_to_q() -> None:
     assert first["follow_to_q"] < first["leave_at_q"]
 
 
+@pytest.mark.paper("bug2")
 @pytest.mark.parametrize("world_name", REACHABLE[1:])
 def test_bug2_leaves_on_the_m_line_nearer_the_goal(world_name: str) -> None:
     w = world(world_name)
@@ -322,6 +325,7 @@ def test_bug2_leaves_on_the_m_line_nearer_the_goal(world_name: str) -> None:
         assert distance(leave.position, w.goal) < distance(hit, w.goal), (hit, leave)
 
 
+@pytest.mark.paper("distbug")
 def test_distbug_leaves_earlier_than_bug1_on_box() -> None:
     """The ordering of the paper's Figures 4b and 5a: DistBug leaves the box as soon as the
     free range promises progress, Bug1 only after going round it once and on to Q."""
@@ -331,6 +335,7 @@ def test_distbug_leaves_earlier_than_bug1_on_box() -> None:
     assert distbug.time_s < bug1.time_s
 
 
+@pytest.mark.paper("distbug")
 @pytest.mark.parametrize("world_name", REACHABLE[1:])
 def test_distbug_leaves_no_farther_from_the_goal_than_d_min_minus_step(world_name: str) -> None:
     """Kamon and Rivlin: each hit point is at least Step nearer the goal than the previous

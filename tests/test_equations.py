@@ -133,6 +133,7 @@ def _rotate(p: tuple[float, float], phi: float) -> tuple[float, float]:
 # ---- equation (1) --------------------------------------------------------------------------
 
 
+@pytest.mark.paper("eq1")
 @given(data=st.data())
 def test_eq1_midpoint_equidistant(data: st.DataObject) -> None:
     """proofs.eq1:midpoint_equidistant, on floats."""
@@ -159,6 +160,7 @@ def test_eq1_scaling_equivariant(data: st.DataObject) -> None:
         assert math.isclose(scaled[axis], k * expected[axis], rel_tol=0.0, abs_tol=tol)
 
 
+@pytest.mark.paper("eq1")
 @given(data=st.data())
 def test_eq1_rotation_equivariant(data: st.DataObject) -> None:
     """eq1(R P1, R P2) = R eq1(P1, P2) (proofs.eq1:rotation_equivariant)."""
@@ -184,6 +186,7 @@ def test_eq2_literal_agrees_with_atan2_ahead(data: st.DataObject) -> None:
     assert math.isclose(literal, eq2_gap_angle(x_g, y_g), rel_tol=0.0, abs_tol=ANGLE_TOL)
 
 
+@pytest.mark.paper("eq2")
 @given(data=st.data())
 def test_eq2_literal_differs_by_pi_behind(data: st.DataObject) -> None:
     """x_g < 0: atan of the printed ratio is off by exactly pi (proofs.eq3, same algebra)."""
@@ -193,6 +196,7 @@ def test_eq2_literal_differs_by_pi_behind(data: st.DataObject) -> None:
     assert math.isclose(abs(difference), math.pi, rel_tol=0.0, abs_tol=ANGLE_TOL)
 
 
+@pytest.mark.paper("eq2")
 @given(data=st.data())
 def test_eq2_literal_is_ratio_not_angle(data: st.DataObject) -> None:
     """The printed ratio tan(theta_g) exceeds |theta_g| off the heading (proofs.eq2:ratio_series).
@@ -229,6 +233,7 @@ def test_eq2_scaling_invariant(data: st.DataObject) -> None:
     assert _angle_distance(scaled, original) <= TRANSFORMED_ANGLE_TOL
 
 
+@pytest.mark.paper("eq2")
 @given(data=st.data())
 def test_eq2_rotation_equivariant(data: st.DataObject) -> None:
     """Rotating both points turns theta_g as much (proofs.eq2:direction_rotation_equivariant)."""
@@ -302,6 +307,7 @@ def test_eq3_literal_agrees_ahead(data: st.DataObject) -> None:
     assert math.isclose(literal, eq3_goal_angle(current, destination), abs_tol=ANGLE_TOL)
 
 
+@pytest.mark.paper("eq3")
 @given(data=st.data())
 def test_eq3_literal_differs_by_pi_behind(data: st.DataObject) -> None:
     """x_d < x_c: the printed arctan is off by exactly pi
@@ -318,6 +324,7 @@ def test_eq3_literal_differs_by_pi_behind(data: st.DataObject) -> None:
     assert _angle_distance(literal, eq3_goal_angle(current, destination) + math.pi) <= ANGLE_TOL
 
 
+@pytest.mark.paper("eq3")
 @given(data=st.data())
 def test_eq3_points_at_destination(data: st.DataObject) -> None:
     """The interpreted angle's unit vector is (destination - current)/distance."""
@@ -379,6 +386,7 @@ def test_eq4_interpreted_agrees_with_literal_in_robot_frame(data: st.DataObject)
         assert _angle_distance(interpreted, literal) <= ANGLE_TOL
 
 
+@pytest.mark.paper("eq4")
 @given(data=st.data())
 def test_eq4_interpreted_between_inputs_in_robot_frame(data: st.DataObject) -> None:
     """Relative to the heading, theta_f lies between the relative gap and goal angles.
@@ -442,6 +450,7 @@ def test_eq4_literal_depends_on_angle_representation(data: st.DataObject) -> Non
     assert math.isclose(turned - base, 2 * math.pi * k * goal_share, rel_tol=0.0, abs_tol=1e-13)
 
 
+@pytest.mark.paper("eq4")
 @given(data=st.data())
 def test_eq4_interpreted_rotation_equivariant(data: st.DataObject) -> None:
     """Turning the frame by phi (inputs and heading) turns theta_f by phi."""
@@ -459,6 +468,7 @@ def test_eq4_interpreted_rotation_equivariant(data: st.DataObject) -> None:
     assert _angle_distance(turned, base + phi) <= 1e-14
 
 
+@pytest.mark.paper("eq4")
 @given(data=st.data())
 def test_eq4_wraparound_counterexample(data: st.DataObject) -> None:
     """Gap and goal either side of +-pi: the printed mean points back, the robot-frame mean on
@@ -487,6 +497,7 @@ def test_eq4_goal_straight_behind() -> None:
     assert right == pytest.approx((0.5 - math.pi) / 2)
 
 
+@pytest.mark.paper("eq4")
 @given(data=st.data())
 def test_eq4_limits(data: st.DataObject) -> None:
     """w_g = 0 gives theta_d, w_d = 0 gives theta_g (proofs.eq4:limit_w_g_to_0, limit_w_d_to_0)."""

@@ -153,6 +153,7 @@ def test_fgm_no_obstacle_heads_for_the_goal() -> None:
         assert decision.gap is None and decision.d_min == math.inf
 
 
+@pytest.mark.paper("fgm")
 def test_fgm_one_obstacle_ahead_gives_a_gap_to_the_side() -> None:
     # A short wall 4 ft ahead, -10 to +10 degrees, the goal straight behind it.
     wall = [(math.radians(a), 4.0 / math.cos(math.radians(a))) for a in range(-10, 11)]
@@ -175,6 +176,7 @@ def test_fgm_one_obstacle_ahead_gives_a_gap_to_the_side() -> None:
     assert abs(decision.heading - centre) < abs(decision.heading)
 
 
+@pytest.mark.paper("fgm")
 def test_fgm_two_posts_heading_between_them() -> None:
     # Posts at -35 and +35 degrees, 5 ft away; the goal 0.3 rad to the left.
     scan = scan_with_points([(math.radians(-35.0), 5.0), (math.radians(35.0), 5.0)])
@@ -190,6 +192,7 @@ def test_fgm_two_posts_heading_between_them() -> None:
     assert gap.right_angle < decision.heading < gap.left_angle
 
 
+@pytest.mark.paper("fgm")
 def test_fgm_gap_centre_is_the_direction_of_the_border_midpoint() -> None:
     # Unequal borders: the centre is not the angular bisector but the midpoint's direction.
     scan = scan_with_points([(math.radians(-30.0), 3.0), (math.radians(40.0), 9.0)])
@@ -255,10 +258,12 @@ def test_find_gaps_are_the_maximal_runs_of_free_rays(scan: LaserScan) -> None:
 # --------------------------------------------------------------------------------------------
 
 
+@pytest.mark.paper("apf")
 def test_apf_attractive_force_is_k_att_times_goal_offset() -> None:
     assert attractive_force((4.0, -2.0), 0.5).tolist() == [2.0, -1.0]
 
 
+@pytest.mark.paper("apf")
 def test_apf_repulsive_force_is_the_firas_gradient() -> None:
     scan = scan_with_points([(0.5, 2.0)])
     (ray,) = np.flatnonzero(np.isfinite(scan.ranges))
@@ -382,6 +387,7 @@ def test_fgm_reaches_the_goal_in_box() -> None:
     assert result.path_length < 70.0  # straight line: 60 ft
 
 
+@pytest.mark.paper("t1.apf_u_h_symmetric")
 def test_apf_is_trapped_in_front_of_the_symmetric_box() -> None:
     # Table 1: APF "cannot avoid U, H-shaped and symmetric obstacles". The built-in box is
     # symmetric about the start-goal line; the robot halts in front of its face.
@@ -406,6 +412,7 @@ def test_apf_passes_a_post_off_the_line() -> None:
     assert result.reached and not result.collided
 
 
+@pytest.mark.paper("t1.fgm_u", "s5.fgm_trapped")
 def test_fgm_is_trapped_in_the_u() -> None:
     world = resolve_world("u_trap")
     run = simulate(world, FGMPlanner(), SimParams(max_time=TRAP_TIME))
@@ -417,6 +424,7 @@ def test_fgm_is_trapped_in_the_u() -> None:
     assert abs(wrap_angle(end.theta - bearing)) < 0.01  # stopped, facing the goal
 
 
+@pytest.mark.paper("t1.fgm_h")
 def test_fgm_is_trapped_at_the_mouth_of_the_h() -> None:
     world = resolve_world("h_block")
     run = simulate(world, FGMPlanner(), SimParams(max_time=TRAP_TIME))
@@ -428,6 +436,7 @@ def test_fgm_is_trapped_at_the_mouth_of_the_h() -> None:
     assert outside_by((end.x, end.y), bounding_box(world)) < 3.0  # ... within 3 ft of it
 
 
+@pytest.mark.paper("t1.apf_u_h_symmetric")
 @pytest.mark.parametrize("world_name", ["u_trap", "h_block"])
 def test_apf_is_trapped_inside_the_cavity(world_name: str) -> None:
     world = resolve_world(world_name)

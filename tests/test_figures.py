@@ -6,6 +6,7 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
+import pytest
 import shapely
 
 from ifgm_ref.figures import FIGURES, reproduction_rows, table_csv, table_markdown, write_all
@@ -20,6 +21,13 @@ from ifgm_ref.world import Circle, Obstacle
 PAPER_FIGS = Path(__file__).resolve().parent.parent / "paper_figs"
 
 
+@pytest.mark.paper(
+    "s5.scenario1_times",
+    "s5.iba_beats_distbug",
+    "s5.fgm_equals_ifgm",
+    "s5.ifgm_smoothest",
+    "s5.scenario2_times",
+)
 def test_committed_reproduction_table_is_what_the_code_computes() -> None:
     rows = reproduction_rows()
     assert (PAPER_FIGS / "reproduction.csv").read_text() == table_csv(rows)
@@ -41,6 +49,7 @@ def test_scenario1_is_197_ft_with_two_obstacles_on_the_line() -> None:
     assert len(on_line) == 2 and len(world.obstacles) > 2
 
 
+@pytest.mark.paper("s5.free_run", "fig3.move_to_goal")
 def test_the_free_run_takes_149_seconds() -> None:
     assert PAPER_FREE_DISTANCE_FT / RobotParams().speed == PAPER_FREE_TIME_S
     result = simulate(resolve_world("free"), IFGMPlanner()).result
@@ -63,6 +72,7 @@ def test_the_u_of_scenario2_opens_towards_the_source() -> None:
     assert math.isclose(cy, 0.0, abs_tol=1e-9)
 
 
+@pytest.mark.paper("s5.symmetric")
 def test_figure7_gaps_are_on_the_documented_sides_of_d_th() -> None:
     planner = IFGMPlanner()
     planner.reset(Pose(0.0, 0.0, 0.0), Point(80.0, 0.0), EpisodeParams())

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import itertools
+import math
 import re
 
 import pytest
@@ -16,6 +17,7 @@ def test_every_branch_has_a_guard() -> None:
     assert set(GUARDS) == set(Branch)
 
 
+@pytest.mark.paper("fig3.partition")
 def test_guards_partition_every_combination_of_atoms() -> None:
     """Exhaustive over all 2**10 atom values (the sympy proof is the general statement)."""
     taken = {decide(Atoms(*values)) for values in ALL_ATOMS}
@@ -29,6 +31,7 @@ def test_decide_rejects_guards_that_overlap(monkeypatch: pytest.MonkeyPatch) -> 
         decide(atoms)
 
 
+@pytest.mark.paper("fig3.both_conditions")
 @pytest.mark.parametrize("values", ALL_ATOMS[::37])
 def test_case1_needs_both_conditions_of_section_4(values: tuple[bool, ...]) -> None:
     """Case-1 (FGM) only if max gap > d_th and nearest > d_obs, with obstacles both sides."""
@@ -37,6 +40,7 @@ def test_case1_needs_both_conditions_of_section_4(values: tuple[bool, ...]) -> N
         assert atoms.wide and not atoms.close and not atoms.one_sided and atoms.blocked
 
 
+@pytest.mark.paper("fig3.case2")
 def test_widening_the_gap_moves_case2_to_case1_never_back() -> None:
     for values in ALL_ATOMS:
         narrow = Atoms(*values)
@@ -58,6 +62,7 @@ def test_the_diagram_names_every_branch() -> None:
     assert nodes == {str(b) for b in Branch}
 
 
+@pytest.mark.paper("fig3.partition")
 def test_sympy_proves_the_guards_partition_the_atoms() -> None:
     from proofs import flowchart
 
@@ -68,7 +73,10 @@ def test_sympy_proves_the_guards_partition_the_atoms() -> None:
         "case1_needs_both_conditions",
         "widening_the_gap_moves_case2_to_case1",
         "no_case1_without_a_wide_gap",
-        "dead_end_turns_end_at_a_half_turn",
+        "dead_end_step_is_45_degrees",
+        "dead_end_turns_45_90_135_180",
+        "dead_end_terminates",
+        "no_free_direction_turns_back",
     ]
 
 
@@ -85,3 +93,19 @@ def test_the_proof_rejects_broken_guards(branch: Branch, guard: object, failing:
 
     with pytest.raises(ClaimFailed, match=failing):
         flowchart.build({**GUARDS, branch: guard})  # type: ignore[dict-item]
+
+
+@pytest.mark.paper("fig3.dead_end")
+@pytest.mark.parametrize(("step", "steps"), [(math.pi / 3, 4), (math.pi / 4, 3)])
+def test_the_dead_end_proof_rejects_other_turns(
+    monkeypatch: pytest.MonkeyPatch, step: float, steps: int
+) -> None:
+    """60-degree turns, or only three of them, fail the proof (it reads the code's
+    constants); the reference's pass it."""
+    from proofs import flowchart
+    from proofs._util import ClaimFailed, Derivation
+
+    monkeypatch.setattr(flowchart, "DEAD_END_STEP", step)
+    monkeypatch.setattr(flowchart, "DEAD_END_MAX_STEPS", steps)
+    with pytest.raises(ClaimFailed):
+        flowchart._dead_end_claims(Derivation("dead end", "broken"))

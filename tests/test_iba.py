@@ -2,17 +2,19 @@
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import pytest
 
 from ifgm_ref.laserscan import Beam, LaserScan
+from ifgm_ref.planners import make_planner
 from ifgm_ref.planners.edge_following import FollowSide
 from ifgm_ref.planners.iba import IBAPlanner, beam_openness, freer_side
 from ifgm_ref.pose import Pose
 from ifgm_ref.scenarios import resolve_world
 from ifgm_ref.simulator import simulate
-from ifgm_ref.world import World
+from ifgm_ref.world import Polygon, World
 
 ANGLES = dict(angle_min=-1.0, angle_max=1.0, angle_increment=0.5, range_min=0.0, range_max=10.0)
 
@@ -24,6 +26,7 @@ def test_reaches_the_goal_without_collision(name: str) -> None:
     assert result.min_clearance > 0.0
 
 
+@pytest.mark.paper("iba.bidirectional")
 def test_turns_towards_the_freer_beam() -> None:
     left_open = LaserScan(**ANGLES, ranges=[2.0, 2.0, 3.0, math.inf, math.inf])
     right_open = LaserScan(**ANGLES, ranges=[math.inf, 9.0, 3.0, 2.0, 2.0])
@@ -53,6 +56,7 @@ def _mirrored(world: World) -> World:
     )
 
 
+@pytest.mark.paper("iba.bidirectional", "s3.bidirectional")
 def test_bidirectional_goes_round_the_side_with_room() -> None:
     """offset_box juts into the path from the left: IBA goes right of it; mirrored, left."""
     world = resolve_world("offset_box")
@@ -63,6 +67,7 @@ def test_bidirectional_goes_round_the_side_with_room() -> None:
     assert run.result.path_length == pytest.approx(mirrored.result.path_length, rel=1e-9)
 
 
+@pytest.mark.paper("iba.leave_free_path", "s3.clear_path")
 def test_leaves_at_the_first_free_path_not_after_a_loop() -> None:
     run = simulate(resolve_world("box"), IBAPlanner())
     branches = [s.branch for s in run.trace]
@@ -70,3 +75,23 @@ def test_leaves_at_the_first_free_path_not_after_a_loop() -> None:
     follow = branches.count("follow_edge")
     # The box is 4 x 10 ft: half its perimeter at the stand-off is about 20 ft, 150 steps.
     assert 0 < follow < 200
+
+
+@pytest.mark.paper("t1.bug_unidirectional", "iba.bidirectional", "s3.bidirectional")
+def test_one_way_turning_costs_time_where_the_room_is_on_the_other_side() -> None:
+    """Table 1: "Unidirectional obstacle avoidance approach may further increase traversal
+    time". DistBug always turns left; with the box left of the line it goes the long way
+    round, slower than IBA, which turns towards the freer beam; mirrored, the two coincide."""
+    world = resolve_world("offset_box")
+    mirrored = dataclasses.replace(
+        world,
+        obstacles=tuple(
+            Polygon(tuple((x, -y) for x, y in reversed(ob.vertices))) for ob in world.obstacles
+        ),
+    )
+
+    def time_s(planner: str, w: World) -> float:
+        return simulate(w, make_planner(planner)).result.time_s
+
+    assert time_s("distbug", world) > 1.1 * time_s("iba", world)
+    assert time_s("distbug", mirrored) == time_s("iba", mirrored)

@@ -12,9 +12,10 @@ import pytest
 from ifgm_ref.equations import eq1_gap_midpoint, eq2_gap_angle, eq3_goal_angle, eq4_final_heading
 from ifgm_ref.errors import ParameterError
 from ifgm_ref.flowchart import Atoms, Branch
+from ifgm_ref.params import RobotParams
 from ifgm_ref.percepts.clusters import Gap
 from ifgm_ref.planners.ifgm import DEAD_END_STEP, IFGMPlanner
-from ifgm_ref.pose import Pose, wrap_angle
+from ifgm_ref.pose import Point, Pose, wrap_angle
 from ifgm_ref.protocol import Command, EpisodeParams, Observation
 from ifgm_ref.scenarios import BUILTIN_WORLDS, resolve_world
 from ifgm_ref.simulator import Run, simulate
@@ -78,6 +79,7 @@ def _decisions(branch: Branch) -> list[Decision]:
     return found
 
 
+@pytest.mark.paper("fig3.case1")
 def test_case1_heading_is_eq4_of_the_current_gap_and_goal() -> None:
     planner = IFGMPlanner()
     planner.reset(Pose(0, 0, 0), resolve_world("box").goal, EpisodeParams())
@@ -96,6 +98,7 @@ def test_case1_heading_is_eq4_of_the_current_gap_and_goal() -> None:
         assert d.command.heading == pytest.approx(expected, abs=1e-12)
 
 
+@pytest.mark.paper("fig3.case2")
 @pytest.mark.parametrize(
     "branch", [Branch.CASE2_NARROW_GAP, Branch.CASE2_ONE_SIDED, Branch.TOO_CLOSE]
 )
@@ -107,11 +110,13 @@ def test_case2_is_taken_only_where_case1_is_false(branch: Branch) -> None:
         assert d.command.behaviour == "obstacle_avoidance"
 
 
+@pytest.mark.paper("fig3.case3", "t1.bug_other_obstacles")
 def test_case3_preempts_with_a_nearer_obstacle() -> None:
     for d in _decisions(Branch.CASE3_PREEMPT):
         assert d.atoms.avoiding and d.atoms.preempt and not d.atoms.free
 
 
+@pytest.mark.paper("fig3.regenerate")
 def test_path_regenerated_heads_for_the_goal_on_a_free_path() -> None:
     for d in _decisions(Branch.PATH_REGENERATED):
         pose = d.observation.pose
@@ -119,6 +124,7 @@ def test_path_regenerated_heads_for_the_goal_on_a_free_path() -> None:
         assert d.command.heading == eq3_goal_angle(pose.position, d.observation.goal)
 
 
+@pytest.mark.paper("fig3.dead_end")
 @pytest.mark.parametrize("name", ["u_trap", "h_block"])
 def test_dead_end_turns_in_45_degree_steps_in_place(name: str) -> None:
     decisions = run_in(name)[1].decisions
@@ -133,6 +139,7 @@ def test_dead_end_turns_in_45_degree_steps_in_place(name: str) -> None:
     assert len({math.copysign(1, s) for s in steps}) == 1, "turned both ways"
 
 
+@pytest.mark.paper("s5.ifgm_u_h")
 def test_fgm_alone_cannot_do_what_ifgm_does_in_the_u() -> None:
     branches = Counter(d.command.branch for d in run_in("u_trap")[1].decisions)
     assert branches[Branch.DEAD_END_TURN] > 0 and branches[Branch.FOLLOW_EDGE] > 0
@@ -143,6 +150,7 @@ def test_same_world_same_trace_bit_for_bit() -> None:
     assert simulate(world, IFGMPlanner()).trace == simulate(world, IFGMPlanner()).trace
 
 
+@pytest.mark.paper("d_th")
 @pytest.mark.parametrize(
     ("params", "message"),
     [
@@ -154,3 +162,28 @@ def test_same_world_same_trace_bit_for_bit() -> None:
 def test_bad_parameters_are_rejected(params: dict[str, float], message: str) -> None:
     with pytest.raises(ParameterError, match=message):
         IFGMPlanner().reset(Pose(0, 0, 0), resolve_world("box").goal, EpisodeParams(params=params))
+
+
+def _thresholds(radius: float, speed: float, **params: float) -> tuple[float, float]:
+    planner = IFGMPlanner()
+    robot = RobotParams(radius=radius, speed=speed)
+    planner.reset(Pose(0, 0, 0), Point(30.0, 0.0), EpisodeParams(robot=robot, params=params))
+    return planner.d_th, planner.d_obs
+
+
+@pytest.mark.paper("d_th", "s3.robot_dimensions")
+def test_d_th_follows_the_robot_size() -> None:
+    """Section 4: d_th "is a function of the robot's dimensions" and must exceed its size: by
+    default the diameter plus one foot (errata row 12), whatever the speed."""
+    assert _thresholds(0.5, 1.0)[0] == 2.0
+    assert _thresholds(2.0, 1.0)[0] == 5.0 == _thresholds(2.0, 3.0)[0]
+    assert _thresholds(2.0, 1.0, d_th=4.5)[0] == 4.5
+
+
+@pytest.mark.paper("d_obs")
+def test_d_obs_grows_with_the_speed() -> None:
+    """Section 4: d_obs "depends on speed of the robot and is set to a higher value for a
+    high speed robot": by default the radius plus half a second of travel (errata row 16)."""
+    slow, fast = _thresholds(1.0, 1.0)[1], _thresholds(1.0, 3.0)[1]
+    assert (slow, fast) == (1.5, 2.5)
+    assert _thresholds(1.0, 3.0, d_obs=1.2)[1] == 1.2

@@ -84,6 +84,7 @@ def test_map_free_layers_exist() -> None:
     assert "ifgm_ref.wire" in MAP_FREE
 
 
+@pytest.mark.paper("s3.no_map")
 @pytest.mark.parametrize("module", MAP_FREE)
 def test_planner_layers_never_import_the_map(module: str) -> None:
     reached = _closure(module)

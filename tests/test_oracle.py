@@ -42,6 +42,10 @@ WORLDS = Path(__file__).parent / "worlds"
 SIMULATION = [name for name, check in CHECKS.items() if check.kind is Kind.SIMULATION]
 #: Mutant hunting: the same 50 examples, but no shrinking (speed; the report is not needed).
 HUNT = Profile("hunt", 50, shrink=False)
+#: FGM escapes most generated U worlds (it is trapped only by a U that fills its view, errata
+#: row 28: 1 in 50 in the benchmark), and which worlds Hypothesis draws depends on the
+#: constants of the modules loaded (docs/oracle.md): look long enough to be sure of a trap.
+HUNT_TRAPS = Profile("hunt-traps", 300, shrink=False)
 #: The checks a mutant is hunted with, cheapest first.
 HUNTING = ["passes_wide_gaps", "converges_symmetric", "collision_free", "converges_u"]
 
@@ -92,6 +96,7 @@ def test_a_failing_world_shrinks_to_one_disc_on_the_line() -> None:
 # -- the reference passes --------------------------------------------------------------------
 
 
+@pytest.mark.paper("s3.critical_shapes", "s3.safe_near_obstacles")
 def test_reference_iba_passes_every_property_it_promises() -> None:
     report = check_planner("iba", profile="quick", checks=SIMULATION, artifacts=None, jobs=2)
     assert report.ok, report.text()
@@ -122,10 +127,11 @@ def test_reference_equations_pass_and_broken_ones_fail() -> None:
 # -- the suite has teeth ---------------------------------------------------------------------
 
 
+@pytest.mark.paper("t1.fgm_u", "t1.apf_u_h_symmetric")
 @pytest.mark.parametrize("planner", ["fgm", "apf"])
 def test_fgm_and_apf_are_caught_in_u_worlds(planner: str, tmp_path: Path) -> None:
     impl = Implementation.from_spec(planner, promises=promises_of("ifgm"))
-    result = run_check(CHECKS["converges_u"], impl, HUNT, artifacts=tmp_path)
+    result = run_check(CHECKS["converges_u"], impl, HUNT_TRAPS, artifacts=tmp_path)
     assert result.status is Status.FAILED, result.line()
     assert "but should be 'goal_reached'" in result.message
     # The counterexample replays: the saved world traps the planner again.
@@ -143,6 +149,7 @@ def test_fgm_does_not_promise_u_worlds() -> None:
     assert result.status is Status.NOT_APPLICABLE
 
 
+@pytest.mark.paper("t1.bug_point_robot")
 @pytest.mark.parametrize("mutant", sorted(MUTANTS))
 def test_broken_ifgm_variants_are_rejected_in_process(mutant: str) -> None:
     report = check_planner(
@@ -253,6 +260,17 @@ def test_known_ifgm_failure() -> None:
 def test_known_iba_false_unreachable() -> None:
     w = load_world(WORLDS / "iba_h_post_false_unreachable.json")
     assert simulate(w, make_planner("iba"), SimParams(max_time=time_bound(w))).result.reached
+
+
+@pytest.mark.xfail(
+    strict=True, raises=AssertionError, reason="errata row 25: false loop closure, two obstacles"
+)
+@pytest.mark.parametrize("planner", ["bug1", "distbug"])
+def test_known_bug_false_unreachable(planner: str) -> None:
+    """Found by the benchmark (world open-0037, seed 0): Bug1 and DistBug leave a disc, meet
+    a box at once and report the goal unreachable after 25-30 s."""
+    w = load_world(WORLDS / "bug_two_obstacles_false_unreachable.json")
+    assert simulate(w, make_planner(planner), SimParams(max_time=time_bound(w))).result.reached
 
 
 # -- plugin and command line -----------------------------------------------------------------

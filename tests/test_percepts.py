@@ -20,6 +20,7 @@ def _scan_of(*obstacles: Polygon) -> LaserScan:
     return IRSensor(World(start=pose, goal=Point(50.0, 0.0), obstacles=obstacles)).scan(pose)
 
 
+@pytest.mark.paper("percepts.obstacle_array")
 def test_gap_is_the_distance_between_the_obstacles() -> None:
     """Two 6 ft squares 1.5 ft apart: the gap found is the closest pair of returns, no wider
     than the 1.5 ft between them plus the ray spacing there (1.8 degrees at 10 ft, 0.3 ft),
@@ -32,6 +33,7 @@ def test_gap_is_the_distance_between_the_obstacles() -> None:
     assert gap.width <= math.dist(clusters[0].left_border, clusters[1].right_border)
 
 
+@pytest.mark.paper("percepts.obstacle_array")
 def test_means_reading_overstates_a_gap_between_walls() -> None:
     walls = (rectangle((10.0, -6.0), 2.0, 8.0), rectangle((10.0, 6.0), 2.0, 8.0))
     clusters = cluster_scan(_scan_of(*walls), jump=2.0)

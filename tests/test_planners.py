@@ -39,6 +39,7 @@ def test_every_planner_arrives_in_an_empty_world_and_past_one_obstacle(
     assert not result.collided and result.min_clearance > 0.0
 
 
+@pytest.mark.paper("s3.critical_shapes", "s5.ifgm_u_h")
 @pytest.mark.parametrize("world", ["u_trap", "h_block"])
 @pytest.mark.parametrize("name", ["iba", "ifgm", "bug1", "bug2", "distbug"])
 def test_boundary_followers_get_out_of_u_and_h(name: str, world: str) -> None:
@@ -46,6 +47,7 @@ def test_boundary_followers_get_out_of_u_and_h(name: str, world: str) -> None:
     assert result.reached and result.min_clearance > 0.0, f"{name} in {world}: {result}"
 
 
+@pytest.mark.paper("t1.fgm_u", "t1.fgm_h", "t1.apf_u_h_symmetric")
 @pytest.mark.parametrize("world", ["u_trap", "h_block"])
 @pytest.mark.parametrize("name", ["fgm", "apf"])
 def test_fgm_and_apf_are_trapped_in_u_and_h(name: str, world: str) -> None:

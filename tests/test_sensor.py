@@ -242,6 +242,7 @@ def test_each_range_is_read_along_its_own_angle(data: st.DataObject) -> None:
         assert seen == [], f"rays seeing the pillar={seen}, but should be none (out of range)"
 
 
+@pytest.mark.paper("sensor.fov")
 def test_rays_lie_on_the_paper_beam_borders() -> None:
     """Default sensor: 135 deg, rays at -67.5, -22.5, +22.5, +67.5 deg (section 4, Figure 2)."""
     world = World(start=Pose(0.0, 0.0, 0.0), goal=Point(10.0, 0.0))
@@ -419,6 +420,7 @@ def test_params_default_to_the_world_sensor_and_can_be_overridden() -> None:
         IRSensor(world, {"rays": 5})  # type: ignore[arg-type]
 
 
+@pytest.mark.paper("sensor.fov")
 def test_default_beams_split_the_rays_25_26_25_with_the_borders_in_front() -> None:
     """76 rays 1.8 degrees apart: rays 25 and 50 lie on the +-22.5 degree borders (front)."""
     from collections import Counter

@@ -38,6 +38,7 @@ class ScriptedPlanner:
         return self.command
 
 
+@pytest.mark.paper("s5.free_run")
 def test_free_run_takes_the_papers_149_seconds() -> None:
     result = simulate(FREE, StraightPlanner()).result
     assert result.reached and not result.collided

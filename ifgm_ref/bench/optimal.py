@@ -37,6 +37,7 @@ import shapely
 from shapely.geometry.polygon import orient
 
 from ifgm_ref.errors import ParameterError, WorldError
+from ifgm_ref.paper import traces
 from ifgm_ref.pose import Point, distance
 from ifgm_ref.world import Circle, Obstacle, World
 
@@ -104,6 +105,7 @@ def _parts(geometry: shapely.Geometry) -> list[shapely.Polygon]:
     return list(getattr(geometry, "geoms", [geometry])) if not geometry.is_empty else []
 
 
+@traces("s3.shorter", "t1.bug_long_paths")
 def optimal_path(world: World, quad_segs: int = QUAD_SEGS) -> OptimalPath:
     """The shortest path of the robot's centre from ``world.start`` to ``world.goal``.
 

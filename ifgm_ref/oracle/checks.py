@@ -65,6 +65,7 @@ from ifgm_ref.oracle.strategies import (
     placed,
     placements,
 )
+from ifgm_ref.paper import traces
 from ifgm_ref.params import SimParams
 from ifgm_ref.pose import Point
 from ifgm_ref.protocol import Command, Planner
@@ -177,6 +178,7 @@ def _xyt(p: Sequence[float]) -> str:
     return f"({p[0]:.3f}, {p[1]:.3f}, {p[2]:.3f})"
 
 
+@traces("s3.safe_near_obstacles")
 def _collision_test(impl: Implementation, world: World, recorder: Recorder) -> None:
     run = episode(impl, world, recorder)
     clearance = run.result.min_clearance
@@ -188,6 +190,7 @@ def _collision_test(impl: Implementation, world: World, recorder: Recorder) -> N
         )
 
 
+@traces("s3.critical_shapes")
 def _converges_test(impl: Implementation, world: World, recorder: Recorder) -> None:
     run = episode(impl, world, recorder)
     result = run.result
@@ -276,6 +279,7 @@ def _unseen(draw: st.DrawFn, impl: Implementation) -> tuple[World, float, float,
     return world, direction, beyond, radius
 
 
+@traces("s3.no_map")
 def _unseen_test(
     impl: Implementation, example: tuple[World, float, float, float], rec: Recorder
 ) -> None:
@@ -308,6 +312,7 @@ def _unseen_test(
         )
 
 
+@traces("fig3.case1")
 def _gap_test(impl: Implementation, example: tuple[World, Polygon], rec: Recorder) -> None:
     world, gap = example
     run = episode(impl, world, rec)
@@ -427,6 +432,7 @@ def _args(kwargs: dict[str, Any]) -> str:
     return ", ".join(f"{k}={v!r}" for k, v in kwargs.items())
 
 
+@traces("eq1", "eq2", "eq3", "eq4")
 def _equation_checks() -> list[Check]:
     gap_point = st.fixed_dictionaries({"x_g": coordinates, "y_g": coordinates})
     positions = st.fixed_dictionaries({"current": points, "destination": points})

@@ -12,6 +12,7 @@ import math
 from dataclasses import replace
 
 from ifgm_ref.equations import eq3_goal_angle_literal
+from ifgm_ref.paper import traces
 from ifgm_ref.percepts.clusters import Gap
 from ifgm_ref.planners.ifgm import IFGMPlanner
 from ifgm_ref.pose import Point, Pose
@@ -57,6 +58,7 @@ class IgnoresDObs(IFGMPlanner):
         self.d_obs = 0.0
 
 
+@traces("t1.bug_point_robot")
 class PointRobot(IFGMPlanner):
     """Plans for a robot of (almost) zero radius: clearances, ``d_th`` and the stand-off all
     lose the robot's size."""

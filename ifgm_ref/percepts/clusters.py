@@ -26,6 +26,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ifgm_ref.laserscan import LaserScan
+from ifgm_ref.paper import traces
 from ifgm_ref.percepts.points import scan_points
 from ifgm_ref.pose import Point, distance
 
@@ -92,6 +93,7 @@ class Gap:
         return distance(self.right, self.left)
 
 
+@traces("percepts.obstacle_array")
 def cluster_scan(scan: LaserScan, *, jump: float) -> tuple[Cluster, ...]:
     """Group the returns of ``scan`` into obstacles, ordered right to left.
 
@@ -136,6 +138,7 @@ class GapReading(StrEnum):
     MEANS = "means"  # their average positions (the printed "average clustered value")
 
 
+@traces("percepts.obstacle_array")
 def gaps_between(
     clusters: tuple[Cluster, ...], *, reading: GapReading = GapReading.NEAREST
 ) -> tuple[Gap, ...]:

@@ -57,6 +57,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ifgm_ref.laserscan import LaserScan
+from ifgm_ref.paper import traces
 from ifgm_ref.percepts.corridor import free_length
 from ifgm_ref.percepts.points import scan_points
 from ifgm_ref.planners.edge_following import turn_speed
@@ -154,6 +155,7 @@ def repulsive_force(scan: LaserScan, *, eta: float, d0: float) -> tuple[NDArray[
     return -(magnitude[:, np.newaxis] * unit).sum(axis=0), len(d)
 
 
+@traces("apf", "t1.apf_u_h_symmetric")
 class APFPlanner:
     """Head along the total potential-field force; stop short of what is straight ahead.
 

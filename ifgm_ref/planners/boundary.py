@@ -17,6 +17,7 @@ import math
 from dataclasses import dataclass
 from typing import ClassVar
 
+from ifgm_ref.paper import traces
 from ifgm_ref.percepts.corridor import free_length
 from ifgm_ref.percepts.memory import PerceptMemory
 from ifgm_ref.planners.edge_following import FollowSide, follow_heading, turn_speed
@@ -197,6 +198,7 @@ class BoundaryPlanner:
         )
 
     # -- hooks ------------------------------------------------------------------------------
+    @traces("t1.bug_unidirectional")
     def choose_side(self, observation: Observation) -> FollowSide:
         """The Bug family turns one fixed way: left, keeping the obstacle on the right."""
         return FollowSide.RIGHT

@@ -39,6 +39,7 @@ import math
 from enum import StrEnum
 from typing import ClassVar
 
+from ifgm_ref.paper import traces
 from ifgm_ref.planners.boundary import GOAL_UNREACHABLE, BoundaryPlanner
 from ifgm_ref.planners.edge_following import FollowSide
 from ifgm_ref.pose import Point, Pose, distance
@@ -59,6 +60,7 @@ class Bug1Phase(StrEnum):
     LEFT_AT_Q = "left_at_q"
 
 
+@traces("bug1", "t1.bug_long_paths")
 class Bug1Planner(BoundaryPlanner):
     """Lumelsky and Stepanov's Bug1 on the boundary-following skeleton.
 

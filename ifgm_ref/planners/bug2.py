@@ -30,6 +30,7 @@ from __future__ import annotations
 import math
 from typing import ClassVar
 
+from ifgm_ref.paper import traces
 from ifgm_ref.planners.boundary import BoundaryPlanner
 from ifgm_ref.planners.tuning import positive_param
 from ifgm_ref.pose import Point, Pose, distance
@@ -55,6 +56,7 @@ def signed_distance(point: tuple[float, float], start: Point, goal: Point) -> fl
     return (ux * (point[1] - start.y) - uy * (point[0] - start.x)) / math.hypot(ux, uy)
 
 
+@traces("bug2")
 class Bug2Planner(BoundaryPlanner):
     """Lumelsky and Stepanov's Bug2 on the boundary-following skeleton.
 

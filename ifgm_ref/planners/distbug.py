@@ -46,12 +46,14 @@ from __future__ import annotations
 import math
 from typing import ClassVar
 
+from ifgm_ref.paper import traces
 from ifgm_ref.planners.boundary import BoundaryPlanner
 from ifgm_ref.planners.tuning import positive_param
 from ifgm_ref.pose import Point, Pose, distance
 from ifgm_ref.protocol import Command, EpisodeParams, Observation
 
 
+@traces("distbug")
 class DistBugPlanner(BoundaryPlanner):
     """Kamon and Rivlin's DistBug on the boundary-following skeleton.
 

@@ -52,6 +52,7 @@ from numpy.typing import NDArray
 from ifgm_ref.equations import eq4_final_heading_fgm, fgm_gap_centre_angle
 from ifgm_ref.errors import ParameterError
 from ifgm_ref.laserscan import LaserScan
+from ifgm_ref.paper import traces
 from ifgm_ref.percepts.points import scan_points
 from ifgm_ref.planners.edge_following import turn_speed
 from ifgm_ref.planners.tuning import Tuning
@@ -336,6 +337,7 @@ def fgm_decide(
     return FGMDecision(FGMBranch.MAX_GAP, heading, gap, d_min)
 
 
+@traces("fgm", "t1.fgm_u", "t1.fgm_h", "s5.fgm_trapped")
 class FGMPlanner:
     """Follow the Gap Method on the current scan only; stops when no gap is left.
 

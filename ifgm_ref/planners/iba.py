@@ -32,6 +32,7 @@ import math
 import numpy as np
 
 from ifgm_ref.laserscan import Beam, LaserScan
+from ifgm_ref.paper import traces
 from ifgm_ref.planners.boundary import BoundaryPlanner
 from ifgm_ref.planners.distbug import DistBugPlanner
 from ifgm_ref.planners.edge_following import FollowSide
@@ -40,14 +41,15 @@ from ifgm_ref.protocol import Command, Observation
 
 
 def beam_openness(scan: LaserScan, beam: Beam) -> float:
-    """Mean range seen in ``beam``, a no-return ray counting as ``range_max``, ft.
+    """Mean range seen in ``beam``, a no-return ray (``+inf``) counting as ``range_max`` and a
+    return nearer than ``range_min`` (``-inf``, REP 117) as 0, ft.
 
     >>> scan = LaserScan(-1.0, 1.0, 0.5, 0.0, 10.0, [2.0, 2.0, 9.0, math.inf, math.inf])
     >>> beam_openness(scan, Beam.RIGHT), beam_openness(scan, Beam.LEFT)
     (2.0, 10.0)
     """
     mask = scan.beam_mask(beam)
-    ranges = np.where(np.isfinite(scan.ranges), scan.ranges, scan.range_max)
+    ranges = np.where(np.isposinf(scan.ranges), scan.range_max, scan.ranges)
     ranges = np.where(ranges < 0.0, 0.0, ranges)
     return float(ranges[mask].mean()) if mask.any() else 0.0
 
@@ -57,6 +59,7 @@ def beam_openness(scan: LaserScan, beam: Beam) -> float:
 GOAL_AHEAD = 1e-6
 
 
+@traces("iba.bidirectional", "s3.bidirectional")
 def freer_side(scan: LaserScan, pose: Pose, goal_bearing: float) -> FollowSide:
     """The side to keep the obstacle on: turn towards the freer beam.
 
@@ -90,6 +93,7 @@ class IBAPlanner(DistBugPlanner):
         pose = observation.pose
         return freer_side(observation.scan, pose, self.goal_bearing(pose))
 
+    @traces("iba.leave_free_path", "s3.clear_path")
     def should_leave(self, observation: Observation) -> bool:
         """Leave at the first free path towards the goal (section 4.1), or where the free
         range promises progress (DistBug's rule, errata row 24)."""

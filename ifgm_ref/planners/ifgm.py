@@ -29,6 +29,7 @@ from ifgm_ref.equations import eq1_gap_midpoint, eq2_gap_angle, eq3_goal_angle, 
 from ifgm_ref.errors import ParameterError
 from ifgm_ref.flowchart import Atoms, Branch, decide
 from ifgm_ref.laserscan import Beam
+from ifgm_ref.paper import traces
 from ifgm_ref.percepts.clusters import Cluster, Gap, Side, cluster_scan, gaps_between
 from ifgm_ref.percepts.corridor import free_length
 from ifgm_ref.percepts.points import to_world
@@ -47,6 +48,7 @@ DEAD_END_MAX_STEPS = 4
 TURN_DONE = 1e-6
 
 
+@traces("d_th", "d_obs", "s3.robot_dimensions")
 @dataclass(frozen=True)
 class IFGMParams(Tuning):
     """IFGM's thresholds and weights (section 4); ``None`` means "derived from the robot".
@@ -87,14 +89,42 @@ class IFGMParams(Tuning):
     preempt_margin: float = 0.5
 
 
+@traces("s3.critical_shapes", "s3.safe_near_obstacles")
 class IFGMPlanner(IBAPlanner):
-    """IFGM: FGM through wide gaps, IBA round the rest, 45-degree turns out of dead ends."""
+    """IFGM: FGM through wide gaps, IBA round the rest, 45-degree turns out of dead ends.
+
+    Its state is public for observers (traces, ``tests/test_flowchart_properties.py``): to be
+    read, not written.
+
+    Attributes
+    ----------
+    last_atoms : Atoms or None
+        The flowchart atoms computed at the last step, before it acted on them.
+    last_branch : Branch or None
+        The branch :func:`~ifgm_ref.flowchart.decide` chose for ``last_atoms``.
+    last_gap : Gap or None
+        The gap chosen at the last step: the maximum gap, or the one steered through at the
+        step before while it stays wider than ``d_th`` (errata row 19).
+    turning : bool
+        A dead-end turn sequence (45, 90, 135, 180 degrees) is under way.
+    following : bool
+        IBA is following an edge (*obstacle avoidance*).
+    side : FollowSide
+        The side the followed edge is kept on (IBA's freer side, section 4.1).
+    followed : Point or None
+        The followed obstacle's point, world frame, tracked along its edge.
+    stack : list of (Point, FollowSide)
+        Case-3: the pre-empted obstacles and their sides, the last pushed resumed first.
+    short_look : bool
+        Meeting obstacles at IBA's short encounter distance, Case-1 off (errata row 24).
+    """
 
     name = "ifgm"
     parameters: ClassVar[tuple[str, ...]] = (
         tuple(f.name for f in fields(IFGMParams)) + IBAPlanner.parameters
     )
 
+    @traces("d_th", "d_obs")
     def reset(self, start: Pose, goal: Point, params: EpisodeParams) -> None:
         """Start in *move to goal*; derive and validate the thresholds."""
         super().reset(start, goal, params)
@@ -128,10 +158,14 @@ class IFGMPlanner(IBAPlanner):
         self.escaped = False
 
     def goal_bearing(self, pose: Pose) -> float:
-        """The destination angle theta_d of eq. (3), world frame (the reading we run)."""
+        """The destination angle theta_d of eq. (3), world frame (the reading we run); at the
+        goal itself, where eq. (3) has no direction, the robot's heading."""
+        if pose.position == self.goal:
+            return pose.theta
         return eq3_goal_angle(pose.position, self.goal)
 
     # -- percepts -> atoms ------------------------------------------------------------------
+    @traces("fig3.both_conditions", "fig3.case1", "fig3.case2", "fig3.dead_end")
     def atoms(self, observation: Observation, clusters: tuple[Cluster, ...]) -> Atoms:
         """The flowchart's atoms for this observation."""
         pose, scan = observation.pose, observation.scan
@@ -148,7 +182,7 @@ class IFGMPlanner(IBAPlanner):
         blocked = free_ahead < min(look, distance(pose, self.goal))
         front = scan.beam_mask(Beam.FRONT)
         front_near = bool(np.any(scan.ranges[front] <= self.ifgm.d_look))
-        enclosed = bool(np.all(np.isfinite(scan.ranges)))
+        enclosed = bool(np.all(scan.ranges < math.inf))  # every ray returns (-inf too)
         dead_end = front_near and enclosed and not gap_wide
         return Atoms(
             at_goal=distance(pose, self.goal) <= self.goal_tolerance,
@@ -215,25 +249,31 @@ class IFGMPlanner(IBAPlanner):
         tracked = self._nearest_remembered(pose, self.followed) if self.followed else None
         self.followed = tracked or self._nearest_remembered(pose)
 
+    @traces("fig3.case3", "t1.bug_other_obstacles")
     def _preempting(self, pose: Pose, clusters: tuple[Cluster, ...]) -> bool:
-        """Case-3: an obstacle apart from the followed one and nearer than it by a margin."""
+        """Case-3: an obstacle apart from the followed one and nearer than it by a margin;
+        of several, the nearest (the one of most impact: "the obstacle near to the robot is
+        given higher priority", section 4)."""
         self._preemptor = None
         if self.followed is None:
             return False
         reach = distance(pose, self.followed) - self.ifgm.preempt_margin
+        candidates = []
         for c in clusters:
             if c.nearest >= reach:
                 continue
             world = to_world(c.xy, pose)
-            if np.hypot(world[:, 0] - self.followed.x, world[:, 1] - self.followed.y).min() > (
-                self.jump
-            ):
-                i = int(np.argmin(c.ranges))
-                self._preemptor = Point(float(world[i, 0]), float(world[i, 1]))
-                return True
-        return False
+            apart = np.hypot(world[:, 0] - self.followed.x, world[:, 1] - self.followed.y)
+            if apart.min() > self.jump:
+                candidates.append((c.nearest, world[int(np.argmin(c.ranges))]))
+        if not candidates:
+            return False
+        _, point = min(candidates, key=lambda candidate: candidate[0])
+        self._preemptor = Point(float(point[0]), float(point[1]))
+        return True
 
     # -- the planner ------------------------------------------------------------------------
+    @traces("fig3.move_to_goal", "fig3.regenerate", "fig3.case2", "fig3.case3")
     def step(self, observation: Observation) -> Command:
         """Decide with Figure 3, then act on the branch."""
         pose = observation.pose
@@ -288,6 +328,7 @@ class IFGMPlanner(IBAPlanner):
         command = self.follow(pose, branch)
         return Command(command.heading, command.speed, behaviour=command.behaviour, branch=branch)
 
+    @traces("fig3.case1", "eq1", "eq2", "eq3", "eq4")
     def gap_heading(self, pose: Pose, gap: Gap) -> float:
         """Case-1: the final heading through ``gap`` by eqs. (1)-(4), world frame."""
         x_g, y_g = eq1_gap_midpoint(gap.right, gap.left)
@@ -325,6 +366,7 @@ class IFGMPlanner(IBAPlanner):
             _, self.side = self.stack.pop()
             self.followed = nearest
 
+    @traces("fig3.dead_end", "s5.ifgm_u_h")
     def _dead_end(self, observation: Observation) -> Command:
         """Turn in 45-degree steps until the way ahead is free; then go that way."""
         pose = observation.pose
