@@ -416,9 +416,7 @@ def write_all(out: str | Path = "paper_figs", *, progress: bool | None = None) -
             (".svg", {"metadata": {"Date": None}}),
         ):
             path = out / f"{stem}{suffix}"
-            # a fixed salt for the SVG's clip-path ids, else random: the same bytes every run
-            with plt.rc_context({"svg.hashsalt": "ifgm-ref"}):
-                fig.savefig(path, dpi=110, **extra)
+            fig.savefig(path, dpi=110, **extra)
             written.append(path)
         plt.close(fig)
     rows = reproduction_rows()
