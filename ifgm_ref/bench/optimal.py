@@ -43,11 +43,16 @@ from ifgm_ref.world import Circle, Obstacle, World
 
 #: Chords per quarter circle of an inflated curve (see the module docstring for the error).
 QUAD_SEGS = 8
-#: Vertex jitters (ft) tried in turn when the search meets a degenerate configuration:
+#: Vertex jitters (ft) tried in turn when the search meets a degenerate configuration.
 #: extremitypathfinder 2.7 solves a singular 2x2 system when an obstacle edge is parallel to
 #: a line of sight through a vertex of another (exactly symmetric worlds; its issue #64, open
-#: since 2022). A jitter of 1e-7 ft changes the length by as little.
+#: since 2022), and it can return a path straight through an obstacle along collinear edges
+#: (an H with axis-aligned walls: ``tests/test_bench.py``). Every path is checked against the
+#: free space, and searched again with jittered vertices if it fails. A jitter of 1e-7 ft
+#: changes the length by as little.
 JITTER = (1e-7, 1e-6, 1e-5)
+#: How far outside the free space (ft) a returned path may stray: rounding along an edge.
+SLACK = 1e-6
 #: Margin of the free-space boundary round the obstacles, start and goal of an unbounded
 #: world, ft. A shortest path stays in the convex hull of those, so any margin > 0 is exact.
 MARGIN = 10.0
@@ -122,9 +127,10 @@ def optimal_path(world: World, quad_segs: int = QUAD_SEGS) -> OptimalPath:
     parts = [part for part in _parts(free) if part.contains(shapely.Point(start))]
     if not parts or not parts[0].contains(shapely.Point(goal)):
         raise WorldError(f"{world.name or 'world'}: no collision-free path to the goal")
-    if not parts[0].interiors:
+    if parts[0].covers(shapely.LineString([start, goal])):
         return OptimalPath(distance(start, goal), (start, goal))
     region = orient(parts[0], sign=1.0)
+    slack = region.buffer(SLACK)  # a path may run along an edge, not through an obstacle
     boundary = np.asarray(region.exterior.coords)[:-1]
     holes = [np.asarray(ring.coords)[:-1] for ring in region.interiors]
     for attempt, jitter in enumerate((0.0, *JITTER)):
@@ -134,9 +140,10 @@ def optimal_path(world: World, quad_segs: int = QUAD_SEGS) -> OptimalPath:
         try:
             env.store(boundary, moved, validate=False)
             waypoints, length = env.find_shortest_path(start, goal)
-            break
         except np.linalg.LinAlgError:
             continue
+        if length is None or slack.covers(shapely.LineString(waypoints)):
+            break
     else:
         raise WorldError(f"{world.name or 'world'}: the shortest-path search failed")
     if length is None:

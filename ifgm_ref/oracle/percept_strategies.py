@@ -294,7 +294,8 @@ def observations(
 
 
 def scans_of(sensor: SensorParams) -> st.SearchStrategy[LaserScan]:
-    """:func:`scans` of ``sensor`` with the default options."""
+    """:func:`scans` of ``sensor`` with the default options (for :func:`observations`, whose
+    ``scans`` parameter hides the function)."""
     return scans(sensor=sensor)
 
 
