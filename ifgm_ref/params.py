@@ -5,7 +5,9 @@ default forward speed. It gives no robot size, turn rate, sensor range or resolu
 values below are our choices, each with its reason, and each can be overridden in a world
 file's ``robot`` and ``sensor`` blocks or on the command line.
 
-Units: feet, seconds, radians.
+Units: any consistent length unit (feet for the paper's worlds, metres for BARN's), seconds,
+radians. Nothing here or in the planners assumes feet: every planner length is derived from
+the robot and the sensor (:mod:`ifgm_ref.planners.tuning`).
 """
 
 from __future__ import annotations
@@ -165,3 +167,40 @@ class SimParams:
         _require("dt", self.dt, positive=True)
         _require("max_time", self.max_time, positive=True)
         _require("goal_tolerance", self.goal_tolerance, positive=True)
+
+
+def paper_ir(length_scale: float = 1.0) -> SensorParams:
+    """The paper's IR sensor (section 4, Figure 2): 135 degrees in 76 rays, 15 ft of range.
+
+    ``length_scale`` converts the ranges to another robot or unit: the sensor of a robot
+    ``length_scale`` times the size of the paper's 1 ft robot (``paper_ir(0.22)`` for a 0.22 m
+    disc in metres: 3.3 m of range). Angles and the ray count do not change.
+
+    >>> paper_ir().range_max, paper_ir(0.22).rays, round(paper_ir(0.22).range_max, 6)
+    (15.0, 76, 3.3)
+    """
+    _require("length_scale", length_scale, positive=True)
+    base = SensorParams()
+    return SensorParams(
+        fov=base.fov,
+        rays=base.rays,
+        range_max=base.range_max * length_scale,
+        range_min=base.range_min * length_scale,
+    )
+
+
+def jackal_lidar() -> SensorParams:
+    """The 2D LiDAR of BARN's Clearpath Jackal: 270 degrees in 720 rays, 0.1 to 30 m.
+
+    Units are metres. The field of view and ray count are BARN's (``../shared/barn/README.md``);
+    the range is that of the Jackal's simulated laser (30 m, more than any BARN world needs).
+
+    >>> s = jackal_lidar()
+    >>> round(math.degrees(s.fov)), s.rays, s.range_max
+    (270, 720, 30.0)
+    """
+    return SensorParams(fov=1.5 * math.pi, rays=720, range_max=30.0, range_min=0.1)
+
+
+#: Sensor presets by name (``--sensor NAME`` on the command line).
+SENSOR_PRESETS = {"paper_ir": paper_ir, "jackal_lidar": jackal_lidar}
