@@ -16,6 +16,7 @@ from pathlib import Path
 from ifgm_ref.errors import IfgmRefError, ParameterError
 from ifgm_ref.params import SimParams
 from ifgm_ref.planners import PLANNERS
+from ifgm_ref.planners.tuning import Scale
 from ifgm_ref.scenarios import BUILTIN_WORLDS, resolve_world
 from ifgm_ref.simulator import simulate
 from ifgm_ref.worldfile import save_world
@@ -113,9 +114,20 @@ def _worlds(args: argparse.Namespace) -> int:
 
 def _planners(args: argparse.Namespace) -> int:
     width = max(map(len, PLANNERS))
+    paper = Scale.paper()
     for name, info in PLANNERS.items():
-        params = f" [params: {', '.join(info.parameters)}]" if info.parameters else ""
-        print(f"{name:<{width}}  {info.description}{params}")
+        print(f"{name:<{width}}  {info.description}")
+        for param in info.infos:
+            print(
+                f"{'':<{width}}    {param.name:<16} = {param.formula:<9} {param.unit:<9}"
+                f"  {param.value(paper):.6g}"
+            )
+    print(
+        "\nEach parameter: its default as a formula in the robot radius r, speed v, turn rate"
+        " w,\ntime step dt, sensor range R, ray spacing res and field of view fov; its unit;"
+        " and its\nvalue for the paper's robot (r 1 ft, v 197/149 ft/s, w pi/2, dt 0.1 s,"
+        " R 15 ft).\nSet one with --param NAME=VALUE, in the same length unit as the world."
+    )
     return 0
 
 
@@ -189,13 +201,31 @@ def _bench(args: argparse.Namespace) -> int:
     from ifgm_ref.bench.optimal import require_pathfinder
     from ifgm_ref.bench.report import PARTIAL, machine, write_csv, write_report
     from ifgm_ref.bench.runner import run_bench
-    from ifgm_ref.bench.tasks import Row, builtin_specs, folder_specs, generated_specs
+    from ifgm_ref.bench.tasks import (
+        Row,
+        barn_specs,
+        builtin_specs,
+        folder_specs,
+        generated_specs,
+    )
     from ifgm_ref.oracle.loading import load_factory
 
-    require_pathfinder()
+    if args.barn is None:
+        require_pathfinder()  # BARN worlds skip the shortest path (ifgm_ref/bench/tasks.py)
+        for option in ("barn_worlds", "sensor"):
+            if getattr(args, option) is not None:
+                flag = "--" + option.replace("_", "-")
+                raise ParameterError(f"{flag} applies to BARN worlds only: give --barn DIR")
     for planner in args.planners:
         load_factory(planner)
-    if args.builtin:
+    if args.barn is not None:
+        from ifgm_ref.bench.barn import DEFAULT_SENSOR, parse_selection
+
+        sensor = args.sensor or DEFAULT_SENSOR
+        chosen = None if args.barn_worlds is None else parse_selection(args.barn_worlds)
+        specs = barn_specs(args.barn, sensor, chosen)
+        source = f"{len(specs)} BARN worlds in {args.barn}, sensor {sensor}"
+    elif args.builtin:
         specs, source = builtin_specs(), "the built-in worlds"
     elif args.world_dir is not None:
         specs, source = folder_specs(args.world_dir), f"the world files in {args.world_dir}"
@@ -231,6 +261,8 @@ def _bench(args: argparse.Namespace) -> int:
         return 130
     wall = time.perf_counter() - begin
     limit = f"{args.max_time:g} s" if args.max_time else "each world's convergence budget"
+    if args.barn is not None and not args.max_time:
+        limit = "BARN's 100 s"
     header = "\n".join(
         [
             "# Benchmark against the shortest collision-free path",
@@ -439,6 +471,24 @@ def build_parser() -> argparse.ArgumentParser:
     )
     source.add_argument("--builtin", action="store_true", help="use the built-in worlds instead")
     source.add_argument("--world-dir", metavar="DIR", help="use the world files DIR/*.json instead")
+    source.add_argument(
+        "--barn",
+        metavar="DIR",
+        help="use BARN's worlds instead: DIR holds world_N.world and path_N.npy, or is a clone "
+        "of BARN's repository (jackal_helper/worlds/BARN); adds BARN's reference_length and "
+        "barn_score to the results (docs/benchmark.md)",
+    )
+    bench.add_argument(
+        "--barn-worlds",
+        metavar="SEL",
+        help="with --barn: only these world indices, e.g. 0-49,60 (default: every world found)",
+    )
+    bench.add_argument(
+        "--sensor",
+        choices=("jackal_lidar", "paper_ir"),
+        help="with --barn: the sensor preset (default jackal_lidar: BARN's 270-degree LiDAR; "
+        "paper_ir: the paper's IR sensor scaled to the 0.22 m robot)",
+    )
     bench.add_argument(
         "--per-class", type=int, default=50, metavar="N", help="worlds per class (default 50)"
     )
@@ -459,7 +509,8 @@ def build_parser() -> argparse.ArgumentParser:
     bench.add_argument(
         "--max-time",
         type=_positive_float,
-        help="episode time limit, s (default: each world's convergence budget, docs/oracle.md)",
+        help="episode time limit, s (default: each world's convergence budget, docs/oracle.md; "
+        "BARN's 100 s for BARN worlds)",
     )
     bench.add_argument(
         "--out", default="bench-results", metavar="DIR", help="output folder (bench-results)"

@@ -37,7 +37,7 @@ PLANNERS: dict[str, type[BoundaryPlanner]] = {
 }
 #: Distance the followers keep from an edge to the robot's centre with default tuning, ft:
 #: the default robot's radius plus ``standoff_margin``.
-STANDOFF = RobotParams().radius + BoundaryParams().standoff_margin
+STANDOFF = RobotParams().radius + BoundaryParams.paper().standoff_margin
 #: Arena, start and goal of the hand-made worlds: those of the built-in demonstration worlds.
 ARENA = Bounds(-15.0, -35.0, 85.0, 35.0)
 START = Pose(0.0, 0.0, 0.0)
@@ -359,7 +359,7 @@ def test_distbug_free_range_counts_only_what_the_robot_can_travel() -> None:
     planner.reset(here, Point(10.0, 0.0), params)
     assert planner.free_range(here) == 10.0  # nothing seen: the goal, 10 ft away, is visible
     assert planner.free_range(Pose(0.0, 0.0, math.pi)) == 0.0  # the goal behind the robot
-    encounter = STANDOFF + BoundaryParams().hit_margin
+    encounter = STANDOFF + BoundaryParams.paper().hit_margin
     planner.reset(here, Point(100.0, 0.0), params)
     assert planner.free_range(here) == params.sensor.range_max - encounter
     wall = LaserScan(-0.1, 0.1, 0.1, 0.0, params.sensor.range_max, [math.inf, 6.0, math.inf])
@@ -371,7 +371,7 @@ def test_step_length_beyond_the_sensor_reach_leaves_only_in_sight_of_the_goal() 
     """F is at most ``range_max - encounter`` = 12.5 ft unless the goal is visible, so with
     Step above that the second leaving condition can never hold: on ``box``, whose edge is
     never within ``range_max`` of the goal, DistBug goes round and gives up."""
-    reach = SensorParams().range_max - STANDOFF - BoundaryParams().hit_margin
+    reach = SensorParams().range_max - STANDOFF - BoundaryParams.paper().hit_margin
     for step, stop in [(reach - 0.5, StopReason.GOAL_REACHED), (reach + 0.5, GOAL_UNREACHABLE)]:
         result = simulate(world("box"), DistBugPlanner(), params={"step_length": step}).result
         assert result.stop_reason == stop, (step, result)

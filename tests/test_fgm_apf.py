@@ -57,7 +57,7 @@ from ifgm_ref.world import World
 
 SENSOR = SensorParams()
 #: Robot radius plus FGM's default margin, ft.
-INFLATION = 1.0 + FGMParams().inflation_margin
+INFLATION = 1.0 + FGMParams.paper().inflation_margin
 #: Time limit of the trap episodes, s: twice the paper's longest run (Dist-Bug, 205 s) would
 #: do; 300 s is the limit of McGuire et al. (2019) and five times what FGM needs in ``box``.
 TRAP_TIME = 300.0
@@ -359,13 +359,18 @@ def test_apf_parameter_validation(params: dict[str, object], message: str) -> No
     assert str(info.value) == message
 
 
-def test_parameters_are_read_by_name_and_others_ignored() -> None:
+def test_parameters_are_read_by_name_and_the_rest_derived() -> None:
     fgm, apf = FGMPlanner(), APFPlanner()
-    params = EpisodeParams(params={"alpha": 2.0, "eta": 7.0, "d_th": 4.0})
-    fgm.reset(Pose(0.0, 0.0, 0.0), Point(1.0, 0.0), params)
-    apf.reset(Pose(0.0, 0.0, 0.0), Point(1.0, 0.0), params)
-    assert fgm.tuning == FGMParams(alpha=2.0)
-    assert apf.tuning == APFParams(eta=7.0)
+    fgm.reset(Pose(0.0, 0.0, 0.0), Point(1.0, 0.0), EpisodeParams(params={"alpha": 2.0}))
+    apf.reset(Pose(0.0, 0.0, 0.0), Point(1.0, 0.0), EpisodeParams(params={"eta": 7.0}))
+    assert fgm.tuning == FGMParams(alpha=2.0, beta=1.0, inflation_margin=0.5)
+    assert apf.tuning == APFParams(k_att=1.0, eta=7.0, d0=5.0, stop_margin=0.5)
+
+
+def test_a_parameter_of_another_planner_is_rejected() -> None:
+    params = EpisodeParams(params={"alpha": 2.0, "d_th": 4.0})
+    with pytest.raises(ParameterError, match=r"fgm has no parameter `d_th`; it has: alpha"):
+        FGMPlanner().reset(Pose(0.0, 0.0, 0.0), Point(1.0, 0.0), params)
 
 
 # --------------------------------------------------------------------------------------------

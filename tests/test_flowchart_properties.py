@@ -73,17 +73,17 @@ AT_GOAL = EPISODE.goal_tolerance + V * EPISODE.dt
 #: d_obs = r + v * 0.5 s (IFGMParams, errata row 16).
 D_OBS = R + 0.5 * V
 #: The encounter distance d_look, ft (IFGMParams).
-D_LOOK = IFGMParams().d_look
+D_LOOK = IFGMParams.paper().d_look
 #: Returns further apart than 2 r belong to different obstacles (IFGMParams.jump, errata 15).
 JUMP = 2.0 * R
 #: Half-width of the robot-wide corridor, ft: r + corridor_margin (BoundaryParams).
-HALF_WIDTH = R + BoundaryParams().corridor_margin
+HALF_WIDTH = R + BoundaryParams.paper().corridor_margin
 #: Case-3: a pre-empting obstacle is nearer than the followed one by this much, ft.
-PREEMPT_MARGIN = IFGMParams().preempt_margin
+PREEMPT_MARGIN = IFGMParams.paper().preempt_margin
 #: Edge following keeps the edge at r + standoff_margin, ft (BoundaryParams).
-STANDOFF = R + BoundaryParams().standoff_margin
+STANDOFF = R + BoundaryParams.paper().standoff_margin
 #: IBA meets an obstacle this near in the corridor to the goal: standoff + hit_margin, ft.
-ENCOUNTER = STANDOFF + BoundaryParams().hit_margin
+ENCOUNTER = STANDOFF + BoundaryParams.paper().hit_margin
 #: One 45-degree dead-end step takes several time steps at the robot's turn rate.
 TURN_PER_STEP = ROBOT.max_turn_rate * EPISODE.dt
 #: The default gap threshold d_th = 2 r + 1 ft (IFGMParams, errata row 12).
@@ -308,7 +308,7 @@ def test_every_step_of_an_episode_takes_the_branch_the_guards_choose(
     while an edge is followed (section 4.1, Case-3)."""
     planner = IFGMPlanner()
     planner.reset(start.pose, start.goal, EPISODE)
-    memory = PerceptMemory(BoundaryParams().memory_horizon)
+    memory = PerceptMemory(BoundaryParams.paper().memory_horizon)
     observation = start
     for i in range(len(later) + 1):
         pose, goal = observation.pose, observation.goal

@@ -174,9 +174,9 @@ def _thresholds(radius: float, speed: float, **params: float) -> tuple[float, fl
 @pytest.mark.paper("d_th", "s3.robot_dimensions")
 def test_d_th_follows_the_robot_size() -> None:
     """Section 4: d_th "is a function of the robot's dimensions" and must exceed its size: by
-    default the diameter plus one foot (errata row 12), whatever the speed."""
-    assert _thresholds(0.5, 1.0)[0] == 2.0
-    assert _thresholds(2.0, 1.0)[0] == 5.0 == _thresholds(2.0, 3.0)[0]
+    default three radii, the diameter plus one radius (errata row 12), whatever the speed."""
+    assert _thresholds(0.5, 1.0)[0] == 1.5
+    assert _thresholds(2.0, 1.0)[0] == 6.0 == _thresholds(2.0, 3.0)[0]
     assert _thresholds(2.0, 1.0, d_th=4.5)[0] == 4.5
 
 

@@ -41,6 +41,7 @@ from ifgm_ref.errors import ParameterError
 from ifgm_ref.oracle.recording import RecordingPlanner
 from ifgm_ref.params import SimParams
 from ifgm_ref.planners import PLANNERS, make_planner
+from ifgm_ref.planners.tuning import episode_values
 from ifgm_ref.pose import Point, Pose
 from ifgm_ref.protocol import EpisodeParams, Planner
 from ifgm_ref.scenarios import resolve_world
@@ -648,20 +649,7 @@ TRACES: tuple[TraceSpec, ...] = (
 
 def _effective_params(planner_name: str, episode: EpisodeParams) -> dict[str, float]:
     """Every parameter of the planner with the value it takes at reset (derived ones too)."""
-    planner = make_planner(planner_name)
-    planner.reset(Pose(0.0, 0.0, 0.0), Point(1.0, 0.0), episode)
-    values: dict[str, float] = {}
-    for block in ("tuning", "ifgm"):
-        params = getattr(planner, block, None)
-        if params is None:
-            continue
-        for f in dataclasses.fields(params):
-            value = getattr(params, f.name)
-            values[f.name] = float(getattr(planner, f.name) if value is None else value)
-    if "step_length" in PLANNERS[planner_name].parameters:  # DistBug's rule (IBA, errata 24)
-        values["step_length"] = float(planner.step_length)  # type: ignore[attr-defined]
-    assert set(values) == set(PLANNERS[planner_name].parameters), planner_name
-    return values
+    return episode_values(PLANNERS[planner_name].tunings, episode)
 
 
 def _trace_json(spec: TraceSpec) -> dict[str, Any]:

@@ -19,16 +19,27 @@ from ifgm_ref.planners.fgm import FGMPlanner
 from ifgm_ref.planners.iba import IBAPlanner
 from ifgm_ref.planners.ifgm import IFGMPlanner
 from ifgm_ref.planners.straight import StraightPlanner
+from ifgm_ref.planners.tuning import ParamInfo, Tuning, parameter_infos
 from ifgm_ref.protocol import Planner
 
 
 @dataclass(frozen=True)
 class PlannerInfo:
-    """A registered planner: its factory, a one-line description and its parameters."""
+    """A registered planner: its factory, a one-line description and its parameter classes."""
 
     factory: Callable[[], Planner]
     description: str
-    parameters: tuple[str, ...] = ()
+    tunings: tuple[type[Tuning], ...] = ()
+
+    @property
+    def parameters(self) -> tuple[str, ...]:
+        """The parameter names, in declaration order."""
+        return tuple(info.name for info in self.infos)
+
+    @property
+    def infos(self) -> tuple[ParamInfo, ...]:
+        """Every parameter with its formula and unit."""
+        return parameter_infos(self.tunings)
 
 
 PLANNERS: dict[str, PlannerInfo] = {
@@ -36,43 +47,43 @@ PLANNERS: dict[str, PlannerInfo] = {
         Bug1Planner,
         "Bug1 (Lumelsky & Stepanov; section 2.1.1): go round the whole obstacle, leave at the "
         "point nearest the goal",
-        Bug1Planner.parameters,
+        Bug1Planner.tunings,
     ),
     "bug2": PlannerInfo(
         Bug2Planner,
         "Bug2 (Lumelsky & Stepanov; section 2.1.2): follow the edge back to the start-goal line, "
         "nearer the goal",
-        Bug2Planner.parameters,
+        Bug2Planner.tunings,
     ),
     "distbug": PlannerInfo(
         DistBugPlanner,
         "DistBug (Kamon & Rivlin 1997; section 2.1.3): leave when the free range towards the "
         "goal promises progress",
-        DistBugPlanner.parameters,
+        DistBugPlanner.tunings,
     ),
     "iba": PlannerInfo(
         IBAPlanner,
         "Intelligent Bug Algorithm (section 4.1): bidirectional edge following, leaving at the "
         "first free path to the goal",
-        IBAPlanner.parameters,
+        IBAPlanner.tunings,
     ),
     "fgm": PlannerInfo(
         FGMPlanner,
         "Follow the Gap Method (Sezer & Gokasan 2012; section 2.2): steer through the widest "
         "gap; trapped by U and H shapes",
-        FGMPlanner.parameters,
+        FGMPlanner.tunings,
     ),
     "ifgm": PlannerInfo(
         IFGMPlanner,
         "Intelligent Follow the Gap Method (section 4, Figure 3): FGM through wide gaps, IBA "
         "round the rest, 45-degree turns out of dead ends",
-        IFGMPlanner.parameters,
+        IFGMPlanner.tunings,
     ),
     "apf": PlannerInfo(
         APFPlanner,
         "artificial potential field (Khatib 1986; Table 1): goal attracts, returns repel; "
         "trapped by U, H and symmetric obstacles",
-        APFPlanner.parameters,
+        APFPlanner.tunings,
     ),
     "straight": PlannerInfo(StraightPlanner, "steer straight at the goal; no avoidance"),
 }

@@ -49,7 +49,7 @@ Khatib symbol       here             meaning
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, fields
+from dataclasses import dataclass
 from enum import StrEnum
 from typing import ClassVar
 
@@ -61,7 +61,7 @@ from ifgm_ref.paper import traces
 from ifgm_ref.percepts.corridor import free_length
 from ifgm_ref.percepts.points import scan_points
 from ifgm_ref.planners.edge_following import turn_speed
-from ifgm_ref.planners.tuning import Tuning
+from ifgm_ref.planners.tuning import Tuning, Unit, check_names, derived
 from ifgm_ref.pose import Point, Pose, wrap_angle
 from ifgm_ref.protocol import Behaviour, Command, EpisodeParams, Observation
 
@@ -87,30 +87,33 @@ class APFBranch(StrEnum):
 class APFParams(Tuning):
     """APF's settings, read from ``EpisodeParams.params`` by name.
 
-    The IFGM paper gives no values; the defaults are ours, each with its reason.
+    The IFGM paper gives no values; the defaults are ours, each a formula in the robot's
+    radius ``r`` with its reason (the numbers are the paper's 1 ft robot's).
 
     Parameters
     ----------
-    k_att : float, default 1.0
-        Attractive gain, > 0. Only the *direction* of the total force steers the robot, so
-        the scale is set by ``k_att`` alone and ``eta`` is chosen relative to it.
-    eta : float, default 50.0
-        Repulsive gain per return, > 0. A straight wall across the default 76-ray view then
+    k_att : float, default 1
+        Attractive gain, > 0, a number. Only the *direction* of the total force steers the
+        robot, so the scale is set by ``k_att`` alone and ``eta`` is chosen relative to it.
+    eta : float, default ``50 r^4``
+        Repulsive gain per return, > 0, a length to the fourth power: the pull grows with a
+        length and each push with ``eta`` over a length cubed, so only ``eta / r^4`` keeps
+        their balance at every scale. A straight wall across the default 76-ray view then
         pushes back with 128 at 2 ft, 52 at 2.5 ft and 23 at 3 ft, as hard as a goal 128,
         52 or 23 ft away pulls (``k_att = 1``): with goals tens of feet away the robot turns
         off, or halts, 2.5-3 ft from a wall, before the safety rule (1.5 ft plus one step)
         has to act.
-    d0 : float, default 5.0
-        Influence distance, ft, > 0: two and a half robot diameters, a third of the default
-        sensor range, so only nearby returns push.
-    stop_margin : float, default 0.5
-        Free space the safety rule keeps in front of the robot's disc, ft, > 0.
+    d0 : float, default ``5 r``
+        Influence distance, > 0, a length: two and a half robot diameters, a third of the
+        paper's sensor range, so only nearby returns push.
+    stop_margin : float, default ``r/2``
+        Free space the safety rule keeps in front of the robot's disc, > 0, a length.
     """
 
-    k_att: float = 1.0
-    eta: float = 50.0
-    d0: float = 5.0
-    stop_margin: float = 0.5
+    k_att: float = derived("1", Unit.NUMBER)
+    eta: float = derived("50*r**4", Unit.LENGTH4)
+    d0: float = derived("5*r", Unit.LENGTH)
+    stop_margin: float = derived("r/2", Unit.LENGTH)
 
 
 def attractive_force(to_goal: tuple[float, float], k_att: float) -> NDArray[np.float64]:
@@ -176,11 +179,12 @@ class APFPlanner:
     """
 
     name: ClassVar[str] = "apf"
+    tunings: ClassVar[tuple[type[Tuning], ...]] = (APFParams,)
     #: Names of the settings read from ``EpisodeParams.params``.
-    parameters: ClassVar[tuple[str, ...]] = tuple(f.name for f in fields(APFParams))
+    parameters: ClassVar[tuple[str, ...]] = APFParams.names()
 
     def __init__(self) -> None:
-        self.tuning = APFParams()
+        self.tuning = APFParams.for_episode(EpisodeParams())
         self.radius = 1.0
         self.speed = 1.0
         self.max_turn = math.pi
@@ -189,7 +193,8 @@ class APFPlanner:
 
     def reset(self, start: Pose, goal: Point, params: EpisodeParams) -> None:
         """Read the settings from ``params.params`` (see :class:`APFParams`)."""
-        self.tuning = APFParams.from_params(params.params)
+        check_names(params.params, self.parameters, self.name)
+        self.tuning = APFParams.for_episode(params)
         self.radius = params.robot.radius
         self.speed = params.robot.speed
         self.max_turn = params.robot.max_turn_rate * params.dt

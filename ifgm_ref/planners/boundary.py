@@ -21,7 +21,7 @@ from ifgm_ref.paper import traces
 from ifgm_ref.percepts.corridor import free_length
 from ifgm_ref.percepts.memory import PerceptMemory
 from ifgm_ref.planners.edge_following import FollowSide, follow_heading, turn_speed
-from ifgm_ref.planners.tuning import Tuning
+from ifgm_ref.planners.tuning import Tuning, Unit, check_names, derived
 from ifgm_ref.pose import Point, Pose, distance, wrap_angle
 from ifgm_ref.protocol import Behaviour, Command, EpisodeParams, Observation
 
@@ -31,46 +31,49 @@ GOAL_UNREACHABLE = "goal_unreachable"
 
 @dataclass(frozen=True)
 class BoundaryParams(Tuning):
-    """Tuning shared by the boundary followers (lengths in ft, times in s).
+    """Tuning shared by the boundary followers; every default is a formula in the robot's
+    radius ``r`` (and the other symbols of :mod:`ifgm_ref.planners.tuning`).
 
     Parameters
     ----------
-    standoff_margin : float, default 1.0
-        Free space kept between the robot's disc and the followed edge: the follower keeps
-        the edge at ``radius + standoff_margin`` from the robot's centre.
-    corridor_margin : float, default 0.25
+    standoff_margin : float, default ``r``
+        Free space kept between the robot's disc and the followed edge, a length: the
+        follower keeps the edge at ``radius + standoff_margin`` from the robot's centre.
+    corridor_margin : float, default ``r/4``
         The path towards the goal is tested in a corridor of half-width
         ``radius + corridor_margin``: as wide as the robot, plus a little.
-    hit_margin : float, default 0.5
+    hit_margin : float, default ``r/2``
         An obstacle is *encountered* when the corridor towards the goal is blocked nearer
         than ``radius + standoff_margin + hit_margin``.
-    memory_horizon : float, default 8.0
-        How long obstacle points are remembered (:class:`PerceptMemory`): long enough to
-        round the corner of an obstacle the size of the paper's, short enough to forget it
+    memory_horizon : float, default 8 s
+        How long obstacle points are remembered (:class:`PerceptMemory`), a time: long enough
+        to round the corner of an obstacle the size of the paper's, short enough to forget it
         once passed.
-    return_radius : float, default 1.0
+    return_radius : float, default ``r``
         The robot is back at its hit point when this close to it ...
-    min_loop : float, default 12.0
+    min_loop : float, default ``12 r``
         ... after following the edge at least this far.
     """
 
-    standoff_margin: float = 1.0
-    corridor_margin: float = 0.25
-    hit_margin: float = 0.5
-    memory_horizon: float = 8.0
-    return_radius: float = 1.0
-    min_loop: float = 12.0
+    standoff_margin: float = derived("r", Unit.LENGTH)
+    corridor_margin: float = derived("r/4", Unit.LENGTH)
+    hit_margin: float = derived("r/2", Unit.LENGTH)
+    memory_horizon: float = derived("8", Unit.TIME)
+    return_radius: float = derived("r", Unit.LENGTH)
+    min_loop: float = derived("12*r", Unit.LENGTH)
 
 
 class BoundaryPlanner:
     """Move to goal; on meeting an obstacle, follow its edge until the leaving rule holds."""
 
     name: ClassVar[str] = "boundary"
-    #: The subclass's own parameters (names listed by ``ifgm-ref planners``).
+    #: The parameter classes the planner reads (``ifgm-ref planners`` lists their fields).
+    tunings: ClassVar[tuple[type[Tuning], ...]] = (BoundaryParams,)
+    #: The planner's parameter names.
     parameters: ClassVar[tuple[str, ...]] = BoundaryParams.names()
 
     def __init__(self) -> None:
-        self.tuning = BoundaryParams()
+        self.tuning = BoundaryParams.for_episode(EpisodeParams())
         self.memory = PerceptMemory(self.tuning.memory_horizon)
         self.goal = Point(0.0, 0.0)
         self.radius = 1.0
@@ -85,8 +88,10 @@ class BoundaryPlanner:
 
     # -- protocol ---------------------------------------------------------------------------
     def reset(self, start: Pose, goal: Point, params: EpisodeParams) -> None:
-        """Start in *move to goal* towards ``goal``; read tuning from ``params.params``."""
-        self.tuning = BoundaryParams.from_params(params.params)
+        """Start in *move to goal* towards ``goal``; read tuning from ``params.params``
+        (unknown names are an error)."""
+        check_names(params.params, self.parameters, self.name)
+        self.tuning = BoundaryParams.for_episode(params)
         self.memory = PerceptMemory(self.tuning.memory_horizon)
         self.goal = Point(*goal)
         self.radius = params.robot.radius
@@ -127,12 +132,12 @@ class BoundaryPlanner:
 
     @property
     def standoff(self) -> float:
-        """Distance kept from the followed edge to the robot's centre, ft."""
+        """Distance kept from the followed edge to the robot's centre."""
         return self.radius + self.tuning.standoff_margin
 
     @property
     def half_width(self) -> float:
-        """Half-width of the corridor the robot needs, ft."""
+        """Half-width of the corridor the robot needs."""
         return self.radius + self.tuning.corridor_margin
 
     def goal_bearing(self, pose: Pose) -> float:
@@ -185,7 +190,11 @@ class BoundaryPlanner:
     def follow(self, pose: Pose, branch: str) -> Command:
         """Follow the nearest remembered edge on :attr:`side` at the stand-off."""
         heading = follow_heading(
-            (pose.x, pose.y), self.memory.points, self.side, standoff=self.standoff
+            (pose.x, pose.y),
+            self.memory.points,
+            self.side,
+            standoff=self.standoff,
+            gain=1.0 / self.radius,
         )
         if heading is None:  # the edge is forgotten: the obstacle is behind us
             self.following = False

@@ -28,11 +28,12 @@ times the m-line crosses obstacle i, ``p_i`` its perimeter) is checked by the te
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 from typing import ClassVar
 
 from ifgm_ref.paper import traces
-from ifgm_ref.planners.boundary import BoundaryPlanner
-from ifgm_ref.planners.tuning import positive_param
+from ifgm_ref.planners.boundary import BoundaryParams, BoundaryPlanner
+from ifgm_ref.planners.tuning import Tuning, Unit, derived
 from ifgm_ref.pose import Point, Pose, distance
 from ifgm_ref.protocol import Command, EpisodeParams, Observation
 
@@ -57,14 +58,25 @@ def signed_distance(point: tuple[float, float], start: Point, goal: Point) -> fl
 
 
 @traces("bug2")
+@dataclass(frozen=True)
+class Bug2Params(Tuning):
+    """Bug2's own parameter.
+
+    Parameters
+    ----------
+    m_line_tolerance : float, default one step, ``v dt``
+        How near the m-line counts as on it, a length; a crossing between two samples counts
+        too.
+    """
+
+    m_line_tolerance: float = derived("v*dt", Unit.LENGTH)
+
+
 class Bug2Planner(BoundaryPlanner):
     """Lumelsky and Stepanov's Bug2 on the boundary-following skeleton.
 
-    Parameters (``params`` mapping of :func:`ifgm_ref.simulator.simulate`), besides those of
-    :class:`~ifgm_ref.planners.boundary.BoundaryParams`:
-
-    m_line_tolerance : float, default one step, ``robot.speed * dt``
-        How near the m-line counts as on it, ft; a crossing between two samples counts too.
+    Parameters (``params`` mapping of :func:`ifgm_ref.simulator.simulate`): those of
+    :class:`~ifgm_ref.planners.boundary.BoundaryParams` and :class:`Bug2Params`.
 
     Examples
     --------
@@ -82,7 +94,8 @@ class Bug2Planner(BoundaryPlanner):
     """
 
     name: ClassVar[str] = "bug2"
-    parameters: ClassVar[tuple[str, ...]] = (*BoundaryPlanner.parameters, "m_line_tolerance")
+    tunings: ClassVar[tuple[type[Tuning], ...]] = (BoundaryParams, Bug2Params)
+    parameters: ClassVar[tuple[str, ...]] = (*BoundaryParams.names(), *Bug2Params.names())
 
     def __init__(self) -> None:
         super().__init__()
@@ -95,10 +108,7 @@ class Bug2Planner(BoundaryPlanner):
         """Store the m-line from ``start`` to ``goal`` and read ``m_line_tolerance``."""
         super().reset(start, goal, params)
         self.start = Point(start[0], start[1])
-        default = params.robot.speed * params.dt
-        self.m_line_tolerance = positive_param(
-            "m_line_tolerance", params.params.get("m_line_tolerance", default)
-        )
+        self.m_line_tolerance = Bug2Params.for_episode(params).m_line_tolerance
         self.hit_distance = math.inf
         self._side = 0.0
 

@@ -47,22 +47,34 @@ import math
 from typing import ClassVar
 
 from ifgm_ref.paper import traces
-from ifgm_ref.planners.boundary import BoundaryPlanner
-from ifgm_ref.planners.tuning import positive_param
+from dataclasses import dataclass
+
+from ifgm_ref.planners.boundary import BoundaryParams, BoundaryPlanner
+from ifgm_ref.planners.tuning import Tuning, Unit, derived
 from ifgm_ref.pose import Point, Pose, distance
 from ifgm_ref.protocol import Command, EpisodeParams, Observation
+
+
+@dataclass(frozen=True)
+class DistBugParams(Tuning):
+    """DistBug's own parameter.
+
+    Parameters
+    ----------
+    step_length : float, default ``2 r``
+        Step, a length: the least progress towards the goal, beyond the best distance seen
+        on this obstacle, that the free range must promise before the robot leaves.
+    """
+
+    step_length: float = derived("2*r", Unit.LENGTH)
 
 
 @traces("distbug")
 class DistBugPlanner(BoundaryPlanner):
     """Kamon and Rivlin's DistBug on the boundary-following skeleton.
 
-    Parameters (``params`` mapping of :func:`ifgm_ref.simulator.simulate`), besides those of
-    :class:`~ifgm_ref.planners.boundary.BoundaryParams`:
-
-    step_length : float, default the robot's diameter, ``2 * robot.radius``
-        Step, ft: the least progress towards the goal, beyond the best distance seen on this
-        obstacle, that the free range must promise before the robot leaves.
+    Parameters (``params`` mapping of :func:`ifgm_ref.simulator.simulate`): those of
+    :class:`~ifgm_ref.planners.boundary.BoundaryParams` and :class:`DistBugParams`.
 
     Attributes
     ----------
@@ -82,10 +94,15 @@ class DistBugPlanner(BoundaryPlanner):
     Traceback (most recent call last):
     ...
     ifgm_ref.errors.ParameterError: `step_length` must be a finite number > 0, got -1.0
+    >>> simulate(resolve_world("box"), DistBugPlanner(), params={"step_lenght": 1.0})
+    Traceback (most recent call last):
+    ...
+    ifgm_ref.errors.ParameterError: distbug has no parameter `step_lenght`; it has: standoff_margin, corridor_margin, hit_margin, memory_horizon, return_radius, min_loop, step_length
     """
 
     name: ClassVar[str] = "distbug"
-    parameters: ClassVar[tuple[str, ...]] = (*BoundaryPlanner.parameters, "step_length")
+    tunings: ClassVar[tuple[type[Tuning], ...]] = (BoundaryParams, DistBugParams)
+    parameters: ClassVar[tuple[str, ...]] = (*BoundaryParams.names(), *DistBugParams.names())
 
     def __init__(self) -> None:
         super().__init__()
@@ -93,11 +110,9 @@ class DistBugPlanner(BoundaryPlanner):
         self.d_min = math.inf
 
     def reset(self, start: Pose, goal: Point, params: EpisodeParams) -> None:
-        """Start in *move to goal*; read ``step_length`` (default ``2 * robot.radius``)."""
+        """Start in *move to goal*; read ``step_length`` (default ``2 r``)."""
         super().reset(start, goal, params)
-        self.step_length = positive_param(
-            "step_length", params.params.get("step_length", 2.0 * params.robot.radius)
-        )
+        self.step_length = DistBugParams.for_episode(params).step_length
         self.d_min = math.inf
 
     # -- hooks ------------------------------------------------------------------------------

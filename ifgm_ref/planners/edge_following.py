@@ -47,7 +47,9 @@ def follow_heading(
 ) -> float | None:
     """The heading that follows the edge nearest to ``position`` on ``side``.
 
-    Returns ``None`` when there is no point to follow.
+    Returns ``None`` when there is no point to follow. ``gain`` is the correction in radians
+    per unit of length off the stand-off; the planners pass ``1 / r``, one radian per robot
+    radius, so that the follower behaves alike at every scale.
 
     Examples
     --------

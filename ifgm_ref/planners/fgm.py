@@ -42,7 +42,7 @@ angle here; :class:`FGMPlanner` turns the final heading into a world heading.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, fields
+from dataclasses import dataclass
 from enum import StrEnum
 from typing import ClassVar
 
@@ -55,7 +55,7 @@ from ifgm_ref.laserscan import LaserScan
 from ifgm_ref.paper import traces
 from ifgm_ref.percepts.points import scan_points
 from ifgm_ref.planners.edge_following import turn_speed
-from ifgm_ref.planners.tuning import Tuning
+from ifgm_ref.planners.tuning import Tuning, Unit, check_names, derived
 from ifgm_ref.pose import Point, Pose, wrap_angle
 from ifgm_ref.protocol import Behaviour, Command, EpisodeParams, Observation
 
@@ -89,30 +89,29 @@ class FGMParams(Tuning):
     """FGM's settings, read from ``EpisodeParams.params`` by name.
 
     The IFGM paper gives no values and our store has no copy of the FGM paper; the defaults
-    are ours, each with its reason.
+    are ours, each a formula in the robot's radius ``r`` with its reason.
 
     Parameters
     ----------
-    alpha : float, default 8.0
-        Gap weight of the final heading (multiplied by ``1 / d_min``), >= 0, ft. At 8 the gap
-        and the goal weigh the same when the nearest return is 8 ft away (four robot
-        diameters), and the gap dominates nearer than that. In the built-in ``box`` world FGM
-        passes the box for every ``alpha`` from 2 to 100 (clearance 0.2 ft at 2, 3.4 ft at 8,
-        6.9 ft at 100); below that the goal term pulls the robot into the box's corner.
-    beta : float, default 1.0
-        Goal weight of the final heading, >= 0; ``alpha`` and ``beta`` must not both be 0.
-    inflation_margin : float, default 0.5
-        Free space kept between the robot's disc and every return, ft, >= 0: each return is
-        inflated by ``robot.radius + inflation_margin`` (FGM "adds the robot's dimensions into
-        the obstacle dimensions", section 2.2). Half a foot covers the 0.13 ft the robot moves
-        per step at the default speed several times over.
+    alpha : float, default ``8 r``
+        Gap weight of the final heading (multiplied by ``1 / d_min``), >= 0, a length. At
+        ``8 r`` the gap and the goal weigh the same when the nearest return is four robot
+        diameters away, and the gap dominates nearer than that. In the built-in ``box`` world
+        FGM passes the box for every ``alpha`` from 2 to 100 ft (clearance 0.2 ft at 2, 3.4 ft
+        at 8, 6.9 ft at 100); below that the goal term pulls the robot into the box's corner.
+    beta : float, default 1
+        Goal weight of the final heading, >= 0, a number; ``alpha`` and ``beta`` must not
+        both be 0.
+    inflation_margin : float, default ``r/2``
+        Free space kept between the robot's disc and every return, >= 0, a length: each
+        return is inflated by ``robot.radius + inflation_margin`` (FGM "adds the robot's
+        dimensions into the obstacle dimensions", section 2.2). For the paper's robot half a
+        foot covers the 0.13 ft it moves per step several times over.
     """
 
-    alpha: float = 8.0
-    beta: float = 1.0
-    inflation_margin: float = 0.5
-
-    NON_NEGATIVE: ClassVar[frozenset[str]] = frozenset({"alpha", "beta", "inflation_margin"})
+    alpha: float = derived("8*r", Unit.LENGTH, zero=True)
+    beta: float = derived("1", Unit.NUMBER, zero=True)
+    inflation_margin: float = derived("r/2", Unit.LENGTH, zero=True)
 
     def __post_init__(self) -> None:
         super().__post_init__()
@@ -355,25 +354,28 @@ class FGMPlanner:
     """
 
     name: ClassVar[str] = "fgm"
+    tunings: ClassVar[tuple[type[Tuning], ...]] = (FGMParams,)
     #: Names of the settings read from ``EpisodeParams.params``.
-    parameters: ClassVar[tuple[str, ...]] = tuple(f.name for f in fields(FGMParams))
+    parameters: ClassVar[tuple[str, ...]] = FGMParams.names()
 
     def __init__(self) -> None:
-        self.tuning = FGMParams()
+        self.tuning = FGMParams.for_episode(EpisodeParams())
         self.radius = 1.0
         self.speed = 1.0
         self.last: FGMDecision | None = None
 
     def reset(self, start: Pose, goal: Point, params: EpisodeParams) -> None:
-        """Read the settings from ``params.params`` (see :class:`FGMParams`)."""
-        self.tuning = FGMParams.from_params(params.params)
+        """Read the settings from ``params.params`` (see :class:`FGMParams`); unknown names
+        are an error."""
+        check_names(params.params, self.parameters, self.name)
+        self.tuning = FGMParams.for_episode(params)
         self.radius = params.robot.radius
         self.speed = params.robot.speed
         self.last = None
 
     @property
     def inflation(self) -> float:
-        """Radius every return is inflated by, ft: robot radius plus margin."""
+        """Radius every return is inflated by: robot radius plus margin."""
         return self.radius + self.tuning.inflation_margin
 
     def step(self, observation: Observation) -> Command:

@@ -20,7 +20,7 @@ alone picks the branch, and this module carries it out:
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, fields
+from dataclasses import dataclass
 from typing import ClassVar
 
 import numpy as np
@@ -35,7 +35,9 @@ from ifgm_ref.percepts.corridor import free_length
 from ifgm_ref.percepts.points import to_world
 from ifgm_ref.planners.edge_following import FollowSide, turn_speed
 from ifgm_ref.planners.iba import IBAPlanner, freer_side
-from ifgm_ref.planners.tuning import Tuning
+from ifgm_ref.planners.boundary import BoundaryParams
+from ifgm_ref.planners.distbug import DistBugParams
+from ifgm_ref.planners.tuning import Tuning, Unit, derived
 from ifgm_ref.pose import Point, Pose, distance, wrap_angle
 from ifgm_ref.protocol import Behaviour, Command, EpisodeParams, Observation
 
@@ -51,42 +53,43 @@ TURN_DONE = 1e-6
 @traces("d_th", "d_obs", "s3.robot_dimensions")
 @dataclass(frozen=True)
 class IFGMParams(Tuning):
-    """IFGM's thresholds and weights (section 4); ``None`` means "derived from the robot".
+    """IFGM's thresholds and weights (section 4), each derived from the robot.
 
     Parameters
     ----------
-    d_th : float or None, default 2 r + 1 ft
-        Gap threshold: Case-1 needs a gap wider than this. The paper: greater than the robot's
-        size (we read: its diameter 2 r, errata row 12); one extra foot leaves half a foot of
-        clearance either side when passing through the middle.
-    d_obs : float or None, default r + v * 0.5 s
+    d_th : float, default ``3 r``
+        Gap threshold, a length: Case-1 needs a gap wider than this. The paper: greater than
+        the robot's size (we read: its diameter 2 r, errata row 12); one more radius leaves
+        half a radius of clearance either side when passing through the middle.
+    d_obs : float, default ``r + v/2``
         Nearest-obstacle threshold: at or below it IBA takes over. The paper: it "depends on
         speed of the robot"; we take the robot's radius plus half a second of travel, so that
         a robot passing through the middle of a gap just wider than ``d_th`` is not "too close".
-    d_look : float, default 8.0
+    d_look : float, default ``8 r``
         Encounter distance: an obstacle in the robot-wide corridor towards the goal nearer
-        than this makes the robot leave *move to goal*; about half the default sensor range,
-        so that gaps are measured while there is still room to steer. After leaving an edge
-        by DistBug's progress rule with an obstacle still ahead, the encounter distance is
-        IBA's short one (``standoff + hit_margin``) and Case-1 is off until the corridor
-        towards the goal is free for ``d_look`` again (errata row 24).
-    w_g, w_d : float, default 9.0 and 1.0
-        Gap and goal weights of eq. (4). With the default ``d_th`` = 3 ft the gap counts
-        three times as much as the goal (``w_g / d_th = 3``), so the robot commits to the gap.
-    jump : float or None, default 2 r
+        than this makes the robot leave *move to goal*; four robot diameters (about half the
+        paper's sensor range), so that gaps are measured while there is still room to steer.
+        After leaving an edge by DistBug's progress rule with an obstacle still ahead, the
+        encounter distance is IBA's short one (``standoff + hit_margin``) and Case-1 is off
+        until the corridor towards the goal is free for ``d_look`` again (errata row 24).
+    w_g, w_d : float, default 9 and 1
+        Gap and goal weights of eq. (4), numbers. With the default ``d_th`` = 3 r the gap
+        counts three times as much as the goal for the paper's 1 ft robot
+        (``w_g / d_th = 3``), so the robot commits to the gap.
+    jump : float, default ``2 r``
         Two consecutive returns further apart than this belong to different obstacles: a
         robot cannot pass between returns nearer than its diameter anyway.
-    preempt_margin : float, default 0.5
+    preempt_margin : float, default ``r/2``
         Case-3: another obstacle pre-empts the followed edge when it is this much nearer.
     """
 
-    d_th: float | None = None
-    d_obs: float | None = None
-    d_look: float = 8.0
-    w_g: float = 9.0
-    w_d: float = 1.0
-    jump: float | None = None
-    preempt_margin: float = 0.5
+    d_th: float = derived("3*r", Unit.LENGTH)
+    d_obs: float = derived("r + v/2", Unit.LENGTH)
+    d_look: float = derived("8*r", Unit.LENGTH)
+    w_g: float = derived("9", Unit.NUMBER)
+    w_d: float = derived("1", Unit.NUMBER)
+    jump: float = derived("2*r", Unit.LENGTH)
+    preempt_margin: float = derived("r/2", Unit.LENGTH)
 
 
 @traces("s3.critical_shapes", "s3.safe_near_obstacles")
@@ -120,23 +123,20 @@ class IFGMPlanner(IBAPlanner):
     """
 
     name = "ifgm"
-    parameters: ClassVar[tuple[str, ...]] = (
-        tuple(f.name for f in fields(IFGMParams)) + IBAPlanner.parameters
-    )
+    tunings: ClassVar[tuple[type[Tuning], ...]] = (IFGMParams, BoundaryParams, DistBugParams)
+    parameters: ClassVar[tuple[str, ...]] = IFGMParams.names() + IBAPlanner.parameters
 
     @traces("d_th", "d_obs")
     def reset(self, start: Pose, goal: Point, params: EpisodeParams) -> None:
         """Start in *move to goal*; derive and validate the thresholds."""
         super().reset(start, goal, params)
-        p = IFGMParams.from_params(params.params)
-        r, v = params.robot.radius, params.robot.speed
-        self.d_th = 2.0 * r + 1.0 if p.d_th is None else float(p.d_th)
-        if self.d_th <= 2.0 * r:
+        p = IFGMParams.for_episode(params)
+        r = params.robot.radius
+        if p.d_th <= 2.0 * r:
             raise ParameterError(
-                f"`d_th` must be > the robot diameter {2.0 * r!r} (section 4), got {self.d_th!r}"
+                f"`d_th` must be > the robot diameter {2.0 * r!r} (section 4), got {p.d_th!r}"
             )
-        self.d_obs = r + v * 0.5 if p.d_obs is None else float(p.d_obs)
-        self.jump = 2.0 * r if p.jump is None else float(p.jump)
+        self.d_th, self.d_obs, self.jump = p.d_th, p.d_obs, p.jump
         self.ifgm = p
         # The goal is reached during this step when it is within the episode's tolerance plus
         # one step of travel: the robot then drives straight onto it.

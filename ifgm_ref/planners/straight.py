@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import math
 
+from ifgm_ref.planners.tuning import check_names
 from ifgm_ref.pose import Point, Pose
 from ifgm_ref.protocol import Behaviour, Command, EpisodeParams, Observation
 
@@ -22,7 +23,8 @@ class StraightPlanner:
         self._speed = 0.0
 
     def reset(self, start: Pose, goal: Point, params: EpisodeParams) -> None:
-        """Remember the robot's speed; nothing else to prepare."""
+        """Remember the robot's speed; nothing else to prepare (it has no parameters)."""
+        check_names(params.params, (), self.name)
         self._speed = params.robot.speed
 
     def step(self, observation: Observation) -> Command:

@@ -1,17 +1,153 @@
-"""Planner parameters: read by name from :attr:`EpisodeParams.params`, validated on entry.
+"""Planner parameters: one scale-free model for every planner.
 
-Every planner keeps its tunables in a frozen dataclass that mixes in :class:`Tuning`: the
-fields are the parameter names (``ifgm-ref planners`` lists them, ``--param NAME=VALUE`` sets
-them), the defaults and their reasons are in the dataclass's docstring.
+A planner holds no absolute length. Each of its parameters is a field of a frozen dataclass
+that mixes in :class:`Tuning`, declared with :func:`derived`: a *formula* in the quantities
+of the robot, the time step and the sensor, and a *unit*. The formula gives the default; a
+value set by name in :attr:`EpisodeParams.params <ifgm_ref.protocol.EpisodeParams>` (or with
+``--param NAME=VALUE``) replaces it. The symbols a formula may use:
+
+=========  ====================================================================  ==========
+symbol     quantity                                                              the paper
+=========  ====================================================================  ==========
+``r``      robot radius                                                          1 ft
+``v``      robot speed                                                           1.322 ft/s
+``w``      largest turn rate, rad/s (``v / w`` is the turning radius)            pi/2
+``dt``     time step, s                                                          0.1
+``R``      sensor range (``range_max``)                                          15 ft
+``res``    angle between two rays, rad                                           1.8 deg
+``fov``    field of view, rad                                                    135 deg
+=========  ====================================================================  ==========
+
+The paper's numbers are what the formulas give for the paper's robot (:meth:`Scale.paper`);
+``ifgm-ref planners`` prints both. Units follow from the symbols: a *length* parameter is
+homogeneous of degree 1 in ``r``, ``v`` and ``R`` (scale every length of the world, the
+robot and the sensor by ``k`` and it scales by ``k``), a *time*, *angle* or *number* of
+degree 0; ``proofs/scale.py`` proves it of every declared formula, and the oracle's
+``scale_invariant`` check tests the consequence on whole episodes.
+
+Formulas are written in sympy's syntax (``Max``, ``Min``, ``pi``) and evaluated with
+:func:`sympy.lambdify`: the string shown to the reader is the code that runs.
 """
 
 from __future__ import annotations
 
+import functools
 import math
-from dataclasses import fields
-from typing import Any, ClassVar, Self
+from collections.abc import Callable, Iterable, Mapping
+from dataclasses import dataclass, field, fields
+from enum import StrEnum
+from typing import TYPE_CHECKING, Any, NamedTuple, Self
+
+import sympy
 
 from ifgm_ref.errors import ParameterError
+
+if TYPE_CHECKING:
+    from ifgm_ref.protocol import EpisodeParams
+
+
+class Unit(StrEnum):
+    """What a planner parameter measures; ``length_power`` is how it scales with lengths."""
+
+    LENGTH = "length"
+    #: A length to the fourth power (APF's repulsive gain balancing a quadratic well).
+    LENGTH4 = "length^4"
+    TIME = "s"
+    ANGLE = "rad"
+    NUMBER = "1"
+
+    @property
+    def length_power(self) -> int:
+        """The power ``p`` such that scaling every length by ``k`` scales the value by
+        ``k ** p``.
+
+        >>> Unit.LENGTH.length_power, Unit.TIME.length_power, Unit.LENGTH4.length_power
+        (1, 0, 4)
+        """
+        return {Unit.LENGTH: 1, Unit.LENGTH4: 4}.get(self, 0)
+
+
+class Scale(NamedTuple):
+    """The quantities every planner parameter is derived from (the formula symbols)."""
+
+    r: float
+    v: float
+    w: float
+    dt: float
+    R: float
+    res: float
+    fov: float
+
+    @classmethod
+    def of(cls, params: EpisodeParams) -> Scale:
+        """The scale of an episode: its robot, time step and sensor."""
+        robot, sensor = params.robot, params.sensor
+        return cls(
+            robot.radius,
+            robot.speed,
+            robot.max_turn_rate,
+            params.dt,
+            sensor.range_max,
+            sensor.angle_increment,
+            sensor.fov,
+        )
+
+    @classmethod
+    def paper(cls) -> Scale:
+        """The paper's robot with our defaults (:mod:`ifgm_ref.params`)."""
+        from ifgm_ref.protocol import EpisodeParams
+
+        return cls.of(EpisodeParams())
+
+
+#: The formula symbols, in :class:`Scale`'s order; lengths are declared positive.
+SYMBOLS: tuple[sympy.Symbol, ...] = sympy.symbols("r v w dt R res fov", positive=True)
+#: The symbols that carry a length (``v`` is a length per second).
+LENGTH_SYMBOLS: frozenset[str] = frozenset({"r", "v", "R"})
+
+
+@functools.cache
+def formula_expr(formula: str) -> sympy.Expr:
+    """A formula as a sympy expression over :data:`SYMBOLS`; unknown names are an error.
+
+    >>> formula_expr("Max(r, v/w)")
+    Max(r, v/w)
+    >>> formula_expr("2*d")
+    Traceback (most recent call last):
+    ...
+    ifgm_ref.errors.ParameterError: formula '2*d' uses d; a formula may use r, v, w, dt, R, res, fov
+    """
+    names = {s.name: s for s in SYMBOLS}
+    expr = sympy.sympify(formula, locals=names)
+    unknown = sorted(s.name for s in expr.free_symbols if s.name not in names)
+    if unknown:
+        raise ParameterError(
+            f"formula {formula!r} uses {', '.join(unknown)}; a formula may use {', '.join(names)}"
+        )
+    return expr
+
+
+@functools.cache
+def _compiled(formula: str) -> Callable[..., float]:
+    return sympy.lambdify(SYMBOLS, formula_expr(formula), modules="math")  # type: ignore[no-any-return]
+
+
+def evaluate(formula: str, scale: Scale) -> float:
+    """The value of ``formula`` for ``scale``.
+
+    >>> round(evaluate("r + v*0.5", Scale.paper()), 4)
+    1.6611
+    """
+    return float(_compiled(formula)(*scale))
+
+
+def derived(formula: str, unit: Unit, *, zero: bool = False) -> Any:
+    """A parameter field whose default is ``formula`` (see the module docstring).
+
+    ``zero`` allows the value 0; otherwise every value must be > 0.
+    """
+    formula_expr(formula)  # fail at import on a bad formula
+    return field(default=None, metadata={"formula": formula, "unit": unit, "zero": zero})
 
 
 def positive_param(name: str, value: object, *, allow_zero: bool = False) -> float:
@@ -36,20 +172,39 @@ def positive_param(name: str, value: object, *, allow_zero: bool = False) -> flo
     return float(value)  # type: ignore[arg-type]
 
 
+@dataclass(frozen=True)
+class ParamInfo:
+    """One declared parameter: its name, default formula and unit."""
+
+    name: str
+    formula: str
+    unit: Unit
+
+    def value(self, scale: Scale) -> float:
+        """The default for ``scale``."""
+        return evaluate(self.formula, scale)
+
+
 class Tuning:
-    """Mixin for a frozen dataclass of planner parameters (all positive numbers).
+    """Mixin for a frozen dataclass of planner parameters declared with :func:`derived`.
 
-    A field whose default is ``None`` may be ``None``, meaning "derived from the robot at
-    reset"; a field named in ``NON_NEGATIVE`` may also be 0.
+    A field left ``None`` takes its formula's value in :meth:`for_episode`; a field given a
+    value must be a finite number > 0 (>= 0 where declared with ``zero=True``).
     """
-
-    NON_NEGATIVE: ClassVar[frozenset[str]] = frozenset()
 
     def __post_init__(self) -> None:
         for f in fields(self):  # type: ignore[arg-type]
             value = getattr(self, f.name)
-            if not (value is None and f.default is None):
-                positive_param(f.name, value, allow_zero=f.name in self.NON_NEGATIVE)
+            if value is not None:
+                positive_param(f.name, value, allow_zero=f.metadata["zero"])
+
+    @classmethod
+    def infos(cls) -> tuple[ParamInfo, ...]:
+        """Every parameter with its formula and unit, in declaration order."""
+        return tuple(
+            ParamInfo(f.name, f.metadata["formula"], f.metadata["unit"])
+            for f in fields(cls)  # type: ignore[arg-type]
+        )
 
     @classmethod
     def names(cls) -> tuple[str, ...]:
@@ -57,8 +212,59 @@ class Tuning:
         return tuple(f.name for f in fields(cls))  # type: ignore[arg-type]
 
     @classmethod
-    def from_params(cls, params: dict[str, Any]) -> Self:
-        """Take this class's fields from a planner ``params`` mapping; ignore the other keys
-        (they belong to another part of the same planner)."""
+    def for_episode(cls, params: EpisodeParams) -> Self:
+        """The parameters of an episode: the values set by name in ``params.params`` (other
+        keys belong to another part of the same planner and are ignored here), every other
+        one from its formula."""
         known = set(cls.names())
-        return cls(**{k: v for k, v in params.items() if k in known})
+        for name, value in params.params.items():
+            if name in known and value is None:  # a value given must be a number
+                positive_param(name, value)
+        given = cls(**{k: v for k, v in params.params.items() if k in known})
+        scale = Scale.of(params)
+        return cls(
+            **{
+                info.name: evaluate(info.formula, scale)
+                if getattr(given, info.name) is None
+                else float(getattr(given, info.name))
+                for info in cls.infos()
+            }
+        )
+
+    @classmethod
+    def paper(cls) -> Self:
+        """The defaults for the paper's robot (:meth:`Scale.paper`), every field a number."""
+        from ifgm_ref.protocol import EpisodeParams
+
+        return cls.for_episode(EpisodeParams())
+
+
+def check_names(params: Mapping[str, object], allowed: Iterable[str], planner: str) -> None:
+    """Raise :class:`ParameterError` if ``params`` names a parameter ``planner`` does not have.
+
+    >>> check_names({"d_th": 3.0}, ("d_th", "d_obs"), "ifgm")
+    >>> check_names({"dth": 3.0}, ("d_th", "d_obs"), "ifgm")
+    Traceback (most recent call last):
+    ...
+    ifgm_ref.errors.ParameterError: ifgm has no parameter `dth`; it has: d_th, d_obs
+    """
+    allowed = tuple(allowed)
+    unknown = [name for name in params if name not in allowed]
+    if unknown:
+        has = ", ".join(allowed) if allowed else "none"
+        names = ", ".join(f"`{n}`" for n in unknown)
+        raise ParameterError(f"{planner} has no parameter {names}; it has: {has}")
+
+
+def parameter_infos(tunings: Iterable[type[Tuning]]) -> tuple[ParamInfo, ...]:
+    """Every parameter of ``tunings`` (a planner's :class:`Tuning` classes), in order."""
+    return tuple(info for tuning in tunings for info in tuning.infos())
+
+
+def episode_values(tunings: Iterable[type[Tuning]], params: EpisodeParams) -> dict[str, float]:
+    """Every parameter of ``tunings`` with the value it takes in the episode ``params``."""
+    values: dict[str, float] = {}
+    for tuning in tunings:
+        resolved = tuning.for_episode(params)
+        values.update({name: getattr(resolved, name) for name in tuning.names()})
+    return values
