@@ -27,6 +27,7 @@ from pathlib import Path
 import numpy as np
 
 from ifgm_ref.bench.tasks import Row, WorldSpec
+from ifgm_ref.simulator import StopReason
 from ifgm_ref.worldfile import save_world
 
 #: The pseudo-class that pools every world.
@@ -42,6 +43,9 @@ class Summary:
     ``success_rate`` is the fraction of episodes that reached the goal; the path-ratio
     statistics are over those episodes (``None`` when there is none); ``collisions`` counts
     episodes that ended in a collision and ``errors`` those whose planner raised.
+    ``collision_rate`` and ``timeout_rate`` are the fractions of episodes that ended in a
+    collision and at the time limit; ``barn_score_mean`` is the mean BARN score over the
+    episodes that have one (BARN worlds; ``None`` elsewhere), as BARN reports it.
     """
 
     planner: str
@@ -56,6 +60,9 @@ class Summary:
     heading_change_median: float | None
     min_clearance_min: float | None
     decisions_per_cpu_s_median: float | None
+    collision_rate: float | None = None
+    timeout_rate: float | None = None
+    barn_score_mean: float | None = None
 
     @classmethod
     def columns(cls) -> tuple[str, ...]:
@@ -73,6 +80,7 @@ def summarize_rows(planner: str, world_class: str, rows: Sequence[Row]) -> Summa
     ratios = [r.path_ratio for r in reached if r.path_ratio is not None]
     clearances = [r.min_clearance for r in rows if r.min_clearance is not None]
     speeds = [r.decisions_per_cpu_s for r in rows if r.decisions_per_cpu_s is not None]
+    scores = [r.barn_score for r in rows if r.barn_score is not None]
     return Summary(
         planner=planner,
         world_class=world_class,
@@ -86,6 +94,9 @@ def summarize_rows(planner: str, world_class: str, rows: Sequence[Row]) -> Summa
         heading_change_median=_median([r.heading_change for r in reached]),
         min_clearance_min=min(clearances) if clearances else None,
         decisions_per_cpu_s_median=_median(speeds),
+        collision_rate=sum(r.collided for r in rows) / len(rows),
+        timeout_rate=sum(r.stop_reason == StopReason.TIME_LIMIT for r in rows) / len(rows),
+        barn_score_mean=float(np.mean(scores)) if scores else None,
     )
 
 
@@ -170,6 +181,20 @@ def summary_markdown(summaries: Sequence[Summary], rows: Sequence[Row], header: 
             f"{_fmt(s.time_median_s, '.1f')} | {_fmt(s.heading_change_median, '.2f')} | "
             f"{_fmt(s.min_clearance_min, '.3f')} | {_fmt(s.decisions_per_cpu_s_median, ',.0f')} |"
             for s in mine
+        ]
+        lines.append("")
+    barn = [s for s in summaries if s.barn_score_mean is not None and s.world_class != ALL]
+    if barn:
+        lines += [
+            "## BARN worlds (BARN's score; its DWA baseline in Gazebo: 0.159 on 50 test worlds)",
+            "",
+            "| planner | class | worlds | mean BARN score | success | collisions | timeouts |",
+            "|---|---|---:|---:|---:|---:|---:|",
+        ]
+        lines += [
+            f"| {s.planner} | {s.world_class} | {s.worlds} | {s.barn_score_mean:.3f} | "
+            f"{s.success_rate:.1%} | {s.collision_rate or 0.0:.1%} | {s.timeout_rate or 0.0:.1%} |"
+            for s in barn
         ]
         lines.append("")
     failed = [r for r in rows if not r.reached]

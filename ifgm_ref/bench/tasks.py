@@ -9,12 +9,20 @@ is rebuilt from its own seed, ``numpy.random.SeedSequence(seed, spawn_key=(class
 World ``u-0007`` is the same world whether 10 or 500 worlds per class are asked for, and
 whichever worker builds it.
 
+A BARN world (kind ``barn``: :mod:`ifgm_ref.bench.barn`) is rebuilt from its ``.world`` file
+with BARN's robot, sensor preset, start and goal, and runs with BARN's time step, success
+radius and time limit; its rows carry BARN's reference path length and score. Its shortest
+path is not computed: extremitypathfinder takes about 20 s per BARN world (~240 cylinders,
+measured), twenty times the episodes themselves, so ``optimal_length`` and
+``path_ratio`` stay empty there.
+
 Each (planner, world) pair gives one :class:`Row`. A planner that raises is recorded as a
 row with stop reason ``error`` and the message in ``detail``, so one crash loses nothing else.
 """
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import time
 from dataclasses import asdict, dataclass, fields
@@ -23,6 +31,7 @@ from typing import Any
 
 import numpy as np
 
+from ifgm_ref.bench import barn
 from ifgm_ref.bench.optimal import optimal_path
 from ifgm_ref.errors import WorldError
 from ifgm_ref.oracle.bounds import time_bound
@@ -46,8 +55,9 @@ class WorldSpec:
     """Where a benchmark world comes from.
 
     ``kind`` is a generated class (``open``, ``u``, ``h``, ``symmetric``, ``mixed``: then
-    ``seed`` and ``index`` rebuild it), ``builtin`` (``source`` is the name) or ``file``
-    (``source`` is the path).
+    ``seed`` and ``index`` rebuild it), ``builtin`` (``source`` is the name), ``file``
+    (``source`` is the path) or ``barn`` (``source`` is the ``world_N.world`` file,
+    ``path_file`` BARN's ``path_N.npy``, ``sensor`` the sensor preset's name).
     """
 
     name: str
@@ -55,6 +65,8 @@ class WorldSpec:
     source: str | None = None
     seed: int | None = None
     index: int | None = None
+    path_file: str | None = None
+    sensor: str | None = None
 
     @classmethod
     def generated(cls, world_class: str, seed: int, index: int) -> WorldSpec:
@@ -64,8 +76,19 @@ class WorldSpec:
             raise WorldError(f"unknown world class {world_class!r}; known: {known}")
         return cls(f"{world_class}-{index:04d}", world_class, None, seed, index)
 
+    @classmethod
+    def from_barn(cls, files: barn.BarnFiles, sensor: str = barn.DEFAULT_SENSOR) -> WorldSpec:
+        """BARN's world ``files.index`` (named ``barn-NNN``) with the sensor preset ``sensor``."""
+        barn.barn_sensor(sensor)  # an unknown preset fails here, not in a worker
+        return cls(
+            f"barn-{files.index:03d}", "barn", str(files.world), None, files.index,
+            str(files.path), sensor,
+        )  # fmt: skip
+
     def build(self) -> World:
         """The world itself."""
+        if self.kind == "barn":
+            return barn.load_barn_world(str(self.source), self.sensor or barn.DEFAULT_SENSOR)
         if self.kind == "builtin":
             return BUILTIN_WORLDS[str(self.source)].build()
         if self.kind == "file":
@@ -83,6 +106,17 @@ def generated_specs(classes: list[str], per_class: int, seed: int) -> list[World
 def builtin_specs() -> list[WorldSpec]:
     """Every built-in world (``ifgm-ref worlds``)."""
     return [WorldSpec(name, "builtin", name) for name in BUILTIN_WORLDS]
+
+
+def barn_specs(
+    folder: str | Path, sensor: str = barn.DEFAULT_SENSOR, indices: set[int] | None = None
+) -> list[WorldSpec]:
+    """Every BARN world in ``folder`` (flat or BARN's repository layout), by index; each is
+    checked on loading."""
+    specs = [WorldSpec.from_barn(files, sensor) for files in barn.find_barn_worlds(folder, indices)]
+    for spec in specs:
+        spec.build()
+    return specs
 
 
 def folder_specs(folder: str | Path) -> list[WorldSpec]:
@@ -103,7 +137,8 @@ class Row:
     optimal_length`` for an episode that reached the goal, else empty; ``heading_change`` is
     the total absolute change of heading along the path (smoothness: less is smoother);
     ``decisions_per_cpu_s`` counts the planner's ``step`` calls per second of CPU spent in
-    them (the only column that varies between runs).
+    them (the only column that varies between runs). ``reference_length`` (BARN's path length
+    L, m) and ``barn_score`` (BARN's score of the episode) are filled for BARN worlds only.
     """
 
     planner: str
@@ -121,6 +156,8 @@ class Row:
     steps: int
     decisions_per_cpu_s: float | None
     detail: str | None = None
+    reference_length: float | None = None
+    barn_score: float | None = None
 
     @classmethod
     def columns(cls) -> tuple[str, ...]:
@@ -169,9 +206,14 @@ def run_world(
     """Build ``spec``'s world, find its shortest path, run each planner there: one row each.
 
     The time limit is ``max_time`` s or, by default, the oracle's convergence budget for the
-    world (:func:`ifgm_ref.oracle.bounds.time_bound`: Bug1's path bound driven slowly).
+    world (:func:`ifgm_ref.oracle.bounds.time_bound`: Bug1's path bound driven slowly); for a
+    BARN world, BARN's 100 s (and its time step and success radius, :data:`barn.SIM`).
     """
     world = spec.build()
+    if spec.kind == "barn":
+        sim = dataclasses.replace(barn.SIM, max_time=max_time or barn.SIM.max_time)
+        reference = barn.reference_length(str(spec.path_file))
+        return [_episode(spec, world, name, None, sim, reference) for name in planners]
     sim = SimParams(max_time=max_time or time_bound(world))
     try:
         optimal: float | None = optimal_length(world, sim.goal_tolerance)
@@ -181,7 +223,12 @@ def run_world(
 
 
 def _episode(
-    spec: WorldSpec, world: World, planner: str, optimal: float | None, sim: SimParams
+    spec: WorldSpec,
+    world: World,
+    planner: str,
+    optimal: float | None,
+    sim: SimParams,
+    reference: float | None = None,
 ) -> Row:
     timed = _Timed(load_factory(planner)())
     try:
@@ -190,6 +237,7 @@ def _episode(
         return Row(
             planner, spec.name, spec.kind, False, False, ERROR, math.nan, math.nan, optimal,
             None, None, math.nan, timed.decisions, None, f"{type(err).__name__}: {err}",
+            reference, None if reference is None else 0.0,
         )  # fmt: skip
     result = run.result
     ratio = result.path_length / optimal if result.reached and optimal else None
@@ -209,4 +257,8 @@ def _episode(
         steps=result.steps,
         decisions_per_cpu_s=timed.decisions / timed.cpu_s if timed.cpu_s > 0 else None,
         detail=result.detail,
+        reference_length=reference,
+        barn_score=None
+        if reference is None
+        else barn.barn_score(result.reached, result.time_s, reference),
     )

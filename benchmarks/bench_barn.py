@@ -1,0 +1,73 @@
+"""The planners on BARN's worlds: success, collisions, timeouts, BARN's score, wall time.
+
+Run from the project root: ``python benchmarks/bench_barn.py`` (``--help`` for options). By
+default it unpacks ``../shared/barn/barn-200.tar.xz`` (200 BARN worlds with their reference
+paths, ``../shared/barn/README.md``) into a temporary folder; ``--barn DIR`` takes a folder
+or a clone of BARN's repository instead. Each planner runs with the Jackal's LiDAR; IFGM runs
+a second time with the paper's IR sensor scaled to the robot (``paper_ir``). Each line gives,
+for one planner and sensor, the share of episodes that reached the goal, collided and timed
+out, the mean BARN score (``ifgm_ref.bench.barn.barn_score``; BARN's DWA baseline in Gazebo
+scores 0.159 on BARN's 50 test worlds) and the wall time. It measures, it asserts nothing.
+"""
+
+from __future__ import annotations
+
+import argparse
+import tarfile
+import tempfile
+import time
+from pathlib import Path
+
+from ifgm_ref.bench.report import machine, summarize_rows
+from ifgm_ref.bench.runner import run_bench
+from ifgm_ref.bench.tasks import barn_specs
+
+PLANNERS = ["ifgm", "iba", "distbug", "bug2", "fgm", "apf"]
+#: Planners that also run with the paper's IR sensor.
+IR_PLANNERS = {"ifgm"}
+ARCHIVE = Path(__file__).resolve().parents[2] / "shared" / "barn" / "barn-200.tar.xz"
+
+
+def _measure(folder: Path, args: argparse.Namespace) -> None:
+    print(f"machine: {machine()}; jobs={args.jobs}")
+    print(f"{'planner':<10} {'sensor':<13} {'worlds':>6} {'success':>8} {'collided':>9} "
+          f"{'timeout':>8} {'score':>6} {'wall s':>7}")  # fmt: skip
+    for planner in args.planners:
+        for sensor in ("jackal_lidar", "paper_ir") if planner in IR_PLANNERS else ("jackal_lidar",):
+            specs = barn_specs(folder, sensor)[: args.limit]
+            begin = time.perf_counter()
+            rows = run_bench(specs, [planner], jobs=args.jobs, progress=False)
+            wall = time.perf_counter() - begin
+            s = summarize_rows(planner, "barn", rows)
+            print(
+                f"{planner:<10} {sensor:<13} {s.worlds:>6} {s.success_rate:>8.1%} "
+                f"{s.collision_rate or 0.0:>9.1%} {s.timeout_rate or 0.0:>8.1%} "
+                f"{s.barn_score_mean or 0.0:>6.3f} {wall:>7.1f}",
+                flush=True,
+            )
+
+
+def main() -> None:
+    """Parse the options, find or unpack the worlds, print one line per planner and sensor."""
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--barn", type=Path, help=f"BARN folder (default: unpack {ARCHIVE})")
+    parser.add_argument("--jobs", type=int, default=2, help="local worker processes (2)")
+    parser.add_argument(
+        "--planners",
+        type=lambda text: [p.strip() for p in text.split(",") if p.strip()],
+        default=PLANNERS,
+        help=f"comma-separated planners (default {','.join(PLANNERS)})",
+    )
+    parser.add_argument("--limit", type=int, help="only the first N worlds (by index)")
+    args = parser.parse_args()
+    if args.barn is not None:
+        _measure(args.barn, args)
+        return
+    with tempfile.TemporaryDirectory() as tmp:
+        with tarfile.open(ARCHIVE) as archive:
+            archive.extractall(tmp, filter="data")
+        _measure(Path(tmp) / "barn", args)
+
+
+if __name__ == "__main__":
+    main()

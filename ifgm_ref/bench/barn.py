@@ -1,0 +1,194 @@
+"""BARN: the Benchmark for Autonomous Robot Navigation's static worlds, task, and score.
+
+BARN (Perille, Truong, Xiao, Stone, "Benchmarking Metric Ground Navigation", SSRR 2020; the
+repository ``Daffan/the-barn-challenge``, MIT licence) gives 300 Gazebo worlds
+``world_N.world`` and reference paths ``path_N.npy``. ``../shared/barn/README.md`` sums up
+the facts used here; each constant below gives its source or reason.
+
+The worlds' enclosure is in the files: every one of the 200 worlds of ``../shared/barn``
+holds, besides the obstacle field, cylinders along ``x = -4.425`` and ``x = -0.075`` from
+``y = 0.075`` to ``y = 9.525`` and along ``y = 0.075`` (touching cylinders of radius 0.075 m
+0.15 m apart: closed walls). The side beyond ``y = 9.6``, towards the goal, is open ground in
+Gazebo too, so a BARN world here is unbounded (``bounds=None``) with those walls as obstacles,
+exactly what the robot meets in BARN.
+
+Units are metres and seconds.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import re
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from ifgm_ref.errors import ParameterError, WorldError
+from ifgm_ref.gazebo import load_sdf_world
+from ifgm_ref.params import SENSOR_PRESETS, RobotParams, SensorParams, SimParams
+from ifgm_ref.pose import Point, Pose
+from ifgm_ref.world import World
+
+#: BARN's start, ``run.py``'s ``INIT_POSITION = [-2, 3, 1.57]``: heading +y (1.57 ~ pi/2).
+START = Pose(-2.0, 3.0, math.pi / 2)
+#: BARN's goal: ``INIT_POSITION`` plus ``GOAL_POSITION = [0, 10]``, 10 m ahead of the start.
+GOAL = Point(-2.0, 13.0)
+#: The robot. A disc of radius 0.22 m: half the Jackal's 0.430 m width (its 0.508 m length
+#: would need a 0.33 m disc, which BARN's narrowest gaps do not admit; BARN's reference paths
+#: are planned for the width). 1.0 m/s, half the Jackal's 2 m/s top speed. pi rad/s turn
+#: rate: the Jackal turns well faster, but pi rad/s makes the turning radius v / w = 0.32 m,
+#: near the robot's size, so the turn rate does not make the planners' turns wide.
+ROBOT = RobotParams(radius=0.22, speed=1.0, max_turn_rate=math.pi)
+#: The episode. 0.05 s steps move the robot 0.05 m, about a quarter of its radius; BARN's
+#: success radius is 1 m and its time limit 100 s (``../shared/barn/README.md``).
+SIM = SimParams(dt=0.05, max_time=100.0, goal_tolerance=1.0)
+#: Speed of BARN's optimal time ``t_opt = L / 2 m/s``: the Jackal's top speed.
+OPTIMAL_SPEED = 2.0
+#: BARN's cell: twice the obstacle cylinders' radius 0.075 m.
+CELL = 0.15
+#: Default sensor preset (``ifgm_ref.params.SENSOR_PRESETS``): the Jackal's LiDAR.
+DEFAULT_SENSOR = "jackal_lidar"
+#: Obstacle cylinders' radius in BARN's worlds, m.
+CYLINDER_RADIUS = 0.075
+
+_WORLD = re.compile(r"world_(\d+)\.world")
+
+
+def barn_sensor(name: str = DEFAULT_SENSOR) -> SensorParams:
+    """The sensor preset ``name``: ``jackal_lidar`` (BARN's) or ``paper_ir`` (the paper's IR
+    sensor scaled to the 0.22 m robot: ``paper_ir(0.22)``, as the paper's robot is a 1 ft
+    disc)."""
+    if name == "paper_ir":
+        return SENSOR_PRESETS["paper_ir"](ROBOT.radius)
+    if name in SENSOR_PRESETS:
+        return SENSOR_PRESETS[name]()
+    raise ParameterError(f"unknown sensor {name!r}; known: {', '.join(SENSOR_PRESETS)}")
+
+
+def cell_to_world(row: float, col: float) -> tuple[float, float]:
+    """BARN's grid cell ``(row, col)`` in world coordinates, as ``run.py`` converts it.
+
+    ``x = row * 0.15 - 0.075 - 4.5``, ``y = col * 0.15 + 0.075 + 5``.
+
+    >>> cell_to_world(0, 0)
+    (-4.575, 5.075)
+    """
+    x = row * CELL - CELL / 2 - 30 * CELL
+    y = col * CELL + CELL / 2 + 5.0
+    return (round(x, 12), round(y, 12))
+
+
+def reference_length(path_npy: str | os.PathLike[str]) -> float:
+    """The length L of BARN's reference path for one world, m, as BARN's ``run.py`` has it.
+
+    The cells of ``path_N.npy`` in world coordinates (:func:`cell_to_world`), with the start
+    put in front and the goal behind, joined by straight segments.
+    """
+    try:
+        cells = np.load(path_npy, allow_pickle=False)
+    except (OSError, ValueError) as err:
+        raise WorldError(f"{path_npy}: cannot read a BARN path: {err}") from None
+    if cells.ndim != 2 or cells.shape[1] != 2 or not np.issubdtype(cells.dtype, np.number):
+        raise WorldError(f"{path_npy}: expected an (n, 2) array of cells, got {cells.shape}")
+    points = [START.position, *(cell_to_world(r, c) for r, c in cells.tolist()), GOAL]
+    xy = np.asarray(points, dtype=np.float64)
+    return float(np.hypot(*np.diff(xy, axis=0).T).sum())
+
+
+def barn_score(success: bool, time_s: float, reference_length: float) -> float:
+    """BARN's score of one run: ``success * t_opt / clip(t, 2 t_opt, 8 t_opt)``.
+
+    ``t_opt = L / 2 m/s``; the best score is 0.5 (a run in at most twice the optimal time).
+
+    >>> barn_score(True, 5.0, 10.0), barn_score(True, 10.0, 10.0), barn_score(False, 5.0, 10.0)
+    (0.5, 0.5, 0.0)
+    """
+    if not success:
+        return 0.0
+    if not (reference_length > 0 and math.isfinite(reference_length)):
+        raise ParameterError(f"reference_length must be finite and > 0, got {reference_length!r}")
+    t_opt = reference_length / OPTIMAL_SPEED
+    return t_opt / float(np.clip(time_s, 2.0 * t_opt, 8.0 * t_opt))
+
+
+@dataclass(frozen=True)
+class BarnFiles:
+    """One BARN world: its index, its ``world_N.world`` and its ``path_N.npy``."""
+
+    index: int
+    world: Path
+    path: Path
+
+
+def _world_folder(folder: Path) -> Path:
+    """Where the ``world_N.world`` files are: ``folder`` itself (the unpacked tarball, or the
+    repository's ``worlds/BARN``) or the repository layout ``jackal_helper/worlds/BARN``."""
+    for candidate in (folder, folder / "jackal_helper" / "worlds" / "BARN"):
+        if any(_WORLD.fullmatch(p.name) for p in candidate.glob("world_*.world")):
+            return candidate
+    raise WorldError(
+        f"no BARN worlds (world_N.world) in {folder} or {folder}/jackal_helper/worlds/BARN"
+    )
+
+
+def find_barn_worlds(
+    folder: str | os.PathLike[str], indices: set[int] | None = None
+) -> list[BarnFiles]:
+    """The BARN worlds in ``folder``, by index, each with its path file.
+
+    ``folder`` is either a flat folder of ``world_N.world`` and ``path_N.npy`` (what
+    ``barn-200.tar.xz`` unpacks to) or a clone of BARN's repository, where the worlds are in
+    ``jackal_helper/worlds/BARN/`` and the paths in ``jackal_helper/worlds/BARN/path_files/``.
+    ``indices`` keeps only those worlds (every one must be there). A world without its path
+    file is an error.
+    """
+    where = _world_folder(Path(folder))
+    found: dict[int, Path] = {}
+    for path in where.glob("world_*.world"):
+        match = _WORLD.fullmatch(path.name)
+        if match:
+            found[int(match.group(1))] = path
+    if indices is not None:
+        missing = sorted(indices - set(found))
+        if missing:
+            raise WorldError(f"no BARN world(s) {', '.join(map(str, missing))} in {where}")
+        found = {k: v for k, v in found.items() if k in indices}
+    out = []
+    for index in sorted(found):
+        name = f"path_{index}.npy"
+        candidates = (where / name, where / "path_files" / name)
+        path = next((p for p in candidates if p.is_file()), None)
+        if path is None:
+            raise WorldError(f"{found[index]}: no path file {name} beside it or in path_files/")
+        out.append(BarnFiles(index, found[index], path))
+    return out
+
+
+def parse_selection(text: str) -> set[int]:
+    """World indices from ``"0-49,60"``: comma-separated indices and inclusive ranges.
+
+    >>> sorted(parse_selection("1-3,7"))
+    [1, 2, 3, 7]
+    """
+    out: set[int] = set()
+    for part in (p.strip() for p in text.split(",")):
+        match = re.fullmatch(r"(\d+)(?:-(\d+))?", part)
+        if not match:
+            raise ParameterError(f"bad world selection {part!r} in {text!r}; e.g. 0-49,60")
+        low = int(match.group(1))
+        high = int(match.group(2) or low)
+        if high < low:
+            raise ParameterError(f"bad world range {part!r}: {high} < {low}")
+        out.update(range(low, high + 1))
+    return out
+
+
+def load_barn_world(
+    world_file: str | os.PathLike[str], sensor: str = DEFAULT_SENSOR, name: str | None = None
+) -> World:
+    """A BARN world with BARN's start, goal and robot and the sensor preset ``sensor``."""
+    return load_sdf_world(
+        world_file, start=START, goal=GOAL, name=name, robot=ROBOT, sensor=barn_sensor(sensor)
+    )

@@ -1,0 +1,135 @@
+"""BARN worlds (ifgm_ref/bench/barn.py): layouts, reference length, score, ``bench --barn``."""
+
+from __future__ import annotations
+
+import csv
+import math
+import shutil
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from ifgm_ref.bench import barn
+from ifgm_ref.bench.tasks import WorldSpec, barn_specs, run_world
+from ifgm_ref.cli import main
+from ifgm_ref.errors import ParameterError, WorldError
+from ifgm_ref.world import Circle
+
+BARN = Path(__file__).parent / "worlds" / "barn"
+INDICES = [1, 2, 4]
+
+
+def test_world_has_barns_task_robot_and_sensor() -> None:
+    world = barn.load_barn_world(BARN / "world_2.world")
+    assert (world.start, world.goal) == ((-2.0, 3.0, math.pi / 2), (-2.0, 13.0))
+    assert (world.robot.radius, world.robot.speed, world.robot.max_turn_rate) == (
+        0.22, 1.0, math.pi,
+    )  # fmt: skip
+    assert world.sensor.rays == 720 and world.bounds is None
+    assert len(world.obstacles) == 234
+    assert all(isinstance(ob, Circle) and ob.radius == 0.075 for ob in world.obstacles)
+    ir = barn.load_barn_world(BARN / "world_2.world", sensor="paper_ir").sensor
+    assert (ir.rays, round(ir.range_max, 9)) == (76, 3.3)  # 15 ft scaled by 0.22
+
+
+def test_unknown_sensor() -> None:
+    with pytest.raises(ParameterError, match="unknown sensor 'sonar'"):
+        barn.barn_sensor("sonar")
+
+
+def test_reference_length_by_hand(tmp_path: Path) -> None:
+    path = tmp_path / "path_9.npy"
+    np.save(path, np.array([[13, 0], [13, 1]]))
+    # Cells (13, 0) and (13, 1): x = 13 * 0.15 - 0.075 - 4.5 = -2.625, y = 5.075 and 5.225;
+    # from the start (-2, 3) through both to the goal (-2, 13).
+    expected = math.hypot(0.625, 2.075) + 0.15 + math.hypot(0.625, 7.775)
+    assert barn.reference_length(path) == pytest.approx(expected, abs=1e-12)
+
+
+def test_reference_length_of_a_barn_path() -> None:
+    cells = np.load(BARN / "path_1.npy")
+    assert cells.shape == (37, 2)
+    length = barn.reference_length(BARN / "path_1.npy")
+    assert 10.0 < length < 15.0  # at least the 10 m from start to goal
+    assert length == pytest.approx(12.312491040890126, abs=1e-9)
+
+
+def test_reference_length_bad_file(tmp_path: Path) -> None:
+    path = tmp_path / "path_1.npy"
+    np.save(path, np.zeros(3))
+    with pytest.raises(WorldError, match=r"expected an \(n, 2\) array"):
+        barn.reference_length(path)
+
+
+def test_barn_score_edges() -> None:
+    length = 12.0  # t_opt = 6 s: the score is t_opt / clip(t, 12 s, 48 s)
+    assert barn.barn_score(False, 10.0, length) == 0.0
+    assert barn.barn_score(True, 1.0, length) == 0.5  # below 2 t_opt
+    assert barn.barn_score(True, 12.0, length) == 0.5
+    assert barn.barn_score(True, 24.0, length) == 0.25
+    assert barn.barn_score(True, 48.0, length) == 0.125  # 1/8 at 8 t_opt ...
+    assert barn.barn_score(True, 99.0, length) == 0.125  # ... and above it
+    with pytest.raises(ParameterError):
+        barn.barn_score(True, 1.0, 0.0)
+
+
+def test_flat_and_repository_layouts(tmp_path: Path) -> None:
+    flat = barn.find_barn_worlds(BARN)
+    assert [f.index for f in flat] == INDICES
+    assert flat[0].world == BARN / "world_1.world" and flat[0].path == BARN / "path_1.npy"
+    repo = tmp_path / "jackal_helper" / "worlds" / "BARN"
+    (repo / "path_files").mkdir(parents=True)
+    for k in INDICES:
+        shutil.copy(BARN / f"world_{k}.world", repo)
+        shutil.copy(BARN / f"path_{k}.npy", repo / "path_files")
+    found = barn.find_barn_worlds(tmp_path)
+    assert [f.index for f in found] == INDICES
+    assert found[2].path == repo / "path_files" / "path_4.npy"
+    assert [f.index for f in barn.find_barn_worlds(tmp_path, {2, 4})] == [2, 4]
+
+
+def test_layout_errors(tmp_path: Path) -> None:
+    with pytest.raises(WorldError, match="no BARN worlds"):
+        barn.find_barn_worlds(tmp_path)
+    shutil.copy(BARN / "world_1.world", tmp_path)
+    with pytest.raises(WorldError, match=r"no path file path_1\.npy"):
+        barn.find_barn_worlds(tmp_path)
+    with pytest.raises(WorldError, match="no BARN world"):
+        barn.find_barn_worlds(BARN, {3})
+
+
+def test_parse_selection() -> None:
+    assert barn.parse_selection("0-2, 7") == {0, 1, 2, 7}
+    for bad in ("", "a", "5-2"):
+        with pytest.raises(ParameterError):
+            barn.parse_selection(bad)
+
+
+def test_rows_carry_the_barn_columns() -> None:
+    (spec,) = barn_specs(BARN, indices={1})
+    assert spec == WorldSpec("barn-001", "barn", str(BARN / "world_1.world"), None, 1,
+                             str(BARN / "path_1.npy"), "jackal_lidar")  # fmt: skip
+    (row,) = run_world(spec, ("straight",))
+    assert (row.world_class, row.collided, row.optimal_length) == ("barn", True, None)
+    assert row.reference_length == pytest.approx(12.312491040890126)
+    assert row.barn_score == 0.0
+
+
+def test_cli_bench_barn(tmp_path: Path) -> None:
+    out = tmp_path / "out"
+    argv = ["bench", "--barn", str(BARN), "--planners", "straight", "--jobs", "1"]
+    assert main([*argv, "--out", str(out)]) == 0
+    with (out / "results.csv").open() as source:
+        rows = list(csv.DictReader(source))
+    assert [r["world"] for r in rows] == ["barn-001", "barn-002", "barn-004"]
+    assert rows[0]["optimal_length"] == ""  # BARN worlds skip the shortest path
+    assert float(rows[0]["reference_length"]) == pytest.approx(12.312491040890126)
+    assert {r["barn_score"] for r in rows} == {"0.0"}  # straight ahead hits a cylinder
+    with (out / "summary.csv").open() as source:
+        (summary,) = list(csv.DictReader(source))
+    assert (summary["barn_score_mean"], summary["collision_rate"]) == ("0.0", "1.0")
+    assert (
+        "| straight | barn | 3 | 0.000 | 0.0% | 100.0% | 0.0% |" in (out / "summary.md").read_text()
+    )
+    assert main(["bench", "--sensor", "paper_ir", "--out", str(out)]) == 2  # BARN only
