@@ -10,6 +10,11 @@ The paper (section 4, Figure 2) splits the 135-degree field of view into three 4
 beams. Its text gives the *left* beam as "-67.5 to -22.5 degrees" and the *right* one as
 "22.5 to 67.5 degrees", i.e. with clockwise-positive angles; with REP-103 signs the left beam
 is the positive one. See the errata table.
+
+A sensor need not be the paper's. The beams keep the paper's angles on any scan: on a wider
+one (a 270-degree LiDAR) the rays beyond +-67.5 degrees belong to no beam, and
+:meth:`LaserScan.window` cuts out the paper's 135-degree view for the rules that speak of it;
+on a narrower one each beam holds the part of it the sensor covers (errata row 30).
 """
 
 from __future__ import annotations
@@ -24,6 +29,8 @@ from numpy.typing import NDArray
 
 #: Half-width of the paper's front beam, radians (section 4: front beam from -22.5 to 22.5 deg).
 FRONT_HALF_WIDTH = math.radians(22.5)
+#: Half of the paper's field of view, radians: the three beams span -67.5 to 67.5 degrees.
+PAPER_HALF_FOV = 3.0 * FRONT_HALF_WIDTH
 #: Rays computed as ``angle_min + i * angle_increment`` land on the +-22.5 degree borders only
 #: to within rounding (1e-16 rad); this tolerance keeps such rays in the front beam.
 BORDER_TOLERANCE = 1e-9
@@ -37,12 +44,17 @@ class Beam(StrEnum):
     LEFT = "left"
 
 
-def beam_of(angle: float) -> Beam:
-    """Name the beam a robot-frame ray angle falls in (the borders +-22.5 deg are *front*).
+def beam_of(angle: float) -> Beam | None:
+    """Name the beam a robot-frame ray angle falls in (the borders +-22.5 deg are *front*,
+    +-67.5 deg belong to the side beams); ``None`` beyond the paper's view.
 
     >>> beam_of(math.radians(40.0)), beam_of(math.radians(-22.5)), beam_of(-1.0)
     (<Beam.LEFT: 'left'>, <Beam.FRONT: 'front'>, <Beam.RIGHT: 'right'>)
+    >>> beam_of(math.radians(67.5)), beam_of(math.radians(90.0))
+    (<Beam.LEFT: 'left'>, None)
     """
+    if abs(angle) > PAPER_HALF_FOV + BORDER_TOLERANCE:
+        return None
     if angle > FRONT_HALF_WIDTH + BORDER_TOLERANCE:
         return Beam.LEFT
     if angle < -FRONT_HALF_WIDTH - BORDER_TOLERANCE:
@@ -102,8 +114,8 @@ class LaserScan:
         return self.angle_min + self.angle_increment * np.arange(len(self.ranges))
 
     @property
-    def beams(self) -> tuple[Beam, ...]:
-        """The paper's beam name of every ray."""
+    def beams(self) -> tuple[Beam | None, ...]:
+        """The paper's beam name of every ray (``None`` beyond the paper's view)."""
         return tuple(beam_of(float(a)) for a in self.angles)
 
     def beam_mask(self, beam: Beam) -> NDArray[np.bool_]:
@@ -115,11 +127,44 @@ class LaserScan:
         """
         angles = self.angles
         border = FRONT_HALF_WIDTH + BORDER_TOLERANCE
+        outer = PAPER_HALF_FOV + BORDER_TOLERANCE
         if beam is Beam.LEFT:
-            return angles > border
+            return (angles > border) & (angles <= outer)
         if beam is Beam.RIGHT:
-            return angles < -border
+            return (angles < -border) & (angles >= -outer)
         return np.abs(angles) <= border
+
+    def window(self, half_width: float = PAPER_HALF_FOV) -> LaserScan:
+        """The rays within ``half_width`` of straight ahead (borders included), as a scan.
+
+        By default the paper's 135-degree view; a scan that lies within it is returned
+        itself. Raises ``ValueError`` when fewer than two rays lie inside.
+
+        >>> wide = LaserScan(-2.0, 2.0, 1.0, 0.0, 10.0, [1.0, 2.0, 3.0, 4.0, 5.0])
+        >>> cut = wide.window()
+        >>> cut.angle_min, cut.angle_max, cut.ranges.tolist()
+        (-1.0, 1.0, [2.0, 3.0, 4.0])
+        >>> cut.window() is cut
+        True
+        """
+        angles = self.angles
+        inside = np.flatnonzero(np.abs(angles) <= half_width + BORDER_TOLERANCE)
+        if len(inside) == len(angles):
+            return self
+        if len(inside) < 2:
+            raise ValueError(
+                f"{len(inside)} ray(s) within +-{half_width!r} rad, but a scan needs 2 "
+                f"(angle_increment={self.angle_increment!r})"
+            )
+        first, last = int(inside[0]), int(inside[-1])
+        return LaserScan(
+            float(angles[first]),
+            float(angles[last]),
+            self.angle_increment,
+            self.range_min,
+            self.range_max,
+            self.ranges[first : last + 1],
+        )
 
     def to_message(self) -> dict[str, Any]:
         """The scan as a JSON-ready mapping (the JSON-lines protocol's ``scan`` object).

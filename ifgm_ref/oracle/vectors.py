@@ -42,7 +42,7 @@ from ifgm_ref.oracle.recording import RecordingPlanner
 from ifgm_ref.params import SimParams
 from ifgm_ref.planners import PLANNERS, make_planner
 from ifgm_ref.planners.tuning import episode_values
-from ifgm_ref.pose import Point, Pose
+from ifgm_ref.pose import Pose
 from ifgm_ref.protocol import EpisodeParams, Planner
 from ifgm_ref.scenarios import resolve_world
 from ifgm_ref.simulator import simulate

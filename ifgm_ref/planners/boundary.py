@@ -17,6 +17,7 @@ import math
 from dataclasses import dataclass
 from typing import ClassVar
 
+from ifgm_ref.laserscan import PAPER_HALF_FOV
 from ifgm_ref.paper import traces
 from ifgm_ref.percepts.corridor import free_length
 from ifgm_ref.percepts.memory import PerceptMemory
@@ -157,8 +158,13 @@ class BoundaryPlanner:
         return self.goal_free_length(pose) < reach
 
     def goal_in_view(self, pose: Pose, margin: float = math.radians(10.0)) -> bool:
-        """Whether the goal's bearing lies inside the field of view, ``margin`` from its edge."""
-        return abs(wrap_angle(self.goal_bearing(pose) - pose.theta)) <= self.fov / 2 - margin
+        """Whether the goal's bearing lies inside the view, ``margin`` from its edge.
+
+        The view is the field of view, but no wider than the paper's 135 degrees: a robot
+        that "sees" its goal behind it would leave the edge for a goal it must first turn
+        to, meet the same edge again and circle for ever (errata row 30)."""
+        half = min(self.fov / 2, PAPER_HALF_FOV)
+        return abs(wrap_angle(self.goal_bearing(pose) - pose.theta)) <= half - margin
 
     def path_free(self, pose: Pose) -> bool:
         """IBA's free path: the goal in view and its corridor clear as far as the sensor

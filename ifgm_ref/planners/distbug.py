@@ -44,11 +44,10 @@ is not mistaken for progress.
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 from typing import ClassVar
 
 from ifgm_ref.paper import traces
-from dataclasses import dataclass
-
 from ifgm_ref.planners.boundary import BoundaryParams, BoundaryPlanner
 from ifgm_ref.planners.tuning import Tuning, Unit, derived
 from ifgm_ref.pose import Point, Pose, distance
@@ -95,9 +94,10 @@ class DistBugPlanner(BoundaryPlanner):
     ...
     ifgm_ref.errors.ParameterError: `step_length` must be a finite number > 0, got -1.0
     >>> simulate(resolve_world("box"), DistBugPlanner(), params={"step_lenght": 1.0})
+    ... # doctest: +ELLIPSIS
     Traceback (most recent call last):
     ...
-    ifgm_ref.errors.ParameterError: distbug has no parameter `step_lenght`; it has: standoff_margin, corridor_margin, hit_margin, memory_horizon, return_radius, min_loop, step_length
+    ifgm_ref.errors.ParameterError: distbug has no parameter `step_lenght`; it has: ...
     """
 
     name: ClassVar[str] = "distbug"

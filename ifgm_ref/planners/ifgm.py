@@ -13,14 +13,18 @@ alone picks the branch, and this module carries it out:
 * *Case-3*: while avoiding, a nearer obstacle pre-empts the followed one; the followed one is
   pushed on a stack and resumed if it is met again (the recursion of section 4);
 * *dead end* (inside a U or an H): turn in place in 45-degree steps, 45, 90, 135, 180 degrees,
-  until the corridor ahead is free as far as the sensor sees; go that way, then follow the
-  wall round from outside with IBA and regenerate the path.
+  until the corridor ahead is free as far as the paper's sensor sees (``view_range``); go that
+  way, then follow the wall round from outside with IBA and regenerate the path.
+
+On a sensor wider than the paper's (a 270-degree LiDAR) Figure 3 reads the paper's 135-degree
+view of the scan (:meth:`~ifgm_ref.laserscan.LaserScan.window`); the whole scan is remembered
+for following edges (errata row 30).
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import ClassVar
 
 import numpy as np
@@ -28,15 +32,15 @@ import numpy as np
 from ifgm_ref.equations import eq1_gap_midpoint, eq2_gap_angle, eq3_goal_angle, eq4_final_heading
 from ifgm_ref.errors import ParameterError
 from ifgm_ref.flowchart import Atoms, Branch, decide
-from ifgm_ref.laserscan import Beam
+from ifgm_ref.laserscan import Beam, LaserScan
 from ifgm_ref.paper import traces
 from ifgm_ref.percepts.clusters import Cluster, Gap, Side, cluster_scan, gaps_between
 from ifgm_ref.percepts.corridor import free_length
 from ifgm_ref.percepts.points import to_world
-from ifgm_ref.planners.edge_following import FollowSide, turn_speed
-from ifgm_ref.planners.iba import IBAPlanner, freer_side
 from ifgm_ref.planners.boundary import BoundaryParams
 from ifgm_ref.planners.distbug import DistBugParams
+from ifgm_ref.planners.edge_following import FollowSide, turn_speed
+from ifgm_ref.planners.iba import IBAPlanner, freer_side
 from ifgm_ref.planners.tuning import Tuning, Unit, derived
 from ifgm_ref.pose import Point, Pose, distance, wrap_angle
 from ifgm_ref.protocol import Behaviour, Command, EpisodeParams, Observation
@@ -81,6 +85,12 @@ class IFGMParams(Tuning):
         robot cannot pass between returns nearer than its diameter anyway.
     preempt_margin : float, default ``r/2``
         Case-3: another obstacle pre-empts the followed edge when it is this much nearer.
+    view_range : float, default ``Min(R, 15 r)``
+        How far the dead-end rule looks: the view is closed when every ray of the paper's
+        135-degree view returns within this range, and a dead-end turn ends where the way
+        ahead is free this far. The paper's IR sensor sees 15 robot radii (15 ft); a longer
+        sensor (a 30 m LiDAR in a walled field) would find every view closed, so the rule
+        looks no farther than the paper's sensor does (errata row 30).
     """
 
     d_th: float = derived("3*r", Unit.LENGTH)
@@ -90,6 +100,7 @@ class IFGMParams(Tuning):
     w_d: float = derived("1", Unit.NUMBER)
     jump: float = derived("2*r", Unit.LENGTH)
     preempt_margin: float = derived("r/2", Unit.LENGTH)
+    view_range: float = derived("Min(R, 15*r)", Unit.LENGTH)
 
 
 @traces("s3.critical_shapes", "s3.safe_near_obstacles")
@@ -138,6 +149,14 @@ class IFGMPlanner(IBAPlanner):
             )
         self.d_th, self.d_obs, self.jump = p.d_th, p.d_obs, p.jump
         self.ifgm = p
+        sensor = params.sensor
+        try:  # the flowchart reads the paper's 135-degree view of the scan
+            LaserScan(
+                -sensor.fov / 2, sensor.fov / 2, sensor.angle_increment, 0.0, 1.0,
+                [math.inf] * sensor.rays,
+            ).window()  # fmt: skip
+        except ValueError as err:
+            raise ParameterError(f"IFGM reads the paper's 135-degree view: {err}") from None
         # The goal is reached during this step when it is within the episode's tolerance plus
         # one step of travel: the robot then drives straight onto it.
         self.goal_tolerance = params.goal_tolerance + params.robot.speed * params.dt
@@ -182,7 +201,8 @@ class IFGMPlanner(IBAPlanner):
         blocked = free_ahead < min(look, distance(pose, self.goal))
         front = scan.beam_mask(Beam.FRONT)
         front_near = bool(np.any(scan.ranges[front] <= self.ifgm.d_look))
-        enclosed = bool(np.all(scan.ranges < math.inf))  # every ray returns (-inf too)
+        # Every ray returns within the view range (-inf too): the view ahead is closed.
+        enclosed = bool(np.all(scan.ranges <= self.ifgm.view_range))
         dead_end = front_near and enclosed and not gap_wide
         return Atoms(
             at_goal=distance(pose, self.goal) <= self.goal_tolerance,
@@ -277,7 +297,9 @@ class IFGMPlanner(IBAPlanner):
     def step(self, observation: Observation) -> Command:
         """Decide with Figure 3, then act on the branch."""
         pose = observation.pose
-        self.observe(observation)
+        self.observe(observation)  # the whole scan is remembered, for edge following
+        # Figure 3 reads the paper's 135-degree view (the scan itself for the paper's sensor).
+        observation = replace(observation, scan=observation.scan.window())
         clusters = cluster_scan(observation.scan, jump=self.jump)
         if self.following:
             self._track_followed(pose)
@@ -382,7 +404,7 @@ class IFGMPlanner(IBAPlanner):
             return self._turn_command(target)
         ahead = free_length(self.memory.points, (pose.x, pose.y), pose.theta, self.half_width)
         if self.escaping == 0.0:
-            if ahead < self.range_max and self.turn_steps < DEAD_END_MAX_STEPS:
+            if ahead < self.ifgm.view_range and self.turn_steps < DEAD_END_MAX_STEPS:
                 self.turn_steps += 1
                 return self._turn_command(
                     wrap_angle(self.turn_start + self.turn_sign * self.turn_steps * DEAD_END_STEP)
