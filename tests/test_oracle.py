@@ -47,7 +47,13 @@ HUNT = Profile("hunt", 50, shrink=False)
 #: constants of the modules loaded (docs/oracle.md): look long enough to be sure of a trap.
 HUNT_TRAPS = Profile("hunt-traps", 300, shrink=False)
 #: The checks a mutant is hunted with, cheapest first.
-HUNTING = ["passes_wide_gaps", "converges_symmetric", "collision_free", "converges_u"]
+HUNTING = [
+    "passes_wide_gaps",
+    "converges_symmetric",
+    "collision_free",
+    "converges_u",
+    "scale_invariant",
+]
 
 
 def _serve(spec: str) -> list[str]:

@@ -21,6 +21,8 @@ from pathlib import Path
 import pytest
 import sympy as sp
 
+from ifgm_ref.planners import PLANNERS
+from ifgm_ref.planners.tuning import ParamInfo, Unit
 from proofs._util import ClaimFailed, ClaimKind, Derivation
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -111,6 +113,19 @@ EXPECTED_CLAIMS: dict[str, tuple[str, ...]] = {
         "library_counterexample_literal",
         "library_counterexample_robot_frame",
         "library_fgm_matches_renamed_eq4",
+    ),
+    # One claim per parameter of every registered planner: read from the registry, so that a
+    # parameter cannot go unproved.
+    "scale": (
+        "min_commutes_with_scaling",
+        "max_commutes_with_scaling",
+        *(
+            f"{planner}_{p.name}_scales_as_length_power_{p.unit.length_power}"
+            for planner, info in PLANNERS.items()
+            for p in info.infos
+        ),
+        "ifgm_d_th_exceeds_the_robot_diameter",
+        "fgm_beta_is_the_paper_value",
     ),
 }
 
@@ -226,6 +241,35 @@ def test_wrong_eq4_is_rejected_by_its_derivation(monkeypatch: pytest.MonkeyPatch
     monkeypatch.setattr(eq4, "final_heading", wrong)
     with pytest.raises(ClaimFailed, match="eq4:convex_combination not proved"):
         eq4.derivation.__wrapped__()  # the uncached builder
+
+
+@pytest.mark.parametrize(
+    ("formula", "unit", "remainder"),
+    [
+        ("r + 1", Unit.LENGTH, r"1 - k"),  # an absolute 1 ft margin
+        ("Max(r, 1)", Unit.LENGTH, r"Max"),  # an absolute floor
+        ("50*r**4", Unit.LENGTH, r"k\*\*3 - 1"),  # the right formula, the wrong unit
+        ("v*dt", Unit.TIME, r"k - 1"),  # a length declared a time
+    ],
+)
+def test_scale_proof_rejects_an_absolute_length(formula: str, unit: Unit, remainder: str) -> None:
+    scale = importlib.import_module("proofs.scale")
+    toy = {"toy": [ParamInfo("margin", formula, unit)]}
+    with pytest.raises(
+        ClaimFailed, match=rf"scale:toy_margin_scales_as_length_power_\d not proved: .*{remainder}"
+    ):
+        scale.build(toy, paper_values={})
+    ok = {"toy": [ParamInfo("margin", "Min(R, 15*r) + v/w", Unit.LENGTH)]}
+    assert [c.name for c in scale.build(ok, paper_values={}).claims][-1] == (
+        "toy_margin_scales_as_length_power_1"
+    )
+
+
+def test_scale_proof_rejects_a_wrong_paper_value() -> None:
+    scale = importlib.import_module("proofs.scale")
+    fgm = {"fgm": PLANNERS["fgm"].infos}
+    with pytest.raises(ClaimFailed, match="scale:fgm_beta_is_the_paper_value not proved"):
+        scale.build(fgm, paper_values={("fgm", "beta"): sp.Integer(2)})
 
 
 def test_claim_names_are_unique() -> None:

@@ -21,6 +21,10 @@ check                             property (applies to)
                                   trajectory the same way, within :data:`INVARIANCE_TOL` ft
                                   (after :data:`GENERIC_OFFSET` breaks exact symmetries),
                                   with the same stop reason
+``scale_invariant``               scaling every length of the problem by ``k`` (world, robot,
+                                  sensor, goal tolerance) scales the trajectory by ``k``: bit
+                                  for bit with the same branches for a power of two, the same
+                                  stop and path length within :data:`SCALE_PATH_TOL` otherwise
 ``ignores_unseen_obstacles``      an obstacle the sensor never sees does not change the
                                   trajectory at all (decisions depend on percepts only)
 ``passes_wide_gaps``              through a wall pierced by one gap wider than ``d_th`` + 1 ft,
@@ -56,6 +60,7 @@ from ifgm_ref import equations as reference
 from ifgm_ref.errors import IfgmRefError, ImplementationError
 from ifgm_ref.oracle.bounds import time_bound
 from ifgm_ref.oracle.implementation import Implementation
+from ifgm_ref.oracle.metamorphic import is_power_of_two, scale_params, scale_sim, scale_world
 from ifgm_ref.oracle.recording import RecordingPlanner
 from ifgm_ref.oracle.strategies import (
     SOLVABLE_CLASSES,
@@ -67,6 +72,7 @@ from ifgm_ref.oracle.strategies import (
 )
 from ifgm_ref.paper import traces
 from ifgm_ref.params import SimParams
+from ifgm_ref.planners.tuning import ParamInfo
 from ifgm_ref.pose import Point
 from ifgm_ref.protocol import Command, Planner
 from ifgm_ref.shapes import circle
@@ -93,6 +99,21 @@ GENERIC_OFFSET = 0.01
 #: ``passes_wide_gaps``: a commanded heading this far off the goal bearing (rad, 5 degrees)
 #: is the robot's first turn, which must be towards the gap (Case-1 steers at it).
 FIRST_TURN = math.radians(5.0)
+#: ``scale_invariant``: the factors drawn. Powers of two first (failures shrink to 2): scaling
+#: by them is exact in floating point, so the scaled run must be the original times ``k`` bit
+#: for bit. Then a unit conversion (ft to m), the 0.22 m radius of a small ground robot
+#: (BARN's Jackal) over the paper's 1 ft, and an odd factor: every scaled number is rounded.
+EXACT_SCALES = (2.0, 0.5, 4.0, 0.25, 8.0)
+#: See :data:`EXACT_SCALES`.
+ROUNDED_SCALES = (0.3048, 0.22, 3.7)
+#: ``scale_invariant`` with a rounded ``k``: the path length divided by ``k`` may differ from
+#: the original's by this fraction. Rounding the scaled problem (1e-16 relative) tips a tie
+#: now and then, as rotating it does (:data:`INVARIANCE_TOL`): a wall-follower takes the
+#: neighbouring ray for a step. Measured on the reference planners (3-8 worlds per class and
+#: planner, k in ``ROUNDED_SCALES``): at most 1.6e-3 (Bug1, a 3468-step mixed world), 6.8e-4
+#: (APF), 2e-5 (Bug2, DistBug, IBA), 7e-14 (FGM). A length constant that does not scale
+#: changes the path by far more; the powers of two catch small ones exactly.
+SCALE_PATH_TOL = 0.01
 #: Equation outputs may differ from the reference by this much (ft, or rad modulo 2 pi).
 EQUATION_TOL = 1e-9
 
@@ -143,15 +164,23 @@ class Check:
 
 
 def episode(
-    impl: Implementation, world: World, recorder: Recorder, *, planner: Planner | None = None
+    impl: Implementation,
+    world: World,
+    recorder: Recorder,
+    *,
+    planner: Planner | None = None,
+    sim: SimParams | None = None,
+    params: dict[str, object] | None = None,
 ) -> Run:
-    """Run a fresh planner of ``impl`` (or ``planner``) in ``world`` up to its time bound."""
+    """Run a fresh planner of ``impl`` (or ``planner``) in ``world`` up to its time bound
+    (or under ``sim``), with the planner parameters ``params`` (none by default)."""
     recorder.examples += 1
     recorder.worlds.add(world)
-    max_time = time_bound(world)
+    sim = sim or SimParams(max_time=time_bound(world))
+    max_time = sim.max_time
     note(f"world: {world}")
     try:
-        run = simulate(world, planner or impl.factory(), SimParams(max_time=max_time))
+        run = simulate(world, planner or impl.factory(), sim, params=params)
     except (ImplementationError, CheckFailed):
         raise
     except Exception as err:  # the planner crashed: that is a failure of this example
@@ -267,6 +296,81 @@ def _invariance_test(
             f"moved run ended {second.result.stop_reason!r} after {len(b) - 1} steps, but should "
             f"end like the original, {first.result.stop_reason!r} after {len(a) - 1} steps "
             f"[{where}]"
+        )
+
+
+def _scale_examples(impl: Implementation) -> st.SearchStrategy[tuple[World, float]]:
+    return st.tuples(_promised_worlds(impl), st.sampled_from(EXACT_SCALES + ROUNDED_SCALES))
+
+
+def _scaled_step(step: TraceStep, k: float) -> tuple[object, ...]:
+    """What the scaled run must record at this step: lengths times ``k``, the rest as is."""
+    speed = None if step.speed_cmd is None else k * step.speed_cmd
+    branch = None if step.branch is None else str(step.branch)
+    return (k * step.x, k * step.y, step.theta, step.heading_cmd, speed, branch)
+
+
+_STEP_FIELDS = ("x", "y", "theta", "heading_cmd", "speed_cmd", "branch")
+
+
+def _step_fields(step: TraceStep) -> tuple[object, ...]:
+    branch = None if step.branch is None else str(step.branch)
+    return (step.x, step.y, step.theta, step.heading_cmd, step.speed_cmd, branch)
+
+
+def scale_test(
+    impl: Implementation,
+    example: tuple[World, float],
+    rec: Recorder,
+    *,
+    params: dict[str, object] | None = None,
+    infos: Sequence[ParamInfo] = (),
+) -> None:
+    """Run ``example``'s world and the same world scaled by its ``k``; compare.
+
+    ``params`` (planner parameters by name, none by default) are scaled by their units in
+    ``infos`` (:func:`ifgm_ref.oracle.metamorphic.scale_params`). Both runs get the original
+    world's time bound and ``dt``; the goal tolerance scales.
+    """
+    world, k = _generic(example[0]), example[1]
+    scaled = scale_world(world, k)
+    sim = SimParams(max_time=time_bound(world))
+    scaled_params = None if params is None else scale_params(params, infos, k)
+    first = episode(impl, world, rec, sim=sim, params=params)
+    second = episode(impl, scaled, rec, sim=scale_sim(sim, k), params=scaled_params)
+    rec.evidence = Evidence([world, scaled], [first, second], sim.max_time)
+    a, b = first.result, second.result
+    where = f"{_where(impl, world)}, scaled by k={k!r}"
+    if is_power_of_two(k):
+        for n, (one, two) in enumerate(zip(first.trace, second.trace, strict=False)):
+            want, got = _scaled_step(one, k), _step_fields(two)
+            if want != got:
+                diff = ", ".join(
+                    f"{name}={g!r} (should be {w!r})"
+                    for name, w, g in zip(_STEP_FIELDS, want, got, strict=True)
+                    if w != g
+                )
+                raise CheckFailed(
+                    f"scaled by k={k!r} (a power of two: exact), the run differs from the "
+                    f"original times k at step {n} (t={one.t:.1f} s, original branch "
+                    f"{one.branch!r}): {diff}; lengths should be exactly k times the "
+                    f"original's, angles and branches equal [{where}]"
+                )
+        if a.stop_reason != b.stop_reason or len(first.trace) != len(second.trace):
+            raise CheckFailed(
+                f"scaled by k={k!r} (a power of two: exact), the run ended "
+                f"{b.stop_reason!r} after {b.steps} steps, but should end like the original, "
+                f"{a.stop_reason!r} after {a.steps} steps [{where}]"
+            )
+        return
+    floor = world.robot.radius
+    error = abs(b.path_length / k - a.path_length) / max(a.path_length, floor)
+    if a.stop_reason != b.stop_reason or not error <= SCALE_PATH_TOL:
+        raise CheckFailed(
+            f"scaled by k={k!r}, the run ended {b.stop_reason!r} after {b.steps} steps with "
+            f"path length / k = {b.path_length / k:.6g}, but should end like the original, "
+            f"{a.stop_reason!r} ({a.steps} steps), with path length {a.path_length:.6g} "
+            f"within {SCALE_PATH_TOL:g} relative (off by {error:.3g}) [{where}]"
         )
 
 
@@ -506,6 +610,10 @@ def _unreachable_applies(impl: Implementation) -> str | None:
     return None if impl.promises.reports_unreachable else "it does not promise to report it"
 
 
+def _scale_applies(impl: Implementation) -> str | None:
+    return None if impl.promises.scale_invariant else "it does not promise scale invariance"
+
+
 def _gaps_apply(impl: Implementation) -> str | None:
     return None if impl.promises.passes_wide_gaps else "it does not promise to use gaps"
 
@@ -541,6 +649,14 @@ CHECKS: dict[str, Check] = {
             lambda impl: st.tuples(_promised_worlds(impl), placements()),
             _invariance_test,
             _always,
+        ),
+        Check(
+            "scale_invariant",
+            "scaling every length of the problem by k scales the trajectory by k",
+            Kind.SIMULATION,
+            _scale_examples,
+            scale_test,
+            _scale_applies,
         ),
         Check(
             "ignores_unseen_obstacles",

@@ -39,12 +39,19 @@ class Promises:
         Whether it steers through a gap wider than IFGM's ``d_th`` rather than round the
         obstacles (section 4, Case-1; IFGM only: FGM takes the widest gap, the Bug family
         goes round).
+    scale_invariant : bool, default True
+        Whether it derives every length from the robot and the sensor, so that scaling every
+        length of the problem by ``k`` (the world, the robot's radius and speed, the sensor's
+        ranges, the goal tolerance) scales its trajectory by ``k`` (the ``scale_invariant``
+        check; :mod:`ifgm_ref.oracle.metamorphic`). Every planner here promises it: their
+        parameters are formulas in the robot and the sensor (:mod:`ifgm_ref.planners.tuning`).
     """
 
     converges_in: frozenset[str] = ALL_CLASSES
     reports_unreachable: bool = False
     collision_free: bool = True
     passes_wide_gaps: bool = True
+    scale_invariant: bool = True
 
     def __post_init__(self) -> None:
         unknown = set(self.converges_in) - ALL_CLASSES

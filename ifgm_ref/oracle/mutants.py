@@ -79,6 +79,19 @@ class GapAngleInWorldFrame(IFGMPlanner):
         return super().gap_heading(Pose(pose.x, pose.y, 0.0), gap)
 
 
+class AbsoluteStandoff(IFGMPlanner):
+    """Follows walls at a fixed 1.0 (ft) stand-off whatever the robot's size: a margin written
+    as a number instead of derived from the radius (``standoff_margin = r``,
+    :mod:`ifgm_ref.planners.tuning`). Identical to the reference for the 1 ft robot; the
+    ``scale_invariant`` check rejects it."""
+
+    name = "ifgm-absolute-standoff"
+
+    def reset(self, start: Pose, goal: Point, params: EpisodeParams) -> None:
+        fixed = {**params.params, "standoff_margin": 1.0}
+        super().reset(start, goal, replace(params, params=fixed))
+
+
 #: Every mutant by a short name.
 MUTANTS: dict[str, type[IFGMPlanner]] = {
     "gap_sign_flipped": GapAngleSignFlipped,
@@ -87,4 +100,5 @@ MUTANTS: dict[str, type[IFGMPlanner]] = {
     "ignores_d_obs": IgnoresDObs,
     "point_robot": PointRobot,
     "gap_world_frame": GapAngleInWorldFrame,
+    "absolute_standoff": AbsoluteStandoff,
 }

@@ -51,6 +51,9 @@ class Profile:
             deadline=None,
             database=None,
             print_blob=False,
+            # One counterexample per check: a check that fails in two ways (two raise sites)
+            # would otherwise end in an ExceptionGroup, which is no verdict.
+            report_multiple_bugs=False,
             suppress_health_check=[
                 HealthCheck.too_slow,
                 HealthCheck.filter_too_much,

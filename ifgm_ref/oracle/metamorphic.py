@@ -1,0 +1,160 @@
+"""Metamorphic relations of a whole problem: the same problem in another unit of length.
+
+A planner whose every length is derived from the robot and the sensor
+(:mod:`ifgm_ref.planners.tuning`) cannot tell feet from metres: scale every length of the
+problem by ``k`` -- the obstacles, the bounds, the start position and the goal, the robot's
+radius and speed (a length per second), the sensor's ``range_max``, ``range_min`` and
+``noise_std``, the goal tolerance and any planner length parameter given by name -- keep
+every time (``dt``, the time limit) and every angle (field of view, rays, headings, turn
+rate), and the trajectory scales by ``k``: the same decisions, in the same branches, at the
+same times. :func:`scale_world`, :func:`scale_sim` and :func:`scale_params` build the scaled
+problem; the oracle's ``scale_invariant`` check (:mod:`ifgm_ref.oracle.checks`) runs both.
+
+With ``k`` a power of two every scaled number is exact (only the exponent changes), and so is
+every sum, difference, product, quotient and square root of scaled numbers: a computation
+that combines lengths only with lengths (and with dimensionless numbers) gives exactly ``k``
+times the unscaled result, bit for bit, as long as nothing overflows or underflows. Any
+absolute length constant (a ``1.0`` margin, a ``1e-6`` ft epsilon) breaks that.
+
+Sources: the units of the parameters, :class:`ifgm_ref.planners.tuning.Unit`; the world's
+blocks, :mod:`ifgm_ref.world` and :mod:`ifgm_ref.params`.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterable, Mapping
+from dataclasses import replace
+
+from ifgm_ref.errors import ParameterError
+from ifgm_ref.params import RobotParams, SensorParams, SimParams
+from ifgm_ref.planners.tuning import ParamInfo
+from ifgm_ref.pose import Point, Pose
+from ifgm_ref.world import Bounds, Circle, Obstacle, Polygon, World
+
+__all__ = [
+    "is_power_of_two",
+    "scale_obstacle",
+    "scale_params",
+    "scale_robot",
+    "scale_sensor",
+    "scale_sim",
+    "scale_world",
+]
+
+
+def _factor(k: float) -> float:
+    if isinstance(k, bool) or not isinstance(k, int | float) or not math.isfinite(k) or k <= 0:
+        raise ParameterError(f"the scale factor must be a finite number > 0, got {k!r}")
+    return float(k)
+
+
+def is_power_of_two(k: float) -> bool:
+    """Whether ``k`` is ``2 ** n`` for an integer ``n`` (scaling by it is exact).
+
+    >>> is_power_of_two(0.25), is_power_of_two(8.0), is_power_of_two(0.3048)
+    (True, True, False)
+    """
+    mantissa, _ = math.frexp(k)
+    return k > 0 and mantissa == 0.5
+
+
+def scale_obstacle(obstacle: Obstacle, k: float) -> Obstacle:
+    """``obstacle`` scaled by ``k`` about the origin (centre and radius, or every vertex).
+
+    >>> scale_obstacle(Circle((1.0, -2.0), 0.5), 4.0)
+    Circle(center=(4.0, -8.0), radius=2.0)
+    """
+    k = _factor(k)
+    if isinstance(obstacle, Circle):
+        return Circle((k * obstacle.center[0], k * obstacle.center[1]), k * obstacle.radius)
+    return Polygon(tuple((k * x, k * y) for x, y in obstacle.vertices))
+
+
+def scale_robot(robot: RobotParams, k: float) -> RobotParams:
+    """The robot ``k`` times the size: radius and speed scaled, turn rate kept (rad/s)."""
+    k = _factor(k)
+    return replace(robot, radius=k * robot.radius, speed=k * robot.speed)
+
+
+def scale_sensor(sensor: SensorParams, k: float) -> SensorParams:
+    """The sensor in the scaled unit: ``range_max``, ``range_min`` and ``noise_std`` scaled;
+    field of view, ray count and noise seed kept.
+
+    Gaussian noise of standard deviation ``k * s`` is ``k`` times the noise of ``s`` from the
+    same seed (numpy draws ``s * z`` from the same standard normal ``z``).
+    """
+    k = _factor(k)
+    return replace(
+        sensor,
+        range_max=k * sensor.range_max,
+        range_min=k * sensor.range_min,
+        noise_std=k * sensor.noise_std,
+    )
+
+
+def scale_world(world: World, k: float) -> World:
+    """``world`` with every length scaled by ``k`` about the origin.
+
+    Scaled: obstacles, bounds, the start position, the goal, the robot (radius, speed) and
+    the sensor (:func:`scale_sensor`). Kept: the start heading, the robot's turn rate, the
+    sensor's angles and rays, the name.
+
+    >>> w = World(start=(1, 2, 0.5), goal=(10, 0), obstacles=[Circle((5, 3), 1.0)],
+    ...           bounds=(-20, -20, 20, 20))
+    >>> s = scale_world(w, 0.5)
+    >>> s.start, s.goal
+    (Pose(x=0.5, y=1.0, theta=0.5), Point(x=5.0, y=0.0))
+    >>> s.obstacles[0], tuple(s.bounds)
+    (Circle(center=(2.5, 1.5), radius=0.5), (-10.0, -10.0, 10.0, 10.0))
+    >>> s.robot.radius, s.robot.max_turn_rate == w.robot.max_turn_rate, s.sensor.range_max
+    (0.5, True, 7.5)
+    """
+    k = _factor(k)
+    bounds = None if world.bounds is None else Bounds(*(k * b for b in world.bounds))
+    return World(
+        start=Pose(k * world.start.x, k * world.start.y, world.start.theta),
+        goal=Point(k * world.goal.x, k * world.goal.y),
+        obstacles=tuple(scale_obstacle(ob, k) for ob in world.obstacles),
+        bounds=bounds,
+        robot=scale_robot(world.robot, k),
+        sensor=scale_sensor(world.sensor, k),
+        name=world.name,
+    )
+
+
+def scale_sim(sim: SimParams, k: float) -> SimParams:
+    """``sim`` with the goal tolerance scaled by ``k``; ``dt`` and ``max_time`` kept."""
+    return replace(sim, goal_tolerance=_factor(k) * sim.goal_tolerance)
+
+
+def scale_params(
+    params: Mapping[str, object], infos: Iterable[ParamInfo], k: float
+) -> dict[str, object]:
+    """Planner parameters given by name, in the scaled unit: each times ``k ** p``, ``p`` the
+    ``length_power`` of its declared unit (1 for a length, 4 for APF's ``eta``, 0 for a time,
+    angle or number).
+
+    A name the planner does not declare has no known unit: :class:`ParameterError`.
+
+    >>> from ifgm_ref.planners.tuning import Unit
+    >>> infos = [ParamInfo("d_th", "3*r", Unit.LENGTH), ParamInfo("w_g", "9", Unit.NUMBER),
+    ...          ParamInfo("eta", "50*r**4", Unit.LENGTH4)]
+    >>> scale_params({"d_th": 3.0, "w_g": 9.0, "eta": 1.0}, infos, 2.0)
+    {'d_th': 6.0, 'w_g': 9.0, 'eta': 16.0}
+    """
+    k = _factor(k)
+    units = {info.name: info.unit for info in infos}
+    unknown = sorted(name for name in params if name not in units)
+    if unknown:
+        raise ParameterError(
+            f"cannot scale parameter(s) {', '.join(unknown)}: no declared unit; "
+            f"declared: {', '.join(units) or 'none'}"
+        )
+    scaled: dict[str, object] = {}
+    for name, value in params.items():
+        power = units[name].length_power
+        if power and (isinstance(value, bool) or not isinstance(value, int | float)):
+            raise ParameterError(f"`{name}` must be a number to scale, got {value!r}")
+        scaled[name] = value * k**power if power else value  # type: ignore[operator]
+    return scaled
