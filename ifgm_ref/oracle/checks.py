@@ -353,7 +353,7 @@ def scale_test(
                 raise CheckFailed(
                     f"scaled by k={k!r} (a power of two: exact), the run differs from the "
                     f"original times k at step {n} (t={one.t:.1f} s, original branch "
-                    f"{one.branch!r}): {diff}; lengths should be exactly k times the "
+                    f"{want[-1]!r}): {diff}; lengths should be exactly k times the "
                     f"original's, angles and branches equal [{where}]"
                 )
         if a.stop_reason != b.stop_reason or len(first.trace) != len(second.trace):
