@@ -112,15 +112,7 @@ def test_powers_of_two() -> None:
         "fgm",
         "apf",
         "straight",
-        pytest.param(
-            "ifgm",
-            marks=pytest.mark.xfail(
-                strict=True,
-                reason="eq. (4) weighs the gap by w_g / d_th with w_g a number (9) and d_th a "
-                "length (3 r): the weight is 3 / r, so Case-1 steers differently for a robot "
-                "of another size (w_g must be a length, e.g. 9 r, in ifgm_ref/planners/ifgm.py)",
-            ),
-        ),
+        "ifgm",
     ],
 )
 def test_reference_planners_are_scale_invariant(planner: str) -> None:

@@ -54,3 +54,35 @@ def free_length(
     across = -s * dx + c * dy
     inside = (along >= 0.0) & (np.abs(across) < half_width)
     return float(along[inside].min()) if inside.any() else math.inf
+
+
+def disc_travel(
+    points: NDArray[np.float64],
+    origin: tuple[float, float],
+    direction: float,
+    radius: float,
+) -> float:
+    """How far a disc of ``radius`` centred at ``origin`` can move along ``direction`` before
+    it touches one of ``points`` (``inf`` if never; 0 if one is inside it already).
+
+    A point at ``along`` ahead and ``across`` to the side, ``|across| < radius``, is touched
+    after ``along - sqrt(radius**2 - across**2)``; points behind the centre only recede.
+
+    >>> pts = np.array([[5.0, 0.6], [3.0, 4.0], [-2.0, 0.0]])
+    >>> disc_travel(pts, (0.0, 0.0), 0.0, 1.0)
+    4.2
+    >>> disc_travel(pts, (0.0, 0.0), math.pi, 1.0), disc_travel(pts, (4.5, 0.6), 0.0, 1.0)
+    (1.0, 0.0)
+    """
+    if len(points) == 0:
+        return math.inf
+    c, s = math.cos(direction), math.sin(direction)
+    dx = points[:, 0] - origin[0]
+    dy = points[:, 1] - origin[1]
+    along = c * dx + s * dy
+    across = -s * dx + c * dy
+    ahead = (along >= 0.0) & (np.abs(across) < radius)
+    if not ahead.any():
+        return math.inf
+    touch = along[ahead] - np.sqrt(radius * radius - across[ahead] ** 2)
+    return max(0.0, float(touch.min()))

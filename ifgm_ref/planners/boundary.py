@@ -14,12 +14,12 @@ where it met the obstacle (:meth:`BoundaryPlanner.on_loop_closed`).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import ClassVar
 
 from ifgm_ref.laserscan import PAPER_HALF_FOV
 from ifgm_ref.paper import traces
-from ifgm_ref.percepts.corridor import free_length
+from ifgm_ref.percepts.corridor import disc_travel, free_length
 from ifgm_ref.percepts.memory import PerceptMemory
 from ifgm_ref.planners.edge_following import FollowSide, follow_heading, turn_speed
 from ifgm_ref.planners.tuning import Tuning, Unit, check_names, derived
@@ -81,6 +81,8 @@ class BoundaryPlanner:
         self.speed = 1.0
         self.fov = math.pi
         self.range_max = math.inf
+        self.turn_limit = math.pi
+        self.dt = 0.1
         self.following = False
         self.side = FollowSide.RIGHT
         self.hit_point = Point(0.0, 0.0)
@@ -99,10 +101,16 @@ class BoundaryPlanner:
         self.speed = params.robot.speed
         self.fov = params.sensor.fov
         self.range_max = params.sensor.range_max
+        self.turn_limit = params.robot.max_turn_rate * params.dt
+        self.dt = params.dt
         self.following = False
         self._last = Point(start[0], start[1])
 
     def step(self, observation: Observation) -> Command:
+        """Decide (:meth:`act`), then never drive into a remembered obstacle (:meth:`guard`)."""
+        return self.guard(self.act(observation), observation.pose)
+
+    def act(self, observation: Observation) -> Command:
         """Remember the scan, then move to goal or follow the edge (see the class docstring)."""
         pose = observation.pose
         here = self.observe(observation)
@@ -120,6 +128,24 @@ class BoundaryPlanner:
             if closed is not None:
                 return closed
         return self.follow(pose, "follow_edge")
+
+    def guard(self, command: Command, pose: Pose) -> Command:
+        """``command``, but turning in place where driving would bring the robot's disc nearer
+        a remembered obstacle point than the corridor margin during this step.
+
+        The robot turns by at most ``max_turn_rate * dt`` and then drives
+        (:mod:`ifgm_ref.robot`), so the disc of the corridor's half-width is swept along the
+        heading it will have. The paper's robot, keeping ``standoff_margin`` from edges at
+        0.13 ft a step, never needs it in the paper's scenarios; a fast robot in clutter (BARN:
+        1 m/s, 0.22 m) can be carried into an obstacle by its own limited turn rate (errata
+        row 29).
+        """
+        if command.speed <= 0.0 or command.stop is not None:
+            return command
+        turn = max(-self.turn_limit, min(self.turn_limit, wrap_angle(command.heading - pose.theta)))
+        travel = min(command.speed, self.speed) * self.dt
+        free = disc_travel(self.memory.points, (pose.x, pose.y), pose.theta + turn, self.half_width)
+        return command if free >= travel else replace(command, speed=0.0)
 
     # -- pieces for subclasses --------------------------------------------------------------
     def observe(self, observation: Observation) -> Point:

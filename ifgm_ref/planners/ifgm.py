@@ -76,10 +76,14 @@ class IFGMParams(Tuning):
         After leaving an edge by DistBug's progress rule with an obstacle still ahead, the
         encounter distance is IBA's short one (``standoff + hit_margin``) and Case-1 is off
         until the corridor towards the goal is free for ``d_look`` again (errata row 24).
-    w_g, w_d : float, default 9 and 1
-        Gap and goal weights of eq. (4), numbers. With the default ``d_th`` = 3 r the gap
-        counts three times as much as the goal for the paper's 1 ft robot
-        (``w_g / d_th = 3``), so the robot commits to the gap.
+    w_g : float, default ``9 r``
+        Gap weight of eq. (4), a length: eq. (4) weighs the gap by ``w_g / d_th``, so only a
+        length keeps the balance with the goal at every scale (the oracle's
+        ``scale_invariant`` check found a plain 9). With the default ``d_th`` = 3 r the gap
+        counts three times as much as the goal (``w_g / d_th = 3``), so the robot commits to
+        the gap.
+    w_d : float, default 1
+        Goal weight of eq. (4), a number.
     jump : float, default ``2 r``
         Two consecutive returns further apart than this belong to different obstacles: a
         robot cannot pass between returns nearer than its diameter anyway.
@@ -96,7 +100,7 @@ class IFGMParams(Tuning):
     d_th: float = derived("3*r", Unit.LENGTH)
     d_obs: float = derived("r + v/2", Unit.LENGTH)
     d_look: float = derived("8*r", Unit.LENGTH)
-    w_g: float = derived("9", Unit.NUMBER)
+    w_g: float = derived("9*r", Unit.LENGTH)
     w_d: float = derived("1", Unit.NUMBER)
     jump: float = derived("2*r", Unit.LENGTH)
     preempt_margin: float = derived("r/2", Unit.LENGTH)
@@ -294,7 +298,7 @@ class IFGMPlanner(IBAPlanner):
 
     # -- the planner ------------------------------------------------------------------------
     @traces("fig3.move_to_goal", "fig3.regenerate", "fig3.case2", "fig3.case3")
-    def step(self, observation: Observation) -> Command:
+    def act(self, observation: Observation) -> Command:
         """Decide with Figure 3, then act on the branch."""
         pose = observation.pose
         self.observe(observation)  # the whole scan is remembered, for edge following
