@@ -281,7 +281,7 @@ def test_claim_names_are_unique() -> None:
 
 # ---- docs/errata.md cites what exists ------------------------------------------------------
 
-_PROOF_CITATION = re.compile(r"proofs\.(eq\d):(\w+)")
+_PROOF_CITATION = re.compile(r"proofs\.(eq\d|scale|flowchart):(\w+)")
 _TEST_CITATION = re.compile(r"((?:tests|ifgm_ref)/[\w/]+\.py)::([\w.]+)")
 
 
