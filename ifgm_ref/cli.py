@@ -362,7 +362,7 @@ def build_parser() -> argparse.ArgumentParser:
     sim.add_argument(
         "--goal-tolerance",
         type=_positive_float,
-        help=f"goal radius in ft (default {SimParams.goal_tolerance})",
+        help=f"goal radius, in the world's length unit (default {SimParams.goal_tolerance})",
     )
     sim.set_defaults(func=_simulate)
 
