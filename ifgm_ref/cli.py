@@ -15,7 +15,7 @@ from pathlib import Path
 
 from ifgm_ref.errors import IfgmRefError, ParameterError
 from ifgm_ref.params import SimParams
-from ifgm_ref.planners import PLANNERS
+from ifgm_ref.planners import PLANNERS, parameters_markdown
 from ifgm_ref.planners.tuning import Scale
 from ifgm_ref.scenarios import BUILTIN_WORLDS, resolve_world
 from ifgm_ref.simulator import simulate
@@ -113,6 +113,9 @@ def _worlds(args: argparse.Namespace) -> int:
 
 
 def _planners(args: argparse.Namespace) -> int:
+    if args.markdown:
+        print(parameters_markdown(), end="")
+        return 0
     width = max(map(len, PLANNERS))
     paper = Scale.paper()
     for name, info in PLANNERS.items():
@@ -380,7 +383,10 @@ def build_parser() -> argparse.ArgumentParser:
     )
     figures.set_defaults(func=_figures)
 
-    planners = sub.add_parser("planners", help="list the planners")
+    planners = sub.add_parser("planners", help="list the planners and their parameters")
+    planners.add_argument(
+        "--markdown", action="store_true", help="print the parameter table of docs/parameters.md"
+    )
     planners.set_defaults(func=_planners)
 
     vectors = sub.add_parser(

@@ -134,6 +134,29 @@ class LaserScan:
             return (angles < -border) & (angles >= -outer)
         return np.abs(angles) <= border
 
+    def limited(self, range_max: float) -> LaserScan:
+        """The scan of a sensor that sees no farther than ``range_max``: returns beyond it
+        read ``+inf`` (no return). A scan that already sees no farther is returned itself.
+
+        >>> scan = LaserScan(-1.0, 1.0, 1.0, 0.0, 30.0, [2.0, 20.0, math.inf])
+        >>> near = scan.limited(15.0)
+        >>> near.range_max, near.ranges.tolist()
+        (15.0, [2.0, inf, inf])
+        >>> near.limited(15.0) is near
+        True
+        """
+        if range_max >= self.range_max:
+            return self
+        ranges = np.where(self.ranges > range_max, np.inf, self.ranges)
+        return LaserScan(
+            self.angle_min,
+            self.angle_max,
+            self.angle_increment,
+            min(self.range_min, range_max),
+            range_max,
+            ranges,
+        )
+
     def window(self, half_width: float = PAPER_HALF_FOV) -> LaserScan:
         """The rays within ``half_width`` of straight ahead (borders included), as a scan.
 

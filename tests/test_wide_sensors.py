@@ -13,7 +13,7 @@ from ifgm_ref.laserscan import Beam, LaserScan
 from ifgm_ref.params import SensorParams, jackal_lidar, paper_ir
 from ifgm_ref.planners import make_planner
 from ifgm_ref.pose import Point, Pose
-from ifgm_ref.protocol import EpisodeParams
+from ifgm_ref.protocol import EpisodeParams, Observation
 from ifgm_ref.scenarios import resolve_world
 from ifgm_ref.simulator import simulate
 
@@ -65,3 +65,20 @@ def test_ifgm_and_iba_cross_u_and_h_with_any_field_of_view(
     assert run.result.stop_reason == "goal_reached", run.result
     if planner == "ifgm":  # the dead-end rule still fires inside the U and the H
         assert "dead_end_turn" in {step.branch for step in run.trace}
+
+
+def test_a_long_range_scan_is_seen_as_far_as_the_paper_sensor() -> None:
+    """A 100 ft sensor on the paper's 1 ft robot: returns beyond view_range = 15 r are neither
+    remembered nor obstacles of Figure 3, so a far wall all round closes no view."""
+    sensor = SensorParams(range_max=100.0)
+    params = EpisodeParams(sensor=sensor)
+    half = sensor.fov / 2
+    far = LaserScan(-half, half, sensor.angle_increment, 0.0, 100.0, [30.0] * sensor.rays)
+    near = LaserScan(-half, half, sensor.angle_increment, 0.0, 100.0, [5.0] * sensor.rays)
+    for scan, remembered in ((far, 0), (near, sensor.rays)):
+        planner = make_planner("ifgm")
+        planner.reset(Pose(0, 0, 0), Point(50, 0), params)
+        planner.step(Observation(0.0, Pose(0, 0, 0), Point(50, 0), scan))
+        assert len(planner.memory.points) == remembered
+        atoms = planner.last_atoms
+        assert atoms is not None and atoms.blocked == (scan is near)

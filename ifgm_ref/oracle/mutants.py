@@ -80,10 +80,9 @@ class GapAngleInWorldFrame(IFGMPlanner):
 
 
 class AbsoluteStandoff(IFGMPlanner):
-    """Follows walls at a fixed 1.0 (ft) stand-off whatever the robot's size: a margin written
-    as a number instead of derived from the radius (``standoff_margin = r``,
-    :mod:`ifgm_ref.planners.tuning`). Identical to the reference for the 1 ft robot; the
-    ``scale_invariant`` check rejects it."""
+    """Follows walls at a fixed 1.0 (ft) stand-off margin whatever the robot's size: a margin
+    written as a number instead of derived from the radius (``standoff_margin = 2 r / 3``,
+    :mod:`ifgm_ref.planners.tuning`); the ``scale_invariant`` check rejects it."""
 
     name = "ifgm-absolute-standoff"
 

@@ -19,7 +19,7 @@ from ifgm_ref.planners.fgm import FGMPlanner
 from ifgm_ref.planners.iba import IBAPlanner
 from ifgm_ref.planners.ifgm import IFGMPlanner
 from ifgm_ref.planners.straight import StraightPlanner
-from ifgm_ref.planners.tuning import ParamInfo, Tuning, parameter_infos
+from ifgm_ref.planners.tuning import ParamInfo, Scale, Tuning, parameter_infos
 from ifgm_ref.protocol import Planner
 
 
@@ -101,3 +101,29 @@ def make_planner(name: str) -> Planner:
         known = ", ".join(sorted(PLANNERS))
         raise PlannerError(f"unknown planner {name!r}; known planners: {known}") from None
     return info.factory()
+
+
+def parameters_markdown() -> str:
+    """``docs/parameters.md``: every planner's parameters, each with its formula, its unit and
+    its value for the paper's robot (``ifgm-ref planners --markdown`` prints it)."""
+    paper = Scale.paper()
+    lines = [
+        "# Planner parameters",
+        "",
+        "Written by `ifgm-ref planners --markdown`; `tests/test_tuning.py` checks it is current.",
+        "Every default is a formula in the robot radius `r`, speed `v`, turn rate `w`, time step",
+        "`dt`, sensor range `R`, ray spacing `res` and field of view `fov`",
+        "(`ifgm_ref/planners/tuning.py`); the last column is its value for the paper's robot",
+        "(r 1 ft, v 197/149 ft/s, w pi/2 rad/s, dt 0.1 s, R 15 ft, 76 rays over 135 degrees).",
+        "Lengths are in the world's unit: feet for the paper's worlds, metres for BARN's.",
+        "",
+        "| planner | parameter | default | unit | the paper's robot |",
+        "|---|---|---|---|---|",
+    ]
+    for name, info in PLANNERS.items():
+        for param in info.infos:
+            lines.append(
+                f"| `{name}` | `{param.name}` | `{param.formula}` | {param.unit} "
+                f"| {param.value(paper):.6g} |"
+            )
+    return "\n".join(lines) + "\n"

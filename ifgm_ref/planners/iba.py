@@ -8,12 +8,15 @@ changes its behaviour to *move to goal* in order to generate new reference path.
 contrast with Bug family algorithms, bidirectional mechanism is introduced in IBA using the
 sensor's configuration on the robot."
 
-So IBA is DistBug (:class:`~ifgm_ref.planners.distbug.DistBugPlanner`) with two changes:
+So IBA is DistBug (:class:`~ifgm_ref.planners.distbug.DistBugPlanner`) with these changes:
 
 * **bidirectional**: on meeting an obstacle the robot turns towards the freer of its left and
   right beams (ties: towards the goal's side), instead of always the same way;
 * **free-path leaving**: it leaves the edge at the first point where the goal is in view and
-  the robot-wide corridor towards it is clear as far as the sensor sees, or to the goal.
+  the robot-wide corridor towards it is clear as far as the paper's sensor sees, or to the
+  goal, and following it that far would bring the robot as near the goal as it has been;
+* **one yardstick**: progress is measured against the best distance to the goal of the whole
+  episode, not of the current obstacle (errata row 31).
 
 The free-path rule alone never fires while a second obstacle stands within sensor range
 behind the followed one: the robot circles the first for ever (the oracle's
@@ -36,7 +39,7 @@ from ifgm_ref.paper import traces
 from ifgm_ref.planners.boundary import BoundaryPlanner
 from ifgm_ref.planners.distbug import DistBugPlanner
 from ifgm_ref.planners.edge_following import FollowSide
-from ifgm_ref.pose import Pose, wrap_angle
+from ifgm_ref.pose import Pose, distance, wrap_angle
 from ifgm_ref.protocol import Command, Observation
 
 
@@ -88,6 +91,15 @@ class IBAPlanner(DistBugPlanner):
 
     name = "iba"
 
+    def on_hit(self, observation: Observation) -> None:
+        """A new obstacle, the same yardstick: ``d_min`` stays the least distance to the goal
+        of the whole episode (DistBug restarts it at every hit point). IBA leaves by its free
+        path with less promise than DistBug's ``Step``, so it may meet the next obstacle
+        farther from the goal than it has been; measured from there, the next leave would
+        count a return as progress, and the robot could circle an enclosure or swap between
+        two walls for ever (BARN worlds; errata row 31)."""
+        self.d_min = min(self.d_min, distance(self.hit_point, self.goal))
+
     def choose_side(self, observation: Observation) -> FollowSide:
         """Bidirectional: turn towards the freer beam (section 4.1)."""
         pose = observation.pose
@@ -98,7 +110,15 @@ class IBAPlanner(DistBugPlanner):
         """Leave at the first free path towards the goal (section 4.1), or where the free
         range promises progress (DistBug's rule, errata row 24)."""
         progress = super().should_leave(observation)  # keeps d_min up to date
-        return progress or self.path_free(observation.pose)
+        return progress or self.free_path_leads_on(observation.pose)
+
+    def free_path_leads_on(self, pose: Pose) -> bool:
+        """IBA's free path, where following it as far as it is seen free would bring the robot
+        at least as near the goal as it has been on this obstacle (``d_min``)."""
+        if not self.path_free(pose):
+            return False
+        d = distance(pose.position, self.goal)
+        return d - min(self.goal_free_length(pose), self.tuning.view_range) <= self.d_min
 
     def move_to_goal(self, pose: Pose, branch: str) -> Command:
         """Head for the goal; a departure is labelled ``leave`` whichever rule fired."""

@@ -89,12 +89,6 @@ class IFGMParams(Tuning):
         robot cannot pass between returns nearer than its diameter anyway.
     preempt_margin : float, default ``r/2``
         Case-3: another obstacle pre-empts the followed edge when it is this much nearer.
-    view_range : float, default ``Min(R, 15 r)``
-        How far the dead-end rule looks: the view is closed when every ray of the paper's
-        135-degree view returns within this range, and a dead-end turn ends where the way
-        ahead is free this far. The paper's IR sensor sees 15 robot radii (15 ft); a longer
-        sensor (a 30 m LiDAR in a walled field) would find every view closed, so the rule
-        looks no farther than the paper's sensor does (errata row 30).
     """
 
     d_th: float = derived("3*r", Unit.LENGTH)
@@ -104,7 +98,6 @@ class IFGMParams(Tuning):
     w_d: float = derived("1", Unit.NUMBER)
     jump: float = derived("2*r", Unit.LENGTH)
     preempt_margin: float = derived("r/2", Unit.LENGTH)
-    view_range: float = derived("Min(R, 15*r)", Unit.LENGTH)
 
 
 @traces("s3.critical_shapes", "s3.safe_near_obstacles")
@@ -206,7 +199,7 @@ class IFGMPlanner(IBAPlanner):
         front = scan.beam_mask(Beam.FRONT)
         front_near = bool(np.any(scan.ranges[front] <= self.ifgm.d_look))
         # Every ray returns within the view range (-inf too): the view ahead is closed.
-        enclosed = bool(np.all(scan.ranges <= self.ifgm.view_range))
+        enclosed = bool(np.all(scan.ranges <= self.tuning.view_range))
         dead_end = front_near and enclosed and not gap_wide
         return Atoms(
             at_goal=distance(pose, self.goal) <= self.goal_tolerance,
@@ -228,7 +221,7 @@ class IFGMPlanner(IBAPlanner):
         but not while following the wall round from outside after a dead end, where the
         progress rule would lead straight back into the U or H (``tests/worlds/small_u``)."""
         progress = self.should_leave(observation)  # IBA's rules; keeps d_min up to date
-        return self.path_free(observation.pose) or (progress and not self.escaped)
+        return self.free_path_leads_on(observation.pose) or (progress and not self.escaped)
 
     def _chosen_gap(self, pose: Pose, gaps: tuple[Gap, ...]) -> Gap | None:
         """The maximum gap (section 4) -- but the gap steered through at the last step while
@@ -301,9 +294,11 @@ class IFGMPlanner(IBAPlanner):
     def act(self, observation: Observation) -> Command:
         """Decide with Figure 3, then act on the branch."""
         pose = observation.pose
-        self.observe(observation)  # the whole scan is remembered, for edge following
-        # Figure 3 reads the paper's 135-degree view (the scan itself for the paper's sensor).
-        observation = replace(observation, scan=observation.scan.window())
+        self.observe(observation)  # the whole field of view is remembered, for edge following
+        # Figure 3 reads the paper's view, 135 degrees and view_range deep (the scan itself
+        # for the paper's sensor).
+        view = observation.scan.window().limited(self.tuning.view_range)
+        observation = replace(observation, scan=view)
         clusters = cluster_scan(observation.scan, jump=self.jump)
         if self.following:
             self._track_followed(pose)
@@ -408,7 +403,7 @@ class IFGMPlanner(IBAPlanner):
             return self._turn_command(target)
         ahead = free_length(self.memory.points, (pose.x, pose.y), pose.theta, self.half_width)
         if self.escaping == 0.0:
-            if ahead < self.ifgm.view_range and self.turn_steps < DEAD_END_MAX_STEPS:
+            if ahead < self.tuning.view_range and self.turn_steps < DEAD_END_MAX_STEPS:
                 self.turn_steps += 1
                 return self._turn_command(
                     wrap_angle(self.turn_start + self.turn_sign * self.turn_steps * DEAD_END_STEP)
