@@ -459,17 +459,19 @@ class Preemption:
 
 @st.composite
 def preemptions(draw: st.DrawFn, *, sensor: SensorParams = DEFAULT_SENSOR) -> Preemption:
-    """A :class:`Preemption`: the followed obstacle between 2.5 and 4.4 ft across the way to
-    the goal (near enough that no leaving rule fires), 1-3 new obstacles from 0.6 ft to
-    1 ft beyond its nearest return, each a run of rays one free ray or more from any other."""
+    """A :class:`Preemption`: the followed obstacle between 2.5 and 4.1 ft across the way to
+    the goal (near enough that no leaving rule fires: DistBug's needs a free range beyond
+    the encounter distance ``r + standoff + hit_margin`` = 2.17 ft of ``Step`` = 2 ft, 4.17 ft
+    for the paper's robot), 1-3 new obstacles from 0.6 ft to 1 ft beyond its nearest return,
+    each a run of rays one free ray or more from any other."""
     n = sensor.rays
     angles = ray_angles(sensor)
     goal_ray = draw(st.integers(n // 2 - 12, n // 2 + 11), label="goal ray")
     a0 = goal_ray - draw(st.integers(0, 6), label="followed rays right of the goal")
     a1 = goal_ray + draw(st.integers(0, 6), label="followed rays left of the goal")
     first = np.full(n, np.inf)
-    profile = draw(run_profiles(a1 + 1 - a0, ranges=st.floats(2.5, 4.4)))
-    first[a0 : a1 + 1] = np.clip(profile, 2.5, 4.4)
+    profile = draw(run_profiles(a1 + 1 - a0, ranges=st.floats(2.5, 4.1)))
+    first[a0 : a1 + 1] = np.clip(profile, 2.5, 4.1)
     top = float(np.min(first)) + 1.0
     second = first.copy()
     # Free rays left and right of the followed obstacle (one ray either side stays free).
