@@ -14,6 +14,17 @@ import numpy as np
 from numpy.typing import NDArray
 
 
+def _along_across(
+    points: NDArray[np.float64], origin: tuple[float, float], direction: float
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Each point's coordinates in the frame at ``origin`` facing ``direction``: how far
+    along that direction, and how far to its left."""
+    c, s = math.cos(direction), math.sin(direction)
+    dx = points[:, 0] - origin[0]
+    dy = points[:, 1] - origin[1]
+    return c * dx + s * dy, -s * dx + c * dy
+
+
 def free_length(
     points: NDArray[np.float64],
     origin: tuple[float, float],
@@ -47,11 +58,7 @@ def free_length(
     """
     if len(points) == 0:
         return math.inf
-    c, s = math.cos(direction), math.sin(direction)
-    dx = points[:, 0] - origin[0]
-    dy = points[:, 1] - origin[1]
-    along = c * dx + s * dy
-    across = -s * dx + c * dy
+    along, across = _along_across(points, origin, direction)
     inside = (along >= 0.0) & (np.abs(across) < half_width)
     return float(along[inside].min()) if inside.any() else math.inf
 
@@ -76,11 +83,7 @@ def disc_travel(
     """
     if len(points) == 0:
         return math.inf
-    c, s = math.cos(direction), math.sin(direction)
-    dx = points[:, 0] - origin[0]
-    dy = points[:, 1] - origin[1]
-    along = c * dx + s * dy
-    across = -s * dx + c * dy
+    along, across = _along_across(points, origin, direction)
     ahead = (along >= 0.0) & (np.abs(across) < radius)
     if not ahead.any():
         return math.inf
