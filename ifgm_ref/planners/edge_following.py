@@ -43,27 +43,27 @@ def follow_heading(
     side: FollowSide,
     *,
     standoff: float,
-    gain: float = 1.0,
+    gain: float,
 ) -> float | None:
     """The heading that follows the edge nearest to ``position`` on ``side``.
 
     Returns ``None`` when there is no point to follow. ``gain`` is the correction in radians
     per unit of length off the stand-off; the planners pass ``1 / r``, one radian per robot
-    radius, so that the follower behaves alike at every scale.
+    radius, so that the follower behaves alike at every scale (the examples: a 1 ft robot).
 
     Examples
     --------
     A wall along y = -2 on the right, the robot at the stand-off: head along it, +x.
 
     >>> wall = np.array([[x, -2.0] for x in np.linspace(-5, 5, 101)])
-    >>> follow_heading((0.0, 0.0), wall, FollowSide.RIGHT, standoff=2.0)
+    >>> follow_heading((0.0, 0.0), wall, FollowSide.RIGHT, standoff=2.0, gain=1.0)
     0.0
 
     Too far from it: turn towards it (negative angle); too near: turn away.
 
-    >>> follow_heading((0.0, 1.0), wall, FollowSide.RIGHT, standoff=2.0) < 0.0
+    >>> follow_heading((0.0, 1.0), wall, FollowSide.RIGHT, standoff=2.0, gain=1.0) < 0.0
     True
-    >>> follow_heading((0.0, -1.0), wall, FollowSide.RIGHT, standoff=2.0) > 0.0
+    >>> follow_heading((0.0, -1.0), wall, FollowSide.RIGHT, standoff=2.0, gain=1.0) > 0.0
     True
     """
     if len(points) == 0:
