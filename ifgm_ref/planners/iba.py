@@ -114,7 +114,7 @@ class IBAPlanner(DistBugPlanner):
 
     def free_path_leads_on(self, pose: Pose) -> bool:
         """IBA's free path, where following it as far as it is seen free would bring the robot
-        at least as near the goal as it has been on this obstacle (``d_min``)."""
+        at least as near the goal as it has been in this episode (``d_min``)."""
         if not self.path_free(pose):
             return False
         d = distance(pose.position, self.goal)
