@@ -12,6 +12,7 @@ import os
 import sys
 from collections.abc import Sequence
 from pathlib import Path
+from typing import NoReturn
 
 from ifgm_ref.errors import IfgmRefError, ParameterError
 from ifgm_ref.params import SimParams
@@ -39,6 +40,7 @@ def _simulate(args: argparse.Namespace) -> int:
     )
     if (args.planner is None) == (args.cmd is None):
         raise ParameterError("give exactly one of --planner NAME and --cmd 'PROGRAM'")
+    _check_outputs(args)  # before the run, not after it
     if args.cmd is not None:
         from ifgm_ref.oracle.external import ExternalPlanner
 
@@ -46,10 +48,10 @@ def _simulate(args: argparse.Namespace) -> int:
         with ExternalPlanner(args.cmd, timeout=args.timeout) as external:
             run = simulate(world, external, sim, params=params, progress=None)
     else:
-        from ifgm_ref.oracle.loading import load_factory
+        from ifgm_ref.oracle.loading import load_planner
 
         params = _planner_params(args.planner, args.param or [])
-        run = simulate(world, load_factory(args.planner)(), sim, params=params, progress=None)
+        run = simulate(world, load_planner(args.planner), sim, params=params, progress=None)
     result = run.result
     if args.trace:
         path = Path(args.trace)
@@ -75,6 +77,24 @@ def _simulate(args: argparse.Namespace) -> int:
         if result.detail:
             print(f"detail: {result.detail}")
     return 0
+
+
+#: The file types ``--plot`` and ``--animate`` can write.
+PLOT_SUFFIXES = (".png", ".svg", ".pdf", ".jpg", ".jpeg")
+ANIMATION_SUFFIXES = (".gif",)
+
+
+def _check_outputs(args: argparse.Namespace) -> None:
+    """Refuse an output file type the run could not write, before the run."""
+    for option, name, allowed in (
+        ("--plot", args.plot, PLOT_SUFFIXES),
+        ("--animate", args.animate, ANIMATION_SUFFIXES),
+    ):
+        if name and Path(name).suffix.lower() not in allowed:
+            raise ParameterError(
+                f"{option} {name}: cannot write {Path(name).suffix or 'a file without suffix'}; "
+                f"use one of {', '.join(allowed)}"
+            )
 
 
 def _planner_params(planner: str | None, pairs: list[str]) -> dict[str, float]:
@@ -315,14 +335,23 @@ def _positive_float(text: str) -> float:
     return value
 
 
+class _Parser(argparse.ArgumentParser):
+    """An argument parser whose usage errors are one line, as the README promises."""
+
+    def error(self, message: str) -> NoReturn:
+        self.exit(EXIT_USAGE, f"{self.prog}: error: {message} (see {self.prog} --help)\n")
+
+
 def build_parser() -> argparse.ArgumentParser:
     """The argument parser of ``ifgm-ref`` (all subcommands)."""
-    parser = argparse.ArgumentParser(
+    parser = _Parser(
         prog="ifgm-ref",
         description="Reference implementation of IFGM and IBA (obstacle avoidance for "
         "mobile robots with U and H shaped obstacles).",
     )
-    sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
+    sub = parser.add_subparsers(
+        dest="command", required=True, metavar="COMMAND", parser_class=_Parser
+    )
 
     sim = sub.add_parser("simulate", help="run one planner in one world")
     sim.add_argument("world", metavar="WORLD", help="a world file (JSON) or a built-in world name")

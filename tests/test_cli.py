@@ -123,3 +123,56 @@ def test_readme_world_example_loads_and_json_example_has_the_result_fields() -> 
     world = loads_world(worlds[0], source="README.md")
     assert world.sensor.noise_std > 0 and len(world.obstacles) == 2
     assert set(json.loads(results[0])) == set(Result.__dataclass_fields__)
+
+
+# -- rough edges a new user hit (issue 14) ---------------------------------------------------
+
+
+@pytest.mark.parametrize(
+    ("option", "name", "message"),
+    [
+        ("--plot", "run.xyz", "--plot run.xyz: cannot write .xyz; use one of .png"),
+        ("--animate", "run.mp4", "--animate run.mp4: cannot write .mp4; use one of .gif"),
+    ],
+)
+def test_an_output_type_it_cannot_write_is_refused_before_the_run(
+    tmp_path: Path, option: str, name: str, message: str
+) -> None:
+    done = run_cli("simulate", "box", "--planner", "ifgm", option, name, cwd=tmp_path)
+    assert done.returncode == 2
+    assert done.stderr.strip() == f"ifgm-ref: error: {message}" + (
+        ", .svg, .pdf, .jpg, .jpeg" if option == "--plot" else ""
+    )
+    assert not (tmp_path / name).exists()
+
+
+def test_a_factory_that_makes_no_planner_is_a_one_line_error() -> None:
+    done = run_cli("simulate", "box", "--planner", "os:getcwd")
+    assert done.returncode == 2
+    assert done.stderr.splitlines() == [
+        "ifgm-ref: error: 'os:getcwd' made a str, not a planner: it has no name, reset, step "
+        "(see ifgm_ref.protocol.Planner)"
+    ]
+
+
+def test_an_argument_error_is_one_line() -> None:
+    done = run_cli("simulate")
+    assert done.returncode == 2
+    assert done.stderr.splitlines() == [
+        "ifgm-ref simulate: error: the following arguments are required: WORLD "
+        "(see ifgm-ref simulate --help)"
+    ]
+
+
+def test_a_factory_module_is_found_in_the_working_folder(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    from ifgm_ref.oracle.loading import load_planner
+
+    (tmp_path / "my_cwd_planner_module.py").write_text(
+        "from ifgm_ref.planners.iba import IBAPlanner\n\ndef make():\n    return IBAPlanner()\n"
+    )
+    monkeypatch.chdir(tmp_path)
+    monkeypatch.setattr(sys, "path", [p for p in sys.path if p not in ("", str(tmp_path))])
+    monkeypatch.delitem(sys.modules, "my_cwd_planner_module", raising=False)
+    assert load_planner("my_cwd_planner_module:make").name == "iba"

@@ -10,6 +10,8 @@ such a callable.
 from __future__ import annotations
 
 import importlib
+import os
+import sys
 from collections.abc import Callable
 
 from ifgm_ref.errors import ImplementationError
@@ -43,6 +45,8 @@ def load_factory(spec: str) -> Callable[[], Planner]:
         raise ImplementationError(
             f"{spec!r} is neither a built-in planner ({known}) nor module:attribute"
         )
+    if os.getcwd() not in sys.path and "" not in sys.path:
+        sys.path.insert(0, os.getcwd())  # as ``python -m`` does: modules beside the user
     try:
         module = importlib.import_module(module_name)
     except Exception as err:  # any import-time failure of user code is reported, not raised
@@ -58,3 +62,21 @@ def load_factory(spec: str) -> Callable[[], Planner]:
     if not callable(target):
         raise ImplementationError(f"{spec!r} is not callable, got {type(target).__name__}")
     return target  # type: ignore[return-value]
+
+
+def load_planner(spec: str) -> Planner:
+    """A new planner from ``spec`` (:func:`load_factory`), checked to be one.
+
+    >>> load_planner("os:getcwd")  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    ifgm_ref.errors.ImplementationError: 'os:getcwd' made a str, not a planner: it has no ...
+    """
+    planner = load_factory(spec)()
+    missing = [n for n in ("name", "reset", "step") if not hasattr(planner, n)]
+    if missing:
+        raise ImplementationError(
+            f"{spec!r} made a {type(planner).__name__}, not a planner: it has no "
+            f"{', '.join(missing)} (see ifgm_ref.protocol.Planner)"
+        )
+    return planner
