@@ -76,7 +76,7 @@ def _simulate(args: argparse.Namespace) -> int:
         )
         if result.detail:
             print(f"detail: {result.detail}")
-    return 0
+    return 1 if args.require_goal and not result.reached else 0
 
 
 #: The file types ``--plot`` and ``--animate`` can write.
@@ -378,6 +378,12 @@ def build_parser() -> argparse.ArgumentParser:
         help="set a planner parameter (repeatable; see `ifgm-ref planners`)",
     )
     sim.add_argument("--json", action="store_true", help="print the result as one JSON object")
+    sim.add_argument(
+        "--require-goal",
+        action="store_true",
+        help="exit with status 1 unless the goal is reached (a collision, a time-out or a "
+        "planner's stop fails): for CI scripts",
+    )
     sim.add_argument("--trace", metavar="FILE", help="write the trace (.json for JSON, else CSV)")
     sim.add_argument("--plot", metavar="FILE", help="write a plot of the run (e.g. run.png)")
     sim.add_argument(

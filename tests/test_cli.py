@@ -176,3 +176,11 @@ def test_a_factory_module_is_found_in_the_working_folder(
     monkeypatch.setattr(sys, "path", [p for p in sys.path if p not in ("", str(tmp_path))])
     monkeypatch.delitem(sys.modules, "my_cwd_planner_module", raising=False)
     assert load_planner("my_cwd_planner_module:make").name == "iba"
+
+
+@pytest.mark.parametrize(("planner", "status"), [("straight", 1), ("ifgm", 0)])
+def test_require_goal_fails_a_run_that_misses_the_goal(planner: str, status: int) -> None:
+    done = run_cli("simulate", "box", "--planner", planner, "--json", "--require-goal")
+    assert done.returncode == status
+    assert json.loads(done.stdout)["reached"] == (status == 0)
+    assert run_cli("simulate", "box", "--planner", planner, "--json").returncode == 0
