@@ -146,6 +146,8 @@ def test_fgm_and_apf_are_caught_in_u_worlds(planner: str, tmp_path: Path) -> Non
     assert not replay.reached
     report = (result.artifacts / "report.md").read_text()
     assert f"ifgm-ref simulate {result.artifacts / 'world.json'} --planner {planner}" in report
+    # The replay writes beside the counterexample, not into the current folder.
+    assert f"--plot {result.artifacts / 'world'}_replay.png" in report
     assert (result.artifacts / "world.png").stat().st_size > 0
     assert (result.artifacts / "world_trace.csv").read_text().startswith("t,x,y,theta")
 

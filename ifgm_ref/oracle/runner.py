@@ -286,7 +286,7 @@ def write_evidence(
         for name in names:
             lines.append(
                 f"    ifgm-ref simulate {folder / name}.json {how}{limit} "
-                f"--plot {name}.png --trace {name}_trace.csv"
+                f"--plot {folder / name}_replay.png --trace {folder / name}_replay_trace.csv"
             )
         lines.append("")
     (folder / "report.md").write_text("\n".join(lines))
