@@ -212,7 +212,7 @@ def _collision_test(impl: Implementation, world: World, recorder: Recorder) -> N
     run = episode(impl, world, recorder)
     clearance = run.result.min_clearance
     if run.result.collided or clearance < 0.0:
-        at = next(s for s in run.trace if s.clearance == clearance)
+        at = min(run.trace, key=lambda step: step.clearance)
         raise CheckFailed(
             f"min_clearance={clearance:.3f} ft at t={at.t:.1f} s, but should be >= 0 "
             f"[{_where(impl, world)}]"
@@ -382,32 +382,37 @@ def _unseen(draw: st.DrawFn, impl: Implementation) -> tuple[World, float, float,
 def _unseen_test(
     impl: Implementation, example: tuple[World, float, float, float], rec: Recorder
 ) -> None:
+    """Run ``world``, then the same world plus a disc placed where no pose of the first run,
+    nor the start or the goal, comes within sensor range of it; compare the two runs.
+
+    Whatever the first run did (reach the goal, stop early, collide, run out of time), the
+    disc keeps clear of every point the robot occupied and of the goal, so the second world is
+    valid and the same planner, seeing the same scans, must drive the same steps; both runs
+    get the first world's time bound, so they are comparable step for step.
+    """
     world, direction, beyond, radius = example
-    first = episode(impl, world, rec)
-    xy = _poses(first.trace)[:, :2]
+    sim = SimParams(max_time=time_bound(world))
+    first = episode(impl, world, rec, sim=sim)
+    xy = np.vstack((_poses(first.trace)[:, :2], world.start.position, tuple(world.goal)))
     centre = xy.mean(axis=0)
     reach = float(np.hypot(*(xy - centre).T).max()) + world.sensor.range_max + radius + beyond
     far = circle(
         (centre[0] + reach * math.cos(direction), centre[1] + reach * math.sin(direction)), radius
     )
-    extended = World(
-        start=world.start,
-        goal=world.goal,
-        obstacles=(*world.obstacles, far),
-        robot=world.robot,
-        sensor=world.sensor,
-        name=world.name,
-    )
-    second = episode(impl, extended, rec)
-    rec.evidence = Evidence([world, extended], [first, second], time_bound(world))
+    extended = replace(world, obstacles=(*world.obstacles, far))
+    second = episode(impl, extended, rec, sim=sim)
+    rec.evidence = Evidence([world, extended], [first, second], sim.max_time)
     a, b = _poses(first.trace), _poses(second.trace)
-    if a.shape != b.shape or not np.array_equal(a, b):
-        n = min(len(a), len(b))
-        k = int(np.flatnonzero(np.any(a[:n] != b[:n], axis=1))[0]) if n else 0
+    n = min(len(a), len(b))
+    differ = np.flatnonzero(np.any(a[:n] != b[:n], axis=1))
+    if len(differ) or len(a) != len(b):
+        k = int(differ[0]) if len(differ) else n
         raise CheckFailed(
             f"adding an obstacle {reach - radius - world.sensor.range_max:.1f} ft beyond sensor "
-            f"range of every pose changed the trajectory at step {k}, but it should not change "
-            f"at all (decisions depend on percepts only) [{_where(impl, world)}]"
+            f"range of every pose changed the trajectory at step {k} (runs of {len(a) - 1} and "
+            f"{len(b) - 1} steps, ended {first.result.stop_reason!r} and "
+            f"{second.result.stop_reason!r}), but it should not change at all (decisions "
+            f"depend on percepts only) [{_where(impl, world)}]"
         )
 
 
@@ -415,13 +420,13 @@ def _unseen_test(
 def _gap_test(impl: Implementation, example: tuple[World, Polygon], rec: Recorder) -> None:
     world, gap = example
     run = episode(impl, world, rec)
-    path = shapely.LineString([(s.x, s.y) for s in run.trace])
     where = f"{_where(impl, world)}, gap {_show_polygon(gap)}"
     if not run.result.reached:
         raise CheckFailed(
             f"stop_reason={run.result.stop_reason!r}, but should be 'goal_reached' through "
             f"the gap [{where}]"
         )
+    path = shapely.LineString([(s.x, s.y) for s in run.trace])  # reached: 2 or more points
     if not path.intersects(gap.geometry):
         raise CheckFailed(
             f"path passed {path.distance(gap.geometry):.2f} ft from the gap, but should go "

@@ -1,0 +1,89 @@
+"""Every check gives a verdict, whatever the implementation does (issue: "the oracle a
+stranger can trust"): planners that collide, stop, spin, stand still or raise are failed or
+passed with a message, never crash the oracle.
+
+Each pair (check, failing planner) runs the check under a small profile with shrinking on (the
+crashes this pins surfaced while shrinking: a far obstacle placed on the goal of a run that
+stopped early, an index into an empty difference of two unequal runs).
+"""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+
+from ifgm_ref.oracle.checks import CHECKS, Kind
+from ifgm_ref.oracle.implementation import Implementation, Promises
+from ifgm_ref.oracle.runner import Profile, Status, run_check
+from ifgm_ref.planners import PLANNERS
+from ifgm_ref.pose import Point, Pose
+from ifgm_ref.protocol import Command, EpisodeParams, Observation
+
+#: A few examples per check, shrinking on: enough to meet every failing path of a check.
+SMALL = Profile("small", 4)
+
+
+class Stopper:
+    """Ends the episode at its first step with a stop reason of its own."""
+
+    name = "stopper"
+
+    def reset(self, start: Pose, goal: Point, params: EpisodeParams) -> None:
+        """Nothing to prepare."""
+
+    def step(self, observation: Observation) -> Command:
+        """Stop at once."""
+        return Command(observation.pose.theta, 0.0, stop="gave_up")
+
+
+class Spinner:
+    """Turns in place for ever."""
+
+    name = "spinner"
+
+    def reset(self, start: Pose, goal: Point, params: EpisodeParams) -> None:
+        """Nothing to prepare."""
+
+    def step(self, observation: Observation) -> Command:
+        """A quarter turn further than the heading, at speed 0."""
+        return Command(observation.pose.theta + math.pi / 2, 0.0)
+
+
+class Raiser:
+    """Drives straight for ten steps, then raises."""
+
+    name = "raiser"
+
+    def reset(self, start: Pose, goal: Point, params: EpisodeParams) -> None:
+        """Count steps from zero."""
+        self.steps = 0
+
+    def step(self, observation: Observation) -> Command:
+        """Straight ahead, until the eleventh step."""
+        self.steps += 1
+        if self.steps > 10:
+            raise RuntimeError("planner bug")
+        return Command(observation.pose.theta, 1.0)
+
+
+FAILING = {
+    "straight": PLANNERS["straight"].factory,
+    "apf": PLANNERS["apf"].factory,
+    "stopper": Stopper,
+    "spinner": Spinner,
+    "raiser": Raiser,
+}
+SIMULATION_CHECKS = [name for name, check in CHECKS.items() if check.kind is Kind.SIMULATION]
+
+
+@pytest.mark.parametrize("planner", FAILING)
+@pytest.mark.parametrize("check", SIMULATION_CHECKS)
+def test_every_check_gives_a_verdict(check: str, planner: str, tmp_path) -> None:
+    """Promising everything, each failing planner gets a verdict with a message."""
+    impl = Implementation(FAILING[planner], planner, Promises(reports_unreachable=True))
+    result = run_check(CHECKS[check], impl, SMALL, artifacts=tmp_path)
+    assert result.status in (Status.PASSED, Status.FAILED), result.line()
+    if result.status is Status.FAILED:
+        assert result.message and "\n" not in result.message
+        assert result.artifacts is not None and (result.artifacts / "report.md").is_file()
