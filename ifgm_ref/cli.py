@@ -12,7 +12,7 @@ import os
 import sys
 from collections.abc import Sequence
 from pathlib import Path
-from typing import NoReturn
+from typing import NoReturn, TextIO
 
 from ifgm_ref.errors import IfgmRefError, ParameterError
 from ifgm_ref.params import SimParams
@@ -163,10 +163,10 @@ def _figures(args: argparse.Namespace) -> int:
 
 
 def _serve(args: argparse.Namespace) -> int:
-    from ifgm_ref.oracle.loading import load_factory
+    from ifgm_ref.oracle.loading import load_planner_factory
     from ifgm_ref.serve import serve
 
-    factory = load_factory(args.planner)
+    factory = load_planner_factory(args.planner)
     return serve(factory, sys.stdin, sys.stdout, sys.stderr)
 
 
@@ -181,18 +181,25 @@ def _vectors(args: argparse.Namespace) -> int:
 
 def _oracle(args: argparse.Namespace) -> int:
     from ifgm_ref.oracle.implementation import Implementation
-    from ifgm_ref.oracle.runner import check_planner
+    from ifgm_ref.oracle.loading import load_equations
+    from ifgm_ref.oracle.runner import PROFILE_ALIASES, check_planner
 
     if (args.planner is None) == (args.cmd is None):
         raise ParameterError("give exactly one of --planner NAME and --cmd 'PROGRAM'")
+    if args.profile in PROFILE_ALIASES:
+        new = PROFILE_ALIASES[args.profile]
+        print(f"ifgm-ref: note: profile {args.profile!r} is now called {new!r}", file=sys.stderr)
     expected = {}
     for item in args.expect_failure or []:
         name, _, reason = item.partition("=")
         expected[name] = reason or "expected"
+    equations = None if args.equations is None else load_equations(args.equations)
     if args.cmd is not None:
-        impl = Implementation.from_command(args.cmd, timeout=args.timeout, promises=args.promises)
+        impl = Implementation.from_command(
+            args.cmd, timeout=args.timeout, promises=args.promises, equations=equations
+        )
     else:
-        impl = Implementation.from_spec(args.planner, promises=args.promises)
+        impl = Implementation.from_spec(args.planner, promises=args.promises, equations=equations)
     try:
         report = check_planner(
             impl,
@@ -206,8 +213,22 @@ def _oracle(args: argparse.Namespace) -> int:
         )
     finally:
         impl.close()
-    print(report.text())
+    # Each check's line went to stderr as it finished; a terminal that shows stderr as stdout
+    # has them already and gets the summary only. Redirected stdout gets the whole report.
+    print(report.summary() if _same_terminal(sys.stdout, sys.stderr) else report.text())
     return 0 if report.ok else 1
+
+
+def _same_terminal(out: TextIO, err: TextIO) -> bool:
+    """Whether ``out`` and ``err`` are the same terminal (what one sees, the other shows)."""
+    try:
+        return (
+            out.isatty()
+            and err.isatty()
+            and os.path.samestat(os.fstat(out.fileno()), os.fstat(err.fileno()))
+        )
+    except (AttributeError, OSError, ValueError):  # a stream without a file: not a terminal
+        return False
 
 
 def _names(text: str) -> list[str]:
@@ -231,7 +252,7 @@ def _bench(args: argparse.Namespace) -> int:
         folder_specs,
         generated_specs,
     )
-    from ifgm_ref.oracle.loading import load_factory
+    from ifgm_ref.oracle.loading import load_planner
 
     if args.barn is None:
         require_pathfinder()  # BARN worlds skip the shortest path (ifgm_ref/bench/tasks.py)
@@ -240,7 +261,7 @@ def _bench(args: argparse.Namespace) -> int:
                 flag = "--" + option.replace("_", "-")
                 raise ParameterError(f"{flag} applies to BARN worlds only: give --barn DIR")
     for planner in args.planners:
-        load_factory(planner)
+        load_planner(planner)  # a bad name or factory is one error now, not one per episode
     if args.barn is not None:
         from ifgm_ref.bench.barn import DEFAULT_SENSOR, parse_selection
 
@@ -438,17 +459,27 @@ def build_parser() -> argparse.ArgumentParser:
         "oracle",
         help="check a planner against the oracle's properties (docs/oracle.md)",
         description="Run the oracle's property checks against a built-in or Python planner "
-        "(--planner) or a program speaking the JSON-lines protocol (--cmd). Prints one line "
-        "per check and a summary; exit status 0 when every check passed (or failed as "
-        "expected), 1 otherwise. Counterexamples go to --artifacts.",
+        "(--planner) or a program speaking the JSON-lines protocol (--cmd). Prints each "
+        "check's line on stderr as it finishes, then the report on stdout: every check's line "
+        "and a summary (only the summary when stdout is the terminal that showed the lines). "
+        "Exit status 0 when every check passed (or failed as expected), 1 otherwise. "
+        "Counterexamples go to --artifacts.",
     )
     oracle.add_argument("--planner", metavar="NAME", help="built-in name or module:attribute")
     oracle.add_argument("--cmd", metavar="PROGRAM", help="a JSON-lines protocol program")
     oracle.add_argument(
         "--profile",
         default="quick",
-        choices=("quick", "default", "thorough"),
-        help="examples per check: quick 50 (default), default 200, thorough 1000",
+        choices=("quick", "standard", "thorough", "default"),
+        help="examples per check: quick 50 (the default), standard 200, thorough 1000 "
+        "('default' is the old name of standard)",
+    )
+    oracle.add_argument(
+        "--equations",
+        metavar="MODULE",
+        help="check the eqs. (1)-(4) of this module (or module:attribute), which exposes "
+        "eq1_gap_midpoint ... as ifgm_ref.equations does (a --cmd program's own equations are "
+        "checked with the vectors of `ifgm-ref vectors` instead)",
     )
     oracle.add_argument(
         "--promises",

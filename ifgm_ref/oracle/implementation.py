@@ -15,7 +15,7 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 
 from ifgm_ref.errors import ImplementationError
-from ifgm_ref.oracle.loading import load_factory
+from ifgm_ref.oracle.loading import load_planner_factory
 from ifgm_ref.protocol import Planner
 
 #: Every solvable world class of :mod:`ifgm_ref.oracle.strategies`.
@@ -120,14 +120,22 @@ class Implementation:
     ) -> Implementation:
         """A Python planner named like ``ifgm-ref serve --planner``: built-in or module:attr.
 
-        ``promises`` defaults to the built-in planner's own, or IFGM's for anything else.
+        ``promises`` defaults to the built-in planner's own, or IFGM's for anything else. A
+        factory that makes no planner is an :class:`ImplementationError` here, before any check.
         """
-        factory = load_factory(spec)
+        factory = load_planner_factory(spec)
         if promises is None:
             promises = spec if spec in PROMISES else "ifgm"
         if isinstance(promises, str):
             promises = promises_of(promises)
         return cls(factory, spec, promises, equations)
+
+    @property
+    def is_program(self) -> bool:
+        """Whether it is a program run through the JSON-lines protocol (``from_command``)."""
+        from ifgm_ref.oracle.external import ExternalFactory
+
+        return isinstance(self.factory, ExternalFactory)
 
     def close(self) -> None:
         """Stop a program under test (a factory with ``close``, e.g. ``from_command``)."""

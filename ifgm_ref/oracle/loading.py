@@ -4,7 +4,8 @@ The oracle, ``ifgm-ref serve`` and the pytest plugin all name a Python planner t
 either a built-in name (``ifgm``, see ``ifgm-ref planners``) or an import path to a factory,
 ``package.module:make_planner``, i.e. any callable that takes no argument and returns a new
 object with ``name``, ``reset`` and ``step`` (:class:`ifgm_ref.protocol.Planner`). A class is
-such a callable.
+such a callable. The equations under test are named the same way, by a module or
+``module:attribute`` (:func:`load_equations`).
 """
 
 from __future__ import annotations
@@ -45,23 +46,31 @@ def load_factory(spec: str) -> Callable[[], Planner]:
         raise ImplementationError(
             f"{spec!r} is neither a built-in planner ({known}) nor module:attribute"
         )
+    target = _resolve(spec)
+    if not callable(target):
+        raise ImplementationError(f"{spec!r} is not callable, got {type(target).__name__}")
+    return target  # type: ignore[return-value]
+
+
+def _resolve(spec: str) -> object:
+    """The module ``spec`` names, or the attribute of ``module:attribute`` (dots go deeper)."""
+    module_name, _, attribute = spec.partition(":")
     if os.getcwd() not in sys.path and "" not in sys.path:
         sys.path.insert(0, os.getcwd())  # as ``python -m`` does: modules beside the user
     try:
         module = importlib.import_module(module_name)
     except Exception as err:  # any import-time failure of user code is reported, not raised
-        raise ImplementationError(f"cannot import {module_name!r} (from {spec!r}): {err}") from err
+        source = "" if spec == module_name else f" (from {spec!r})"
+        raise ImplementationError(f"cannot import {module_name!r}{source}: {err}") from err
     target: object = module
-    for part in attribute.split("."):
+    for part in attribute.split(".") if attribute else []:
         try:
             target = getattr(target, part)
         except AttributeError:
             raise ImplementationError(
                 f"module {module_name!r} has no attribute {attribute!r} (from {spec!r})"
             ) from None
-    if not callable(target):
-        raise ImplementationError(f"{spec!r} is not callable, got {type(target).__name__}")
-    return target  # type: ignore[return-value]
+    return target
 
 
 def load_planner(spec: str) -> Planner:
@@ -80,3 +89,42 @@ def load_planner(spec: str) -> Planner:
             f"{', '.join(missing)} (see ifgm_ref.protocol.Planner)"
         )
     return planner
+
+
+def load_planner_factory(spec: str) -> Callable[[], Planner]:
+    """:func:`load_factory`, once its factory has made a planner (:func:`load_planner`).
+
+    What the oracle and ``ifgm-ref serve`` use, so that a factory that makes something else
+    is one error before anything runs, not a failure in every check.
+
+    >>> load_planner_factory("ifgm")().name
+    'ifgm'
+    """
+    load_planner(spec)
+    return load_factory(spec)
+
+
+def load_equations(spec: str) -> object:
+    """The equations under test: the module ``spec`` names, or ``module:attribute``.
+
+    It must expose at least one of the functions the oracle's equation checks compare with
+    :mod:`ifgm_ref.equations` (``eq1_gap_midpoint`` ... ``eq4_final_heading_literal``, the
+    names of the checks), with the reference's signatures.
+
+    >>> load_equations("ifgm_ref.equations").__name__
+    'ifgm_ref.equations'
+    >>> load_equations("math")  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    ifgm_ref.errors.ImplementationError: 'math' has none of the equation functions eq1_gap_...
+    """
+    from ifgm_ref.oracle.checks import CHECKS, Kind  # the checks import this module
+
+    target = _resolve(spec)
+    names = [name for name, check in CHECKS.items() if check.kind is Kind.EQUATION]
+    if not any(callable(getattr(target, name, None)) for name in names):
+        raise ImplementationError(
+            f"{spec!r} has none of the equation functions {', '.join(names)} "
+            "(see ifgm_ref.equations)"
+        )
+    return target

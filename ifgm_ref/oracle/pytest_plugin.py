@@ -24,7 +24,15 @@ import pytest
 from ifgm_ref.errors import IfgmRefError
 from ifgm_ref.oracle.checks import CHECKS
 from ifgm_ref.oracle.implementation import PROMISES, Implementation
-from ifgm_ref.oracle.runner import PROFILES, CheckResult, Status, run_check
+from ifgm_ref.oracle.loading import load_equations
+from ifgm_ref.oracle.runner import (
+    PROFILE_ALIASES,
+    PROFILES,
+    CheckResult,
+    Status,
+    profile_named,
+    run_check,
+)
 
 #: The test module whose items need an implementation.
 SUITE = "test_conformance.py"
@@ -46,8 +54,9 @@ def pytest_addoption(parser: pytest.Parser) -> None:
     group.addoption(
         "--ifgm-profile",
         default="quick",
-        choices=sorted(PROFILES),
-        help="examples per check: quick 50 (default), default 200, thorough 1000",
+        choices=[*PROFILES, *PROFILE_ALIASES],
+        help="examples per check: quick 50 (default), standard 200, thorough 1000 "
+        "('default' is the old name of standard)",
     )
     group.addoption(
         "--ifgm-promises",
@@ -57,7 +66,8 @@ def pytest_addoption(parser: pytest.Parser) -> None:
     group.addoption(
         "--ifgm-equations",
         metavar="MODULE",
-        help="a module exposing eq1_gap_midpoint ... eq4_final_heading to check eqs. (1)-(4)",
+        help="a module (or module:attribute) exposing eq1_gap_midpoint ... eq4_final_heading "
+        "to check eqs. (1)-(4)",
     )
     group.addoption(
         "--ifgm-xfails",
@@ -135,9 +145,7 @@ def _implementation(config: pytest.Config) -> Implementation:
     equations: object | None = None
     try:
         if config.getoption("ifgm_equations"):
-            import importlib
-
-            equations = importlib.import_module(config.getoption("ifgm_equations"))
+            equations = load_equations(config.getoption("ifgm_equations"))
         if spec is not None:
             return Implementation.from_spec(spec, promises=promises, equations=equations)
         return Implementation.from_command(
@@ -146,7 +154,7 @@ def _implementation(config: pytest.Config) -> Implementation:
             promises=promises,
             equations=equations,
         )
-    except (IfgmRefError, ImportError) as err:
+    except IfgmRefError as err:
         raise pytest.UsageError(f"ifgm-ref oracle: cannot load the implementation: {err}") from err
 
 
@@ -178,12 +186,11 @@ def pytest_report_header(config: pytest.Config) -> list[str]:
     spec, cmd = config.getoption("ifgm_impl"), config.getoption("ifgm_cmd")
     if spec is None and cmd is None:
         return []
-    profile = config.getoption("ifgm_profile")
-    examples = PROFILES[profile].max_examples
+    profile = profile_named(config.getoption("ifgm_profile"))
     promises = config.getoption("ifgm_promises") or (spec if spec in PROMISES else None)
     return [
         f"ifgm-ref oracle: implementation {spec or 'cmd: ' + cmd}",
-        f"ifgm-ref oracle: profile {profile} ({examples} examples per check), "
+        f"ifgm-ref oracle: profile {profile.name} ({profile.max_examples} examples per check), "
         f"promises {promises or 'default'}, equations {config.getoption('ifgm_equations')}, "
         f"artifacts {config.getoption('ifgm_artifacts')}",
     ]

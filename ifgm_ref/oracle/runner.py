@@ -14,11 +14,13 @@ from __future__ import annotations
 import re
 import sys
 import time
+import traceback
 from collections.abc import Callable, Iterable, Mapping
 from concurrent.futures import ProcessPoolExecutor, as_completed
 from dataclasses import dataclass, field, replace
 from enum import StrEnum
 from pathlib import Path
+from types import TracebackType
 from typing import Any
 
 from hypothesis import HealthCheck, Phase, given, settings
@@ -62,11 +64,44 @@ class Profile:
         )
 
 
-#: The profiles: ``quick`` for CI (50 examples per check), ``default``, ``thorough``. All are
-#: derandomized: the same implementation gives the same verdicts on every run.
+#: The profiles, by examples per check: ``quick`` 50 (the default, for CI), ``standard`` 200,
+#: ``thorough`` 1000. All are derandomized: the same implementation gives the same verdicts on
+#: every run.
 PROFILES: dict[str, Profile] = {
-    p.name: p for p in (Profile("quick", 50), Profile("default", 200), Profile("thorough", 1000))
+    p.name: p for p in (Profile("quick", 50), Profile("standard", 200), Profile("thorough", 1000))
 }
+#: Old profile names that still work: ``default`` was ``standard``'s name (it was never the
+#: default: ``quick`` is).
+PROFILE_ALIASES: dict[str, str] = {"default": "standard"}
+
+#: Why the equation checks do not apply to a Python implementation given without equations:
+#: how to give them, on the command line, under pytest and in Python.
+NO_EQUATIONS = (
+    "no equations given: --equations MODULE (ifgm-ref oracle), --ifgm-equations MODULE "
+    "(pytest), equations= (check_planner)"
+)
+#: ... and to a program: it has no Python functions to call.
+NO_EQUATIONS_PROGRAM = (
+    "a program exposes no Python functions: check its eqs. (1)-(4) against the vectors of "
+    "`ifgm-ref vectors` (docs/vectors-format.md)"
+)
+
+
+def profile_named(name: str) -> Profile:
+    """The profile called ``name`` (or an old alias of it, :data:`PROFILE_ALIASES`).
+
+    >>> profile_named("default").name
+    'standard'
+    >>> profile_named("fast")
+    Traceback (most recent call last):
+    ...
+    ifgm_ref.errors.ImplementationError: unknown profile 'fast'; known: quick, standard, thorough
+    """
+    try:
+        return PROFILES[PROFILE_ALIASES.get(name, name)]
+    except KeyError:
+        known = ", ".join(PROFILES)
+        raise ImplementationError(f"unknown profile {name!r}; known: {known}") from None
 
 
 class Status(StrEnum):
@@ -164,9 +199,11 @@ def run_check(
     progress: Callable[[int], None] | None = None,
 ) -> CheckResult:
     """Run one check against ``impl``; see :func:`check_planner`."""
-    profile = PROFILES[profile] if isinstance(profile, str) else profile
+    profile = profile_named(profile) if isinstance(profile, str) else profile
     reason = check.applies(impl)
     if reason is not None:
+        if check.kind is Kind.EQUATION and impl.equations is None:
+            reason = NO_EQUATIONS_PROGRAM if impl.is_program else NO_EQUATIONS
         return CheckResult(check.name, Status.NOT_APPLICABLE, message=reason)
     recorder = Recorder()
 
@@ -188,6 +225,12 @@ def run_check(
         return CheckResult(
             check.name, Status.ERROR, recorder.examples, len(recorder.worlds), seconds, str(err)
         )
+    except Exception as err:  # the oracle's own machinery broke: still a verdict, and a summary
+        seconds = time.perf_counter() - started
+        message = f"the check itself crashed (a bug in the oracle, not a verdict): {crash(err)}"
+        return CheckResult(
+            check.name, Status.ERROR, recorder.examples, len(recorder.worlds), seconds, message
+        )
     seconds = time.perf_counter() - started
     common = (check.name, recorder.examples, len(recorder.worlds), seconds)
     if failure is None:
@@ -205,6 +248,41 @@ def run_check(
         message = f"{message} (expected: {expected_failure})"
         return _result(*common, Status.EXPECTED_FAILURE, message, folder)
     return _result(*common, Status.FAILED, message, folder)
+
+
+def crash(err: BaseException, *, outer: TracebackType | None = None) -> str:
+    """Name an unexpected exception and where it was raised, in one line.
+
+    ``Type: message at file:line``: the innermost frame of its traceback (or of ``outer``, for
+    an exception never raised itself, such as a member of a group built in place), the path
+    relative to the folder that holds ``ifgm_ref``, or to the working folder. A group lists
+    its exceptions.
+
+    >>> try:
+    ...     [][0]
+    ... except IndexError as err:
+    ...     print(crash(err))  # doctest: +ELLIPSIS
+    IndexError: list index out of range at <doctest ...>:2
+    """
+    where = err.__traceback__ or outer
+    if isinstance(err, BaseExceptionGroup):
+        inner = "; ".join(crash(e, outer=where) for e in err.exceptions)
+        return f"{type(err).__name__} of {len(err.exceptions)}: {inner}"
+    first_line = next(iter(str(err).splitlines()), "")
+    text = f"{type(err).__name__}: {first_line}"
+    frames = traceback.extract_tb(where)
+    if frames:
+        text += f" at {_short_path(frames[-1].filename)}:{frames[-1].lineno}"
+    return text
+
+
+def _short_path(filename: str) -> str:
+    """``filename`` relative to the folder holding this package, or to the working folder."""
+    path = Path(filename)
+    for root in (Path(__file__).resolve().parents[2], Path.cwd()):
+        if path.is_relative_to(root):
+            return path.relative_to(root).as_posix()
+    return filename
 
 
 def _pooled_check(
@@ -242,7 +320,12 @@ def _run_pooled(
             for n in names
         }
         for future in as_completed(futures):
-            result = finished(future.result())
+            try:
+                result = future.result()
+            except Exception as err:  # the worker died (or its result did not unpickle)
+                message = f"the worker process running it failed: {crash(err)}"
+                result = CheckResult(futures[future], Status.ERROR, message=message)
+            result = finished(result)
             done[futures[future]] = result
             if stop_on_failure and not result.ok:
                 for other in futures:
@@ -335,8 +418,9 @@ def check_planner(
     planner : callable, Implementation or str
         A factory returning a new planner (a class will do), an :class:`Implementation`, or a
         spec: a built-in name or ``module:attribute``.
-    profile : {"quick", "default", "thorough"} or Profile, default "quick"
-        Examples per check: 50, 200 or 1000.
+    profile : {"quick", "standard", "thorough"} or Profile, default "quick"
+        Examples per check: 50, 200 or 1000 (``"default"``, the old name of ``"standard"``,
+        still works).
     promises : Promises or str, optional
         What the planner promises, or the name of the built-in planner whose promises it
         shares; default: IFGM's (or the built-in planner's own, for a built-in spec).
@@ -373,9 +457,7 @@ def check_planner(
     unknown = [n for n in [*names, *expected] if n not in CHECKS]
     if unknown:
         raise ImplementationError(f"unknown check(s) {unknown}; known: {', '.join(CHECKS)}")
-    profile_name = profile if isinstance(profile, str) else profile.name
-    if profile_name not in PROFILES and isinstance(profile, str):
-        raise ImplementationError(f"unknown profile {profile!r}; known: {', '.join(PROFILES)}")
+    profile = profile_named(profile) if isinstance(profile, str) else profile
     if isinstance(jobs, bool) or not isinstance(jobs, int) or jobs < 1:
         raise ImplementationError(f"`jobs` must be an integer >= 1, got {jobs!r}")
 
@@ -406,7 +488,7 @@ def check_planner(
             _run_pooled(pooled, impl, profile, artifacts, expected, jobs, finished, stop_on_failure)
         )
     results = [done[n] for n in names if n in done]
-    report = Report(impl.label, profile_name, tuple(results))
+    report = Report(impl.label, profile.name, tuple(results))
     if not report.ok and on_fail is not None:
         if on_fail == "raise":
             raise AssertionError(report.text())
@@ -418,11 +500,13 @@ def check_planner(
 
 __all__ = [
     "PROFILES",
+    "PROFILE_ALIASES",
     "CheckResult",
     "Kind",
     "Profile",
     "Report",
     "Status",
     "check_planner",
+    "profile_named",
     "run_check",
 ]

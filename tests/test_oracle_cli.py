@@ -1,0 +1,246 @@
+"""The oracle as a new user meets it (issue 14): ``ifgm-ref oracle`` and ``serve`` options,
+what a terminal shows, and a report that always comes back, even when a check crashes."""
+
+from __future__ import annotations
+
+import os
+import pty
+import select
+import subprocess
+import sys
+from collections.abc import Callable
+from pathlib import Path
+
+import pytest
+from hypothesis import strategies as st
+
+from ifgm_ref.oracle.checks import CHECKS, Check, Kind
+from ifgm_ref.oracle.implementation import Implementation
+from ifgm_ref.oracle.runner import (
+    NO_EQUATIONS,
+    NO_EQUATIONS_PROGRAM,
+    Status,
+    check_planner,
+    crash,
+    run_check,
+)
+
+GOAL_SEEKER = Path(__file__).resolve().parent.parent / "examples" / "goal_seeker.py"
+EQ1 = ["--check", "eq1_gap_midpoint"]
+
+
+def oracle(*args: str, cwd: Path | None = None) -> subprocess.CompletedProcess[str]:
+    """``ifgm-ref ARGS`` in a subprocess, stdout and stderr captured apart."""
+    return subprocess.run(
+        [sys.executable, "-m", "ifgm_ref", *args],
+        capture_output=True,
+        text=True,
+        timeout=120,
+        cwd=cwd,
+        check=False,
+    )
+
+
+# -- --equations -------------------------------------------------------------------------------
+
+
+def test_equations_option_runs_the_equation_checks() -> None:
+    done = oracle("oracle", "--planner", "ifgm", *EQ1, "--equations", "ifgm_ref.equations")
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.startswith("PASSED              eq1_gap_midpoint           50 examples")
+
+
+def test_equations_may_be_a_module_attribute(tmp_path: Path) -> None:
+    (tmp_path / "my_port_eqs.py").write_text(
+        "from types import SimpleNamespace\n\n"
+        "EQUATIONS = SimpleNamespace(eq1_gap_midpoint=lambda p1, p2: (p1[0], p1[1]))\n"
+    )
+    done = oracle(
+        "oracle", "--planner", "ifgm", *EQ1, "--equations", "my_port_eqs:EQUATIONS", cwd=tmp_path
+    )
+    assert done.returncode == 1  # found, and its eq. (1) is wrong
+    assert "FAILED              eq1_gap_midpoint" in done.stdout
+    assert "but should be" in done.stdout
+
+
+@pytest.mark.parametrize(
+    ("spec", "message"),
+    [
+        ("no_such_eqs_xyz", "cannot import 'no_such_eqs_xyz': No module named 'no_such_eqs_xyz'"),
+        ("math", "'math' has none of the equation functions eq1_gap_midpoint, eq2_gap_angle"),
+        ("ifgm_ref.equations:nope", "module 'ifgm_ref.equations' has no attribute 'nope'"),
+    ],
+)
+def test_equations_that_cannot_be_loaded_are_a_one_line_error(spec: str, message: str) -> None:
+    done = oracle("oracle", "--planner", "ifgm", *EQ1, "--equations", spec)
+    assert done.returncode == 2
+    assert len(done.stderr.splitlines()) == 1
+    assert done.stderr.startswith(f"ifgm-ref: error: {message}")
+    assert done.stdout == ""
+
+
+def test_without_equations_the_message_says_how_to_give_them() -> None:
+    done = oracle("oracle", "--planner", "ifgm", *EQ1)
+    assert done.returncode == 0
+    assert "--equations MODULE (ifgm-ref oracle)" in NO_EQUATIONS
+    assert done.stdout.splitlines()[:2] == [
+        "NOT APPLICABLE      eq1_gap_midpoint           0 examples, 0 worlds, 0.0 s",
+        f"    {NO_EQUATIONS}",
+    ]
+
+
+def test_a_program_is_pointed_to_the_vectors() -> None:
+    done = oracle("oracle", "--cmd", f"{sys.executable} {GOAL_SEEKER}", *EQ1)
+    assert done.returncode == 0, done.stderr
+    assert "`ifgm-ref vectors`" in NO_EQUATIONS_PROGRAM
+    assert f"    {NO_EQUATIONS_PROGRAM}" in done.stdout.splitlines()
+
+
+# -- one line per check in a terminal ----------------------------------------------------------
+
+
+def _in_a_terminal(*args: str) -> str:
+    """What a terminal shows of ``ifgm-ref ARGS`` (stdout and stderr on one pseudo-terminal)."""
+    leader, follower = pty.openpty()
+    with subprocess.Popen(
+        [sys.executable, "-m", "ifgm_ref", *args],
+        stdin=subprocess.DEVNULL,
+        stdout=follower,
+        stderr=follower,
+    ) as process:
+        os.close(follower)
+        chunks = []
+        while True:
+            ready, _, _ = select.select([leader], [], [], 60)
+            if not ready:
+                break
+            try:
+                chunk = os.read(leader, 4096)
+            except OSError:  # the program exited and closed its end
+                break
+            if not chunk:
+                break
+            chunks.append(chunk)
+        process.wait(timeout=60)
+    os.close(leader)
+    return b"".join(chunks).decode().replace("\r\n", "\n")
+
+
+def test_a_terminal_shows_each_check_once_and_the_summary() -> None:
+    args = ["oracle", "--planner", "ifgm", "--equations", "ifgm_ref.equations", "--jobs", "1"]
+    args += [*EQ1, "--check", "eq2_gap_angle"]
+    screen = _in_a_terminal(*args)
+    assert screen.count("eq1_gap_midpoint") == 1, screen
+    assert screen.count("eq2_gap_angle") == 1, screen
+    assert screen.splitlines()[-1].startswith("ifgm (profile quick): 2 properties checked")
+    captured = oracle(*args)  # a script that captures stdout gets the whole report
+    assert captured.stdout.count("PASSED") == 2
+    assert captured.stderr.count("PASSED") == 2  # the progress
+    assert captured.stdout.splitlines()[-1] == screen.splitlines()[-1]
+
+
+# -- a check that crashes is an error, and the report comes back -------------------------------
+
+
+def _crashing_check(crash_it: Callable[[], None]) -> Check:
+    def test(impl: Implementation, example: int, rec: object) -> None:
+        crash_it()
+
+    return Check(
+        "crashes", "never crashes", Kind.EQUATION, lambda impl: st.integers(), test, lambda i: None
+    )
+
+
+def _index_error() -> None:
+    [][0]
+
+
+def _group() -> None:
+    """Raise a group of two exceptions, each raised (and so located) first, as in ``checks``."""
+    caught: list[Exception] = []
+    for fail in (_index_error, lambda: {}["k"]):
+        try:
+            fail()
+        except Exception as err:
+            caught.append(err)
+    raise ExceptionGroup("two", caught)
+
+
+@pytest.mark.parametrize(
+    ("crash_it", "message"),
+    [
+        (_index_error, "IndexError: list index out of range at tests/test_oracle_cli.py:"),
+        (_group, "ExceptionGroup of 2: IndexError: list index out of range at tests/test_oracle"),
+    ],
+)
+def test_a_check_that_crashes_is_an_error_naming_where(
+    crash_it: Callable[[], None], message: str
+) -> None:
+    impl = Implementation.from_spec("ifgm")
+    result = run_check(_crashing_check(crash_it), impl, artifacts=None)
+    assert result.status is Status.ERROR
+    assert "the check itself crashed" in result.message and message in result.message
+    assert "\n" not in result.message
+
+
+def test_check_planner_reports_a_crashed_check_with_the_summary(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    monkeypatch.setitem(CHECKS, "crashes", _crashing_check(_index_error))
+    report = check_planner("ifgm", checks=["crashes"], artifacts=None)
+    assert not report.ok and report["crashes"].status is Status.ERROR
+    assert report.text().splitlines()[-1].endswith("1 error")
+
+
+def test_crash_names_the_innermost_frame() -> None:
+    def inner() -> None:
+        raise KeyError("k")
+
+    try:
+        inner()
+    except KeyError as err:
+        line = inner.__code__.co_firstlineno + 1
+        assert crash(err) == f"KeyError: 'k' at tests/test_oracle_cli.py:{line}"
+
+
+# -- profiles ----------------------------------------------------------------------------------
+
+
+def test_the_old_profile_name_default_still_works() -> None:
+    report = check_planner("ifgm", profile="default", checks=["eq1_gap_midpoint"])
+    assert report.profile == "standard"
+    args = ["oracle", "--planner", "ifgm", *EQ1, "--equations", "ifgm_ref.equations"]
+    done = oracle(*args, "--profile", "default")
+    assert done.returncode == 0
+    assert "ifgm-ref: note: profile 'default' is now called 'standard'" in done.stderr
+    assert "200 examples" in done.stdout and "(profile standard)" in done.stdout
+    assert "(profile quick)" in oracle(*args).stdout  # quick is the default
+
+
+def test_the_plugin_takes_the_old_profile_name(pytester: pytest.Pytester) -> None:
+    result = pytester.runpytest_subprocess(
+        "--pyargs", "ifgm_ref.oracle", "--ifgm-impl", "ifgm", "--ifgm-profile", "default",
+        "--ifgm-equations", "ifgm_ref.equations", "-k", "eq1_gap", "-p", "no:cacheprovider",
+    )  # fmt: skip
+    result.stdout.fnmatch_lines(["ifgm-ref oracle: profile standard (200 examples per check)*"])
+    result.assert_outcomes(passed=1)
+
+
+# -- a factory that makes no planner -----------------------------------------------------------
+
+
+@pytest.mark.parametrize(
+    "args",
+    [
+        ["oracle", "--planner", "os:getcwd"],
+        ["serve", "--planner", "os:getcwd"],
+        ["bench", "--planners", "ifgm,os:getcwd", "--per-class", "1"],
+    ],
+)
+def test_a_factory_that_makes_no_planner_is_a_one_line_error(args: list[str]) -> None:
+    done = oracle(*args)
+    assert done.returncode == 2
+    assert done.stderr.splitlines() == [
+        "ifgm-ref: error: 'os:getcwd' made a str, not a planner: it has no name, reset, step "
+        "(see ifgm_ref.protocol.Planner)"
+    ]
