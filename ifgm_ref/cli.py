@@ -20,7 +20,7 @@ from ifgm_ref.planners import PLANNERS, parameters_markdown
 from ifgm_ref.planners.tuning import Scale
 from ifgm_ref.scenarios import BUILTIN_WORLDS, resolve_world
 from ifgm_ref.simulator import simulate
-from ifgm_ref.worldfile import save_world
+from ifgm_ref.worldfile import EXPORT_DIGITS, save_world
 
 EXIT_USAGE = 2
 #: What ``ifgm-ref bench`` runs by default: the paper's seven planners on four classes.
@@ -123,7 +123,7 @@ def _worlds(args: argparse.Namespace) -> int:
         out = Path(args.export)
         out.mkdir(parents=True, exist_ok=True)
         for name, entry in BUILTIN_WORLDS.items():
-            save_world(entry.build(), out / f"{name}.json")
+            save_world(entry.build(), out / f"{name}.json", digits=EXPORT_DIGITS)
         print(f"wrote {len(BUILTIN_WORLDS)} world files to {out}", file=sys.stderr)
         return 0
     width = max(map(len, BUILTIN_WORLDS))
@@ -427,7 +427,10 @@ def build_parser() -> argparse.ArgumentParser:
 
     worlds = sub.add_parser("worlds", help="list the built-in worlds")
     worlds.add_argument(
-        "--export", metavar="DIR", help="write every built-in world as DIR/NAME.json"
+        "--export",
+        metavar="DIR",
+        help=f"write every built-in world as DIR/NAME.json (geometry to {EXPORT_DIGITS} "
+        "significant digits)",
     )
     worlds.set_defaults(func=_worlds)
 

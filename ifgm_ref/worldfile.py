@@ -20,7 +20,10 @@ but JSON does not.
 Writing is canonical: :func:`dumps_world` gives one text per world, floats are written with
 ``repr`` (which reads back to the same float), and the ``robot`` and ``sensor`` blocks list
 only the fields that differ from the defaults. So ``loads_world(dumps_world(w)) == w`` and
-``dumps_world(loads_world(dumps_world(w))) == dumps_world(w)``.
+``dumps_world(loads_world(dumps_world(w))) == dumps_world(w)``. For files people read and edit,
+``digits`` rounds the geometry (bounds, start, goal, obstacles) to that many significant digits
+(``ifgm-ref worlds --export`` writes :data:`EXPORT_DIGITS`), so that a built shape's rounding
+(``11.999999999999998``) is written as the number it stands for (``12.0``).
 """
 
 from __future__ import annotations
@@ -49,6 +52,10 @@ __all__ = [
 FIELDS = ("name", "bounds", "start", "goal", "obstacles", "robot", "sensor")
 #: Top-level fields a world file must have.
 REQUIRED = ("start", "goal")
+#: Significant digits of the geometry that ``ifgm-ref worlds --export`` writes: a built
+#: shape's coordinates are off by a few units in the 16th digit (rotations by pi/2, sums of
+#: offsets); 12 digits drop that and move no coordinate by more than 5e-12 of itself.
+EXPORT_DIGITS = 12
 
 
 _Block = TypeVar("_Block", RobotParams, SensorParams)
@@ -270,18 +277,27 @@ def _changed(block: RobotParams | SensorParams) -> dict[str, Any]:
     return {k: v for k, v in block.to_mapping().items() if v != default[k]}
 
 
-def _obstacle_to_dict(obstacle: Obstacle) -> dict[str, Any]:
+def _obstacle_to_dict(obstacle: Obstacle, digits: int | None) -> dict[str, Any]:
     if isinstance(obstacle, Circle):
-        return {"circle": {"center": list(obstacle.center), "radius": obstacle.radius}}
-    return {"polygon": [list(vertex) for vertex in obstacle.vertices]}
+        center, radius = _rounded(obstacle.center, digits), _rounded([obstacle.radius], digits)
+        return {"circle": {"center": center, "radius": radius[0]}}
+    return {"polygon": [_rounded(vertex, digits) for vertex in obstacle.vertices]}
 
 
-def world_to_dict(world: World) -> dict[str, Any]:
+def _rounded(values: Any, digits: int | None) -> list[float]:
+    """``values`` as a list, each rounded to ``digits`` significant digits (``None``: as is)."""
+    if digits is None:
+        return list(values)
+    return [float(f"{value:.{digits}g}") for value in values]
+
+
+def world_to_dict(world: World, *, digits: int | None = None) -> dict[str, Any]:
     """The world as JSON-ready data, fields in :data:`FIELDS` order.
 
     ``name`` and ``bounds`` appear when set; ``robot`` and ``sensor`` list only the fields
     that differ from the defaults and are left out when none does; ``obstacles`` is always
-    written.
+    written. ``digits`` rounds the geometry (bounds, start, goal, obstacles) to that many
+    significant digits; ``None`` (the default) keeps every float exactly.
 
     Examples
     --------
@@ -294,15 +310,17 @@ def world_to_dict(world: World) -> dict[str, Any]:
     [{'circle': {'center': [4.0, 4.0], 'radius': 1.0}}]
     >>> "robot" in data, world_to_dict(replace(world, robot=RobotParams(radius=2.0)))["robot"]
     (False, {'radius': 2.0})
+    >>> world_to_dict(replace(world, goal=(11.999999999999998, 0.1 + 0.2)), digits=12)["goal"]
+    [12.0, 0.3]
     """
     data: dict[str, Any] = {}
     if world.name is not None:
         data["name"] = world.name
     if world.bounds is not None:
-        data["bounds"] = list(world.bounds)
-    data["start"] = list(world.start)
-    data["goal"] = list(world.goal)
-    data["obstacles"] = [_obstacle_to_dict(obstacle) for obstacle in world.obstacles]
+        data["bounds"] = _rounded(world.bounds, digits)
+    data["start"] = _rounded(world.start, digits)
+    data["goal"] = _rounded(world.goal, digits)
+    data["obstacles"] = [_obstacle_to_dict(obstacle, digits) for obstacle in world.obstacles]
     for key, block in (("robot", world.robot), ("sensor", world.sensor)):
         changed = _changed(block)
         if changed:
@@ -314,8 +332,10 @@ def _compact(value: object) -> str:
     return json.dumps(value, ensure_ascii=False, allow_nan=False, separators=(", ", ": "))
 
 
-def dumps_world(world: World) -> str:
+def dumps_world(world: World, *, digits: int | None = None) -> str:
     """The text of the world's file: one field per line, one obstacle per line.
+
+    ``digits`` rounds the geometry to that many significant digits (:func:`world_to_dict`).
 
     Examples
     --------
@@ -331,7 +351,7 @@ def dumps_world(world: World) -> str:
     }
     """
     lines = []
-    for key, value in world_to_dict(world).items():
+    for key, value in world_to_dict(world, digits=digits).items():
         if key == "obstacles" and value:
             body = ",\n".join(f"    {_compact(obstacle)}" for obstacle in value)
             lines.append(f'  "obstacles": [\n{body}\n  ]')
@@ -340,10 +360,11 @@ def dumps_world(world: World) -> str:
     return "{\n" + ",\n".join(lines) + "\n}\n"
 
 
-def save_world(world: World, path: str | os.PathLike[str]) -> None:
-    """Write the world to ``path`` as UTF-8 JSON (see :func:`dumps_world`)."""
+def save_world(world: World, path: str | os.PathLike[str], *, digits: int | None = None) -> None:
+    """Write the world to ``path`` as UTF-8 JSON (see :func:`dumps_world`; ``digits`` rounds
+    the geometry to that many significant digits, ``None`` keeps every float exactly)."""
     try:
-        Path(path).write_text(dumps_world(world), encoding="utf-8")
+        Path(path).write_text(dumps_world(world, digits=digits), encoding="utf-8")
     except OSError as err:
         raise WorldError(
             f"{os.fspath(path)}: cannot write the world file: {err.strerror or err}"

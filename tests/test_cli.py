@@ -10,9 +10,17 @@ from pathlib import Path
 
 import pytest
 
+from ifgm_ref.planners.ifgm import IFGMPlanner
 from ifgm_ref.scenarios import BUILTIN_WORLDS
-from ifgm_ref.simulator import Result
-from ifgm_ref.worldfile import load_world, loads_world
+from ifgm_ref.simulator import Result, simulate
+from ifgm_ref.worldfile import (
+    EXPORT_DIGITS,
+    dumps_world,
+    load_world,
+    loads_world,
+    world_from_dict,
+    world_to_dict,
+)
 
 README = Path(__file__).resolve().parent.parent / "README.md"
 WORLD = {
@@ -106,7 +114,35 @@ def test_worlds_lists_and_exports_every_builtin(tmp_path: Path) -> None:
     exported = run_cli("worlds", "--export", str(tmp_path / "out"))
     assert exported.returncode == 0, exported.stderr
     for name, entry in BUILTIN_WORLDS.items():
-        assert load_world(tmp_path / "out" / f"{name}.json") == entry.build()
+        world = load_world(tmp_path / "out" / f"{name}.json")
+        assert world == world_from_dict(world_to_dict(entry.build(), digits=EXPORT_DIGITS))
+
+
+def test_exported_worlds_have_no_rounding_tails_and_drive_the_same(tmp_path: Path) -> None:
+    assert run_cli("worlds", "--export", str(tmp_path)).returncode == 0
+    texts = {path.stem: path.read_text() for path in tmp_path.glob("*.json")}
+    assert set(texts) == set(BUILTIN_WORLDS)
+    assert "11.999999999999998" in dumps_world(BUILTIN_WORLDS["u_trap"].build())  # the tail
+    assert "[38.0, 12.0], [22.0, 12.0], [22.0, 11.0], [37.0, 11.0]" in texts["u_trap"]
+    for name, text in texts.items():
+        numbers = re.findall(r"-?\d+\.\d+(?:e-?\d+)?", text)
+        digits = [len(n.partition("e")[0].lstrip("-").replace(".", "").strip("0")) for n in numbers]
+        assert max(digits) <= EXPORT_DIGITS, name
+        built, exported = world_to_dict(BUILTIN_WORLDS[name].build()), json.loads(text)
+        assert _numbers(exported) == pytest.approx(_numbers(built), rel=5e-12, abs=1e-12)
+    built = simulate(BUILTIN_WORLDS["u_trap"].build(), IFGMPlanner()).result
+    exported = simulate(load_world(tmp_path / "u_trap.json"), IFGMPlanner()).result
+    assert (exported.stop_reason, exported.steps) == (built.stop_reason, built.steps)
+    assert exported.path_length == pytest.approx(built.path_length, rel=1e-9)
+
+
+def _numbers(data: object) -> list[float]:
+    """Every number in JSON data, depth first."""
+    if isinstance(data, dict):
+        return [x for value in data.values() for x in _numbers(value)]
+    if isinstance(data, list):
+        return [x for value in data for x in _numbers(value)]
+    return [float(data)] if isinstance(data, int | float) else []
 
 
 def test_planners_lists_straight() -> None:
