@@ -8,6 +8,7 @@ the sensor's 135-degree field of view (section 4, Figure 2) is drawn at those po
 from __future__ import annotations
 
 import math
+from collections import Counter
 from collections.abc import Sequence
 from pathlib import Path
 
@@ -24,6 +25,7 @@ from matplotlib.figure import Figure
 from matplotlib.patches import Circle as CirclePatch
 from matplotlib.patches import Polygon as PolygonPatch
 from matplotlib.patches import Wedge
+from tqdm import tqdm
 
 from ifgm_ref.sensor import IRSensor
 from ifgm_ref.simulator import Result, TraceStep
@@ -36,6 +38,11 @@ BEHAVIOUR_COLOURS = {"move_to_goal": "tab:blue", "obstacle_avoidance": "tab:oran
 MAX_WEDGES = 6
 #: At most this many frames in an animation (the trace is subsampled evenly).
 MAX_FRAMES = 120
+#: A path label (behaviour or branch) drawn along less than this share of the path's length
+#: is marked where each of its runs begins: a line that short cannot be seen.
+RARE_SHARE = 0.05
+#: How those runs are marked: a diamond twice as large as a behaviour switch's circle.
+RARE_MARKER = {"marker": "D", "markersize": 7, "markeredgecolor": "black", "markeredgewidth": 0.6}
 
 
 def draw_world(ax: Axes, world: World) -> None:
@@ -68,13 +75,21 @@ def _labels(trace: Sequence[TraceStep], colour_by: str) -> list[str]:
     return [str(getattr(s, colour_by) or "none") for s in trace[:-1]]
 
 
-def _colours(labels: Sequence[str]) -> dict[str, str]:
+def _colours(labels: Sequence[str], *, by_frequency: bool) -> dict[str, str]:
+    """A colour per label, in order of first appearance or, ``by_frequency``, most frequent
+    first (the dict's order is that order)."""
     cycle = iter(f"C{i}" for i in range(10) if f"C{i}" not in ("C0", "C1"))
+    order = [label for label, _ in Counter(labels).most_common()] if by_frequency else labels
     colours: dict[str, str] = {}
-    for label in labels:
+    for label in order:
         if label not in colours:
             colours[label] = BEHAVIOUR_COLOURS.get(label) or next(cycle, "0.3")
     return colours
+
+
+def _run_starts(mask: np.ndarray) -> np.ndarray:
+    """Indices where a run of ``True`` in ``mask`` begins."""
+    return np.flatnonzero(mask & ~np.concatenate([[False], mask[:-1]]))
 
 
 def switch_indices(trace: Sequence[TraceStep]) -> list[int]:
@@ -83,20 +98,45 @@ def switch_indices(trace: Sequence[TraceStep]) -> list[int]:
 
 
 def draw_path(
-    ax: Axes, trace: Sequence[TraceStep], radius: float, *, colour_by: str = "behaviour"
+    ax: Axes,
+    trace: Sequence[TraceStep],
+    radius: float,
+    *,
+    colour_by: str = "behaviour",
+    by_frequency: bool = False,
 ) -> None:
-    """Draw the path coloured by ``behaviour`` or ``branch``, switch points and final disc."""
+    """Draw the path coloured by ``behaviour`` or ``branch``, switch points and final disc.
+
+    By default each label's legend entry is its name, in order of first appearance (the paper
+    figures merge them across panels). With ``by_frequency`` the entries go by how many steps
+    took the label, most first, with the count; and a label whose stretches of path are
+    together shorter than :data:`RARE_SHARE` of the path (a one-step branch, a turn on the
+    spot) is also marked where each of its runs begins, so that it can be seen.
+    """
     xy = np.array([(s.x, s.y) for s in trace])
     if len(xy) > 1:
         labels = _labels(trace, colour_by)
-        colours = _colours(labels)
         segments = np.stack([xy[:-1], xy[1:]], axis=1)
-        for label, colour in colours.items():
+        lengths = np.hypot(*(segments[:, 1] - segments[:, 0]).T)
+        for label, colour in _colours(labels, by_frequency=by_frequency).items():
             mask = np.array([lab == label for lab in labels])
-            ax.add_collection(
-                LineCollection(
-                    segments[mask], colors=colour, linewidths=2.0, label=label.replace("_", " ")
-                )
+            name, steps = label.replace("_", " "), int(mask.sum())
+            if not by_frequency:
+                lines = LineCollection(segments[mask], colors=colour, linewidths=2.0, label=name)
+                ax.add_collection(lines)
+                continue
+            ax.add_collection(LineCollection(segments[mask], colors=colour, linewidths=2.0))
+            rare = lengths[mask].sum() < RARE_SHARE * lengths.sum() or not lengths.any()
+            if rare:
+                starts = xy[_run_starts(mask)]
+                ax.plot(starts[:, 0], starts[:, 1], linestyle="none", color=colour, **RARE_MARKER)
+            ax.plot(  # the legend's entry: a line, and the marker if the label is marked
+                [],
+                [],
+                color=colour,
+                linewidth=2.0,
+                label=f"{name} ({steps} step{'s' if steps > 1 else ''})",
+                **(RARE_MARKER if rare else {}),
             )
     switches = switch_indices(trace)
     if switches:
@@ -134,18 +174,21 @@ def plot_run(
     world: World, trace: Sequence[TraceStep], result: Result, *, colour_by: str = "behaviour"
 ) -> Figure:
     """A figure of one episode: world, path by behaviour (or branch), switches, field of view."""
-    fig, ax = plt.subplots(figsize=(8, 5), layout="constrained")
+    fig, ax = plt.subplots(figsize=(9.5, 5), layout="constrained")
     draw_world(ax, world)
     wedges = [(trace[i].x, trace[i].y, trace[i].theta) for i in switch_indices(trace)[:MAX_WEDGES]]
     draw_field_of_view(ax, world, wedges)
-    draw_path(ax, trace, world.robot.radius, colour_by=colour_by)
+    draw_path(ax, trace, world.robot.radius, colour_by=colour_by, by_frequency=True)
+    # Equal scales by widening the data limits, not by shrinking the box: the layout keeps
+    # its box, and the labels and the legend beside it stay within the figure.
+    ax.set_aspect("equal", adjustable="datalim")
     ax.autoscale_view()
     name = world.name or "world"
     ax.set_title(
         f"{result.planner} in {name}: {result.stop_reason} after {result.time_s:.1f} s, "
         f"path {result.path_length:.1f} ft"
     )
-    ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize="small")
+    fig.legend(loc="outside right upper", fontsize="small")
     return fig
 
 
@@ -163,11 +206,14 @@ def animate_run(
     *,
     fps: int = 12,
     max_frames: int = MAX_FRAMES,
+    progress: bool | None = None,
 ) -> int:
     """Write a GIF of the episode: the robot, its scan rays and the path so far.
 
     The scan is re-cast from each sample's pose with the world's sensor (as the planner saw
-    it, noise aside). Returns the number of frames written (at most ``max_frames``).
+    it, noise aside). A bar on stderr counts the frames rendered (rendering takes about
+    0.15 s a frame): ``progress=None`` shows it only when stderr is a terminal, ``True``
+    always, ``False`` never. Returns the number of frames written (at most ``max_frames``).
     """
     frames = np.unique(np.linspace(0, len(trace) - 1, min(len(trace), max_frames)).astype(int))
     sensor = IRSensor(world)
@@ -200,6 +246,10 @@ def animate_run(
             f"{s.branch or s.behaviour or ''}"
         )
 
-    FuncAnimation(fig, show, frames=frames).save(path, writer=PillowWriter(fps=fps))
+    disable = None if progress is None else not progress
+    with tqdm(total=len(frames), unit="frame", desc="GIF", disable=disable, leave=False) as bar:
+        FuncAnimation(fig, show, frames=frames).save(
+            path, writer=PillowWriter(fps=fps), progress_callback=lambda i, n: bar.update()
+        )
     plt.close(fig)
     return len(frames)

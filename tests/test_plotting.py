@@ -2,13 +2,27 @@
 
 from __future__ import annotations
 
+import itertools
+import math
+import re
+from collections import Counter
 from pathlib import Path
 
 import matplotlib.pyplot as plt
+import pytest
 from PIL import Image
 
+from ifgm_ref.planners.fgm import FGMPlanner
 from ifgm_ref.planners.ifgm import IFGMPlanner
-from ifgm_ref.plotting import MAX_FRAMES, animate_run, plot_run, switch_indices
+from ifgm_ref.plotting import (
+    MAX_FRAMES,
+    RARE_MARKER,
+    RARE_SHARE,
+    animate_run,
+    draw_path,
+    plot_run,
+    switch_indices,
+)
 from ifgm_ref.scenarios import resolve_world
 from ifgm_ref.simulator import simulate
 
@@ -18,7 +32,7 @@ def test_run_plot_colours_the_path_by_behaviour_and_marks_switches() -> None:
     run = simulate(world, IFGMPlanner())
     fig = plot_run(world, run.trace, run.result)
     ax = fig.axes[0]
-    labels = {text.get_text() for text in ax.get_legend().get_texts()}
+    labels = {re.sub(r" \(\d+ steps?\)", "", text.get_text()) for text in _legend(fig).get_texts()}
     assert {"move to goal", "obstacle avoidance", "behaviour switch", "field of view"} <= labels
     switches = switch_indices(run.trace)
     assert len(switches) >= 2  # into avoidance and back to move to goal
@@ -30,8 +44,74 @@ def test_run_plot_by_branch_names_the_flowchart_branches() -> None:
     world = resolve_world("u_trap")
     run = simulate(world, IFGMPlanner())
     fig = plot_run(world, run.trace, run.result, colour_by="branch")
-    labels = {text.get_text() for text in fig.axes[0].get_legend().get_texts()}
+    labels = {re.sub(r" \(\d+ steps?\)", "", text.get_text()) for text in _legend(fig).get_texts()}
     assert {"dead end turn", "follow edge", "move to goal"} <= labels
+    plt.close(fig)
+
+
+def _legend(fig: plt.Figure) -> plt.Legend:
+    (legend,) = fig.legends
+    return legend
+
+
+def test_branch_legend_goes_by_steps_and_rare_branches_are_marked() -> None:
+    world = resolve_world("wall_posts")
+    run = simulate(world, IFGMPlanner())
+    fig = plot_run(world, run.trace, run.result, colour_by="branch")
+    steps, drawn = Counter[str](), Counter[str]()
+    for a, b in itertools.pairwise(run.trace):
+        steps[str(a.branch)] += 1
+        drawn[str(a.branch)] += math.dist((a.x, a.y), (b.x, b.y))
+    rare = {b for b in steps if drawn[b] < RARE_SHARE * run.result.path_length}
+    assert rare and rare != set(steps)  # one-step branches, and long ones
+    legend = _legend(fig)
+    entries = {  # the path's entries, in order: name -> (steps, marked)
+        match[1]: (int(match[2]), handle.get_marker() == RARE_MARKER["marker"])
+        for text, handle in zip(legend.get_texts(), legend.legend_handles, strict=True)
+        if (match := re.fullmatch(r"(.+) \((\d+) steps?\)", text.get_text()))
+    }
+    assert [n for n, _ in entries.values()] == sorted(steps.values(), reverse=True)
+    assert {name: n for name, (n, _) in entries.items()} == {
+        b.replace("_", " "): n for b, n in steps.items()
+    }
+    assert {name for name, (_, marked) in entries.items() if marked} == {
+        b.replace("_", " ") for b in rare
+    }
+    marked = [
+        line.get_xydata()
+        for line in fig.axes[0].lines
+        if line.get_marker() == RARE_MARKER["marker"]
+    ]
+    for branch in rare:  # marked where it is first taken
+        first = next(s for s in run.trace if s.branch == branch)
+        assert any(((xy == (first.x, first.y)).all(1)).any() for xy in marked), branch
+    plt.close(fig)
+
+
+@pytest.mark.parametrize(
+    ("world", "planner"), [("wall_posts", IFGMPlanner), ("scenario2", FGMPlanner)]
+)
+def test_run_plot_labels_and_legend_lie_within_the_figure(world: str, planner: type) -> None:
+    built = resolve_world(world)
+    run = simulate(built, planner(), progress=False)
+    fig = plot_run(built, run.trace, run.result, colour_by="branch")
+    fig.canvas.draw()
+    figure, axes, legend = fig.bbox, fig.axes[0].get_tightbbox(), _legend(fig).get_window_extent()
+    for box in (axes, legend):
+        assert figure.x0 <= box.x0 and box.x1 <= figure.x1 and figure.y0 <= box.y0
+        assert box.y1 <= figure.y1
+    assert not axes.overlaps(legend)
+    plt.close(fig)
+
+
+def test_paper_panels_keep_plain_labels_in_order_of_appearance() -> None:
+    world = resolve_world("u_trap")
+    run = simulate(world, IFGMPlanner())
+    fig, ax = plt.subplots()
+    draw_path(ax, run.trace, world.robot.radius, colour_by="branch")
+    labels = ax.get_legend_handles_labels()[1]
+    seen = list(dict.fromkeys(str(s.branch).replace("_", " ") for s in run.trace[:-1]))
+    assert labels == [*seen, "behaviour switch"]
     plt.close(fig)
 
 
@@ -39,7 +119,20 @@ def test_animation_writes_a_gif_of_at_most_max_frames(tmp_path: Path) -> None:
     world = resolve_world("box")
     run = simulate(world, IFGMPlanner())
     path = tmp_path / "run.gif"
-    frames = animate_run(world, run.trace, run.result, path)
+    frames = animate_run(world, run.trace, run.result, path, progress=False)
     with Image.open(path) as gif:
         assert gif.n_frames == frames
     assert frames == min(len(run.trace), MAX_FRAMES)
+
+
+def test_animation_counts_its_frames_on_stderr(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    world = resolve_world("box")
+    run = simulate(world, IFGMPlanner())
+    capsys.readouterr()
+    frames = animate_run(world, run.trace, run.result, tmp_path / "run.gif", max_frames=4)
+    assert frames == 4 and capsys.readouterr().err == ""  # not a terminal: no bar by default
+    animate_run(world, run.trace, run.result, tmp_path / "run.gif", max_frames=4, progress=True)
+    shown = capsys.readouterr().err
+    assert "GIF" in shown and "1/4" in shown and "4/4" in shown
