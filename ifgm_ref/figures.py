@@ -19,12 +19,13 @@ from __future__ import annotations
 import csv
 import io
 import math
+import re
+from collections import Counter
 from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass
 from functools import cache
 from pathlib import Path
 
-import matplotlib
 import matplotlib.pyplot as plt
 import shapely
 from matplotlib.figure import Figure
@@ -37,8 +38,6 @@ from ifgm_ref.plotting import draw_path, draw_world
 from ifgm_ref.pose import distance
 from ifgm_ref.scenarios import resolve_world
 from ifgm_ref.simulator import Run, TraceStep, simulate, total_turning
-
-matplotlib.rcParams["svg.hashsalt"] = "ifgm-ref"  # stable SVG ids: same figures, same files
 
 #: Display names of the planners, as the paper writes them.
 LABELS = {
@@ -403,21 +402,53 @@ def table_markdown(rows: Sequence[Row]) -> str:
     return "\n".join(lines) + "\n"
 
 
+#: An id matplotlib's SVG writer makes by hashing what it names (a clip rectangle, a marker,
+#: a hatch, an image, a path of a collection): a type prefix and 10 hex digits.
+_HASHED_ID = re.compile(r'id="((?:C[0-9a-f]+_[0-9a-f]+_|image|[hmp])?)([0-9a-f]{10})"')
+
+
+def stable_svg_ids(svg: str) -> str:
+    """``svg`` with matplotlib's hashed ids numbered in their order in the file, per type
+    (``p1``, ``p2`` ... for clip paths, ``m1`` ... for markers).
+
+    The hash covers the ``str`` of numbers that numpy 2 writes as ``np.float64(1.0)`` and
+    numpy 1 as ``1.0`` (and a random salt unless ``svg.hashsalt`` is set), so the same figure
+    gave other ids, and other files, under another numpy. Numbered, they depend on the figure
+    only.
+
+    >>> svg = '<clipPath id="pab12cd34ef"/><g clip-path="url(#pab12cd34ef)"/>'
+    >>> stable_svg_ids(svg)
+    '<clipPath id="p1"/><g clip-path="url(#p1)"/>'
+    """
+    counts: Counter[str] = Counter()
+    renamed: dict[str, str] = {}
+    for prefix, digest in dict.fromkeys(_HASHED_ID.findall(svg)):
+        counts[prefix] += 1
+        renamed[prefix + digest] = f"{prefix}{counts[prefix]}"
+    if not renamed:
+        return svg
+    pattern = re.compile(r'(?<=["#])(' + "|".join(map(re.escape, renamed)) + r')(?=[")])')
+    return pattern.sub(lambda match: renamed[match[1]], svg)
+
+
 def write_all(out: str | Path = "paper_figs", *, progress: bool | None = None) -> list[Path]:
-    """Write every figure (PNG and SVG) and the reproduction table (Markdown, CSV) to ``out``."""
+    """Write every figure (PNG and SVG) and the reproduction table (Markdown, CSV) to ``out``.
+
+    The files depend on the figures only, not on the numpy version or the run: no software
+    name in the PNGs, no date in the SVGs, and the SVGs' ids numbered (:func:`stable_svg_ids`).
+    """
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     written: list[Path] = []
     disable = None if progress is None else not progress
     for stem, build in tqdm(FIGURES.items(), desc="figures", unit="fig", disable=disable):
         fig = build()
-        for suffix, extra in (
-            (".png", {"metadata": {"Software": None}}),
-            (".svg", {"metadata": {"Date": None}}),
-        ):
-            path = out / f"{stem}{suffix}"
-            fig.savefig(path, dpi=110, **extra)
-            written.append(path)
+        png, svg = out / f"{stem}.png", out / f"{stem}.svg"
+        fig.savefig(png, dpi=110, metadata={"Software": None})
+        text = io.StringIO()
+        fig.savefig(text, format="svg", dpi=110, metadata={"Date": None})
+        svg.write_text(stable_svg_ids(text.getvalue()), encoding="utf-8")
+        written += [png, svg]
         plt.close(fig)
     rows = reproduction_rows()
     for name, text in (

@@ -3,13 +3,24 @@ scenarios' facts (ifgm_ref.scenarios)."""
 
 from __future__ import annotations
 
+import io
 import math
 from pathlib import Path
 
+import matplotlib
+import matplotlib.pyplot as plt
 import pytest
 import shapely
+from matplotlib.patches import Circle as CirclePatch
 
-from ifgm_ref.figures import FIGURES, reproduction_rows, table_csv, table_markdown, write_all
+from ifgm_ref.figures import (
+    FIGURES,
+    reproduction_rows,
+    stable_svg_ids,
+    table_csv,
+    table_markdown,
+    write_all,
+)
 from ifgm_ref.params import PAPER_FREE_DISTANCE_FT, PAPER_FREE_TIME_S, RobotParams, SimParams
 from ifgm_ref.planners.ifgm import IFGMPlanner
 from ifgm_ref.pose import Point, Pose, distance
@@ -94,3 +105,31 @@ def _geometry(obstacle: Obstacle) -> shapely.Geometry:
     if isinstance(obstacle, Circle):  # the exact disc is needed for distances: buffer finely
         return shapely.Point(obstacle.center).buffer(obstacle.radius, quad_segs=256)
     return obstacle.geometry
+
+
+def _clipped_figure_svg(salt: str) -> str:
+    """A small figure with clip paths and markers, as SVG, its ids hashed with ``salt``."""
+    fig, ax = plt.subplots()
+    ax.plot([0.0, 1.0, 2.0], [0.0, 1.0, 0.5], marker="o")
+    ax.add_patch(CirclePatch((1.0, 0.5), 0.3))
+    text = io.StringIO()
+    with matplotlib.rc_context({"svg.hashsalt": salt}):
+        fig.savefig(text, format="svg", metadata={"Date": None})
+    plt.close(fig)
+    return text.getvalue()
+
+
+def test_svg_ids_do_not_depend_on_what_matplotlib_hashed() -> None:
+    # Another salt stands for another numpy: both change every hashed id and nothing else.
+    one, other = _clipped_figure_svg("one"), _clipped_figure_svg("other")
+    assert one != other and 'clip-path="url(#p' in one
+    stable = stable_svg_ids(one)
+    assert stable == stable_svg_ids(other)
+    assert 'clip-path="url(#p1)"' in stable and 'xlink:href="#m1"' in stable
+
+
+def test_committed_svgs_have_numbered_ids() -> None:
+    for path in sorted(PAPER_FIGS.glob("fig*.svg")):
+        text = path.read_text(encoding="utf-8")
+        assert 'clip-path="url(#p1)"' in text, path.name
+        assert stable_svg_ids(text) == text, path.name
