@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import math
 from collections import Counter
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import pytest
 
@@ -137,6 +137,28 @@ def test_dead_end_turns_in_45_degree_steps_in_place(name: str) -> None:
     assert distinct == list(range(1, len(distinct) + 1)), f"turn steps {distinct}"
     assert 1 <= len(distinct) <= 4
     assert len({math.copysign(1, s) for s in steps}) == 1, "turned both ways"
+
+
+class OffByHalfADegree(IFGMPlanner):
+    """The reference, every commanded heading half a degree to the left."""
+
+    def step(self, observation: Observation) -> Command:
+        command = super().step(observation)
+        return replace(command, heading=command.heading + math.radians(0.5))
+
+
+def _turns_in_place(run: Run) -> int:
+    return sum(s.branch == Branch.DEAD_END_TURN and s.speed_cmd == 0.0 for s in run.trace)
+
+
+@pytest.mark.paper("fig3.dead_end")
+def test_a_dead_end_turn_ends_within_half_a_step_of_its_target() -> None:
+    """Errata row 32: a heading that lands half a degree off each 45-degree target still ends
+    the turn (with an exact match the robot turned in place for 578 s and never arrived)."""
+    reference = run_in("u_trap")[0]
+    off = simulate(resolve_world("u_trap"), OffByHalfADegree())
+    assert off.result.reached, off.result
+    assert _turns_in_place(off) <= _turns_in_place(reference) + 2
 
 
 @pytest.mark.paper("s5.ifgm_u_h")

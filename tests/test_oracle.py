@@ -32,6 +32,7 @@ from ifgm_ref.oracle.strategies import (
     open_worlds,
     solvable,
 )
+from ifgm_ref.oracle.variants import VARIANTS
 from ifgm_ref.params import SimParams
 from ifgm_ref.planners import make_planner
 from ifgm_ref.simulator import simulate
@@ -42,10 +43,6 @@ WORLDS = Path(__file__).parent / "worlds"
 SIMULATION = [name for name, check in CHECKS.items() if check.kind is Kind.SIMULATION]
 #: Mutant hunting: the same 50 examples, but no shrinking (speed; the report is not needed).
 HUNT = Profile("hunt", 50, shrink=False)
-#: FGM escapes most generated U worlds (it is trapped only by a U that fills its view, errata
-#: row 28: 1 in 50 in the benchmark), and which worlds Hypothesis draws depends on the
-#: constants of the modules loaded (docs/oracle.md): look long enough to be sure of a trap.
-HUNT_TRAPS = Profile("hunt-traps", 300, shrink=False)
 #: The checks a mutant is hunted with, cheapest first.
 HUNTING = [
     "passes_wide_gaps",
@@ -133,16 +130,19 @@ def test_reference_equations_pass_and_broken_ones_fail() -> None:
 # -- the suite has teeth ---------------------------------------------------------------------
 
 
-@pytest.mark.paper("t1.fgm_u", "t1.apf_u_h_symmetric")
+@pytest.mark.paper("t1.fgm_u", "t1.fgm_h", "t1.apf_u_h_symmetric")
+@pytest.mark.parametrize("check", ["converges_u", "converges_h"])
 @pytest.mark.parametrize("planner", ["fgm", "apf"])
-def test_fgm_and_apf_are_caught_in_u_worlds(planner: str, tmp_path: Path) -> None:
+def test_fgm_and_apf_are_caught_in_the_papers_trap(planner: str, check: str, tmp_path) -> None:
+    """Table 1: FGM and APF cannot avoid U and H shaped obstacles. Offered as IFGM, the quick
+    profile rejects them: half its U and H worlds are the paper's trap, met head-on."""
     impl = Implementation.from_spec(planner, promises=promises_of("ifgm"))
-    result = run_check(CHECKS["converges_u"], impl, HUNT_TRAPS, artifacts=tmp_path)
+    result = run_check(CHECKS[check], impl, "quick", artifacts=tmp_path)
     assert result.status is Status.FAILED, result.line()
     assert "but should be 'goal_reached'" in result.message
     # The counterexample replays: the saved world traps the planner again.
     world = load_world(result.artifacts / "world.json")
-    replay = simulate(world, make_planner(planner), SimParams(max_time=60.0)).result
+    replay = simulate(world, make_planner(planner), SimParams(max_time=time_bound(world))).result
     assert not replay.reached
     report = (result.artifacts / "report.md").read_text()
     assert f"ifgm-ref simulate {result.artifacts / 'world.json'} --planner {planner}" in report
@@ -184,6 +184,28 @@ def test_broken_ifgm_variants_are_rejected_through_serve(mutant: str) -> None:
         (r.check, r.status, r.examples) for r in inside.results
     ]
     assert outside.results[-1].message.split(" [")[0] == inside.results[-1].message.split(" [")[0]
+
+
+@pytest.mark.parametrize("check", ["converges_u", "converges_h"])
+def test_ifgm_without_the_dead_end_rule_is_caught_in_the_papers_trap(check: str) -> None:
+    """Without its dead-end rule IFGM is FGM at the base of a U: the quick profile sees it."""
+    impl = Implementation(MUTANTS["no_dead_end_rule"], "no_dead_end_rule", promises_of("ifgm"))
+    result = run_check(CHECKS[check], impl, "quick", artifacts=None)
+    assert result.status is Status.FAILED, result.line()
+
+
+@pytest.mark.parametrize("variant", sorted(VARIANTS))
+def test_faithful_variants_pass_the_quick_profile_through_serve(variant: str) -> None:
+    """A port may wobble its heading by a degree, compute in float32 or break exact ties the
+    other way (ifgm_ref/oracle/variants.py): no check of the quick profile fails it."""
+    spec = f"ifgm_ref.oracle.variants:{VARIANTS[variant].__name__}"
+    impl = Implementation.from_command(_serve(spec), timeout=30.0)
+    try:
+        report = check_planner(impl, profile="quick", checks=SIMULATION, artifacts=None, jobs=2)
+    finally:
+        impl.close()
+    assert report.ok, report.text()
+    assert {r.status for r in report.results} <= {Status.PASSED, Status.NOT_APPLICABLE}
 
 
 def test_serve_gives_the_in_process_verdicts_for_the_reference() -> None:

@@ -20,13 +20,14 @@ from ifgm_ref.protocol import EpisodeParams
 
 #: The defaults every planner had as absolute numbers for the paper's 1 ft robot before the
 #: model: the formulas give them back, d_th too (``2 r + 1 ft`` then, ``3 r`` now: 3 ft).
-#: One moved on purpose: ``standoff_margin``, 1 ft then, ``2 r / 3`` now (errata row 29).
+#: One moved on purpose: ``standoff_margin``, 1 ft then, ``2 r / 3`` now (errata row 29). One is
+#: new: ``turn_done``, 1e-6 rad then (a constant), ``w dt / 2`` now (pi/40 for the paper's robot).
 PAPER_VALUES = {
     "standoff_margin": 2.0 / 3.0, "corridor_margin": 0.25, "hit_margin": 0.5, "memory_horizon": 8.0,
     "return_radius": 1.0, "min_loop": 12.0, "step_length": 2.0, "m_line_tolerance": 0.1322147651,
     "alpha": 8.0, "beta": 1.0, "inflation_margin": 0.5, "d_th": 3.0, "d_obs": 1.6610738255,
     "d_look": 8.0, "w_g": 9.0, "w_d": 1.0, "jump": 2.0, "preempt_margin": 0.5, "view_range": 15.0,
-    "k_att": 1.0, "eta": 50.0, "d0": 5.0, "stop_margin": 0.5,
+    "k_att": 1.0, "eta": 50.0, "d0": 5.0, "stop_margin": 0.5, "turn_done": math.pi / 40,
 }  # fmt: skip
 
 

@@ -16,7 +16,7 @@ from ifgm_ref.paper import traces
 from ifgm_ref.percepts.clusters import Gap
 from ifgm_ref.planners.ifgm import IFGMPlanner
 from ifgm_ref.pose import Point, Pose
-from ifgm_ref.protocol import EpisodeParams, Observation
+from ifgm_ref.protocol import Behaviour, Command, EpisodeParams, Observation
 
 
 class GapAngleSignFlipped(IFGMPlanner):
@@ -91,6 +91,19 @@ class AbsoluteStandoff(IFGMPlanner):
         super().reset(start, goal, replace(params, params=fixed))
 
 
+class NoDeadEndRule(IFGMPlanner):
+    """Figure 3's dead-end rule left out: inside a U or an H, where no gap is wider than
+    ``d_th`` and every ray returns, the port does what FGM does and stands still ("at the
+    centre of obstacle, the robot becomes unable to take any decision", section 5.2) instead
+    of turning in 45-degree steps. Only the paper's trap (a U or H met head-on) shows it."""
+
+    name = "ifgm-no-dead-end-rule"
+
+    def _dead_end(self, observation: Observation) -> Command:
+        pose = observation.pose
+        return Command(pose.theta, 0.0, behaviour=Behaviour.OBSTACLE_AVOIDANCE)
+
+
 #: Every mutant by a short name.
 MUTANTS: dict[str, type[IFGMPlanner]] = {
     "gap_sign_flipped": GapAngleSignFlipped,
@@ -100,4 +113,5 @@ MUTANTS: dict[str, type[IFGMPlanner]] = {
     "point_robot": PointRobot,
     "gap_world_frame": GapAngleInWorldFrame,
     "absolute_standoff": AbsoluteStandoff,
+    "no_dead_end_rule": NoDeadEndRule,
 }

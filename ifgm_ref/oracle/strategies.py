@@ -13,8 +13,10 @@ strategy                 class
 =======================  ==========================================================================
 :func:`open_worlds`      1-4 simple convex obstacles (discs, rectangles, regular polygons) near the
                          start-goal line, every passage between them wider than the robot
-:func:`u_worlds`         a U across the line, opening towards the start (Figure 8)
-:func:`h_worlds`         an H across the line, one cavity facing the start (Figure 8)
+:func:`u_worlds`         a U across the line, opening towards the start (Figure 8); half of them
+                         the paper's trap, met head-on (section 5.2, Table 1)
+:func:`h_worlds`         an H across the line, one cavity facing the start (Figure 8); half of
+                         them the paper's trap
 :func:`symmetric_worlds` three equal discs or squares across the line, symmetric about it
                          (Figure 7), their gaps either wider than the IFGM gap threshold or
                          narrower than the robot
@@ -270,29 +272,88 @@ def symmetric_triple(d: Draw, *, at: float) -> list[Obstacle]:
     return [circle((at, k * pitch), size / 2.0) for k in (-1, 0, 1)]
 
 
+#: The paper's trap (section 5.2, Figure 8a; Table 1: FGM and APF "cannot avoid U shaped
+#: obstacles", H-shaped ones are "dead-end scenarios"): a U or H met head-on, its cavity
+#: opening towards the start within this angle of the start-goal line, rad (10 degrees).
+TRAP_TILT = math.pi / 18
+#: The trap's centre lies within this distance of the start-goal line, ft: the line runs deep
+#: into the cavity, so a planner that steers into the cavity's gap meets its base.
+TRAP_OFFSET = 2.0
+
+
+def u_trap_feature(d: Draw, *, at: float) -> Obstacle:
+    """The paper's U trap centred near ``(at, 0)``: met head-on, filling the view from inside.
+
+    Outer size 16-28 ft across the mouth and 12-20 ft deep (Figure 8's U, ``u_trap`` in
+    :mod:`ifgm_ref.scenarios`, is 24 x 16), walls 0.5-2 ft thick, the mouth towards the
+    start within :data:`TRAP_TILT`, the centre within :data:`TRAP_OFFSET` of the line. The
+    cavity, 12 ft wide or more, is a gap far wider than any gap threshold, so a gap follower
+    steers in; at its base the side walls and the base fill the 135-degree view within the
+    sensor's 15 ft, and there is no gap left (the local minimum of section 5.2).
+    """
+    return u_shape(
+        (at, d.floats(-TRAP_OFFSET, TRAP_OFFSET, "U offset")),
+        width=d.floats(16.0, 28.0, "U width"),
+        depth=d.floats(12.0, 20.0, "U depth"),
+        thickness=d.floats(0.5, 2.0, "U wall"),
+        opening=math.pi + d.floats(-TRAP_TILT, TRAP_TILT, "U tilt"),
+    )
+
+
+def h_trap_feature(d: Draw, *, at: float) -> Obstacle:
+    """The paper's H trap centred near ``(at, 0)``: a cavity met head-on, as for the U.
+
+    Walls 20-30 ft long and 16-26 ft apart (outer; Figure 8's H, ``h_block``, is 24 x 20),
+    0.5-2 ft thick, the crossbar 0.5-2 ft; the cavity towards the start within
+    :data:`TRAP_TILT`, the centre within :data:`TRAP_OFFSET` of the line.
+    """
+    return h_shape(
+        (at, d.floats(-TRAP_OFFSET, TRAP_OFFSET, "H offset")),
+        width=d.floats(16.0, 26.0, "H width"),
+        height=d.floats(20.0, 30.0, "H length"),
+        thickness=d.floats(0.5, 2.0, "H wall"),
+        bar_thickness=d.floats(0.5, 2.0, "H bar"),
+        orientation=math.pi / 2 + d.floats(-TRAP_TILT, TRAP_TILT, "H tilt"),
+    )
+
+
+def _cavity_world(
+    d: Draw,
+    name: str,
+    feature: Callable[..., Obstacle],
+    trap: Callable[..., Obstacle],
+    max_clutter: int,
+) -> World:
+    """A U or H world: half the draws the paper's trap (40-60 ft from start to goal), half
+    the general feature (35-50 ft), plus up to ``max_clutter`` convex obstacles."""
+    if d.boolean(f"paper's {name.upper()} trap"):
+        length = d.floats(40.0, 60.0, "start-goal distance")
+        obstacle = trap(d, at=length / 2.0)
+    else:
+        length = d.floats(35.0, 50.0, "start-goal distance")
+        obstacle = feature(d, at=length / 2.0)
+    return _world(d, name, length, [obstacle], _clutter(d, length, max_clutter))
+
+
 def u_world(d: Draw, *, max_clutter: int = 0) -> World:
     """A U in the way, opening towards the start, plus up to ``max_clutter`` convex obstacles.
 
-    No clutter by default: the reference IFGM livelocks between a post and an H cavity
-    (``tests/worlds/ifgm_h_post_livelock.json``, errata row 25).
-
-    Start-goal distance 35-50 ft (before placement).
+    Half the draws are the paper's trap (:func:`u_trap_feature`: head-on, 40-60 ft from start
+    to goal), half the general U (:func:`u_feature`: tilted up to 30 degrees and off the line,
+    35-50 ft). No clutter by default: the reference IFGM livelocks between a post and an H
+    cavity (``tests/worlds/ifgm_h_post_livelock.json``, errata row 25).
     """
-    length = d.floats(35.0, 50.0, "start-goal distance")
-    u = u_feature(d, at=length / 2.0)
-    return _world(d, "u", length, [u], _clutter(d, length, max_clutter))
+    return _cavity_world(d, "u", u_feature, u_trap_feature, max_clutter)
 
 
 def h_world(d: Draw, *, max_clutter: int = 0) -> World:
     """An H in the way, a cavity facing the start, plus up to ``max_clutter`` convex obstacles.
 
-    No clutter by default, as for :func:`u_world`.
-
-    Start-goal distance 35-50 ft (before placement).
+    Half the draws are the paper's trap (:func:`h_trap_feature`), half the general H
+    (:func:`h_feature`), as for :func:`u_world`. No clutter by default, as for
+    :func:`u_world`.
     """
-    length = d.floats(35.0, 50.0, "start-goal distance")
-    h = h_feature(d, at=length / 2.0)
-    return _world(d, "h", length, [h], _clutter(d, length, max_clutter))
+    return _cavity_world(d, "h", h_feature, h_trap_feature, max_clutter)
 
 
 def symmetric_world(d: Draw) -> World:

@@ -50,8 +50,6 @@ DEAD_END_STEP = math.pi / 4
 #: At most four steps: 45, 90, 135 and 180 degrees ("until it finds obstacle free path (on
 #: 180 degrees)").
 DEAD_END_MAX_STEPS = 4
-#: A commanded turn counts as done within this angle, radians.
-TURN_DONE = 1e-6
 
 
 @traces("d_th", "d_obs", "s3.robot_dimensions")
@@ -89,6 +87,14 @@ class IFGMParams(Tuning):
         robot cannot pass between returns nearer than its diameter anyway.
     preempt_margin : float, default ``r/2``
         Case-3: another obstacle pre-empts the followed edge when it is this much nearer.
+    turn_done : float, default ``w dt / 2``
+        A dead-end turn is done when the heading is within this angle of its target: half
+        the turn of one step. A robot turning at ``w`` and deciding every ``dt`` cannot
+        promise more (one more step would overshoot by more than it corrects), and a port's
+        rounding or a real robot's heading noise stays within it. The reference's simulated
+        robot lands on the target exactly (its last step of a turn is clipped), so the
+        tolerance changes nothing there; with an exact comparison a robot whose heading
+        is a hair off turns in place for ever.
     """
 
     d_th: float = derived("3*r", Unit.LENGTH)
@@ -98,6 +104,7 @@ class IFGMParams(Tuning):
     w_d: float = derived("1", Unit.NUMBER)
     jump: float = derived("2*r", Unit.LENGTH)
     preempt_margin: float = derived("r/2", Unit.LENGTH)
+    turn_done: float = derived("w*dt/2", Unit.ANGLE)
 
 
 @traces("s3.critical_shapes", "s3.safe_near_obstacles")
@@ -399,7 +406,7 @@ class IFGMPlanner(IBAPlanner):
             side = freer_side(observation.scan, pose, self.goal_bearing(pose))
             self.turn_sign = 1 if side is FollowSide.RIGHT else -1  # turn towards the freer beam
         target = wrap_angle(self.turn_start + self.turn_sign * self.turn_steps * DEAD_END_STEP)
-        if self.escaping == 0.0 and abs(wrap_angle(pose.theta - target)) > TURN_DONE:
+        if self.escaping == 0.0 and abs(wrap_angle(pose.theta - target)) > self.ifgm.turn_done:
             return self._turn_command(target)
         ahead = free_length(self.memory.points, (pose.x, pose.y), pose.theta, self.half_width)
         if self.escaping == 0.0:
