@@ -24,28 +24,17 @@ from ifgm_ref.oracle.runner import (
     crash,
     run_check,
 )
+from tests.test_cli import run_cli
 
 GOAL_SEEKER = Path(__file__).resolve().parent.parent / "examples" / "goal_seeker.py"
 EQ1 = ["--check", "eq1_gap_midpoint"]
-
-
-def oracle(*args: str, cwd: Path | None = None) -> subprocess.CompletedProcess[str]:
-    """``ifgm-ref ARGS`` in a subprocess, stdout and stderr captured apart."""
-    return subprocess.run(
-        [sys.executable, "-m", "ifgm_ref", *args],
-        capture_output=True,
-        text=True,
-        timeout=120,
-        cwd=cwd,
-        check=False,
-    )
 
 
 # -- --equations -------------------------------------------------------------------------------
 
 
 def test_equations_option_runs_the_equation_checks() -> None:
-    done = oracle("oracle", "--planner", "ifgm", *EQ1, "--equations", "ifgm_ref.equations")
+    done = run_cli("oracle", "--planner", "ifgm", *EQ1, "--equations", "ifgm_ref.equations")
     assert done.returncode == 0, done.stderr
     assert done.stdout.startswith("PASSED              eq1_gap_midpoint           50 examples")
 
@@ -55,7 +44,7 @@ def test_equations_may_be_a_module_attribute(tmp_path: Path) -> None:
         "from types import SimpleNamespace\n\n"
         "EQUATIONS = SimpleNamespace(eq1_gap_midpoint=lambda p1, p2: (p1[0], p1[1]))\n"
     )
-    done = oracle(
+    done = run_cli(
         "oracle", "--planner", "ifgm", *EQ1, "--equations", "my_port_eqs:EQUATIONS", cwd=tmp_path
     )
     assert done.returncode == 1  # found, and its eq. (1) is wrong
@@ -72,7 +61,7 @@ def test_equations_may_be_a_module_attribute(tmp_path: Path) -> None:
     ],
 )
 def test_equations_that_cannot_be_loaded_are_a_one_line_error(spec: str, message: str) -> None:
-    done = oracle("oracle", "--planner", "ifgm", *EQ1, "--equations", spec)
+    done = run_cli("oracle", "--planner", "ifgm", *EQ1, "--equations", spec)
     assert done.returncode == 2
     assert len(done.stderr.splitlines()) == 1
     assert done.stderr.startswith(f"ifgm-ref: error: {message}")
@@ -80,7 +69,7 @@ def test_equations_that_cannot_be_loaded_are_a_one_line_error(spec: str, message
 
 
 def test_without_equations_the_message_says_how_to_give_them() -> None:
-    done = oracle("oracle", "--planner", "ifgm", *EQ1)
+    done = run_cli("oracle", "--planner", "ifgm", *EQ1)
     assert done.returncode == 0
     assert "--equations MODULE (ifgm-ref oracle)" in NO_EQUATIONS
     assert done.stdout.splitlines()[:2] == [
@@ -90,7 +79,7 @@ def test_without_equations_the_message_says_how_to_give_them() -> None:
 
 
 def test_a_program_is_pointed_to_the_vectors() -> None:
-    done = oracle("oracle", "--cmd", f"{sys.executable} {GOAL_SEEKER}", *EQ1)
+    done = run_cli("oracle", "--cmd", f"{sys.executable} {GOAL_SEEKER}", *EQ1)
     assert done.returncode == 0, done.stderr
     assert "`ifgm-ref vectors`" in NO_EQUATIONS_PROGRAM
     assert f"    {NO_EQUATIONS_PROGRAM}" in done.stdout.splitlines()
@@ -133,7 +122,7 @@ def test_a_terminal_shows_each_check_once_and_the_summary() -> None:
     assert screen.count("eq1_gap_midpoint") == 1, screen
     assert screen.count("eq2_gap_angle") == 1, screen
     assert screen.splitlines()[-1].startswith("ifgm (profile quick): 2 properties checked")
-    captured = oracle(*args)  # a script that captures stdout gets the whole report
+    captured = run_cli(*args)  # a script that captures stdout gets the whole report
     assert captured.stdout.count("PASSED") == 2
     assert captured.stderr.count("PASSED") == 2  # the progress
     assert captured.stdout.splitlines()[-1] == screen.splitlines()[-1]
@@ -210,11 +199,11 @@ def test_the_old_profile_name_default_still_works() -> None:
     report = check_planner("ifgm", profile="default", checks=["eq1_gap_midpoint"])
     assert report.profile == "standard"
     args = ["oracle", "--planner", "ifgm", *EQ1, "--equations", "ifgm_ref.equations"]
-    done = oracle(*args, "--profile", "default")
+    done = run_cli(*args, "--profile", "default")
     assert done.returncode == 0
     assert "ifgm-ref: note: profile 'default' is now called 'standard'" in done.stderr
     assert "200 examples" in done.stdout and "(profile standard)" in done.stdout
-    assert "(profile quick)" in oracle(*args).stdout  # quick is the default
+    assert "(profile quick)" in run_cli(*args).stdout  # quick is the default
 
 
 def test_the_plugin_takes_the_old_profile_name(pytester: pytest.Pytester) -> None:
@@ -238,7 +227,7 @@ def test_the_plugin_takes_the_old_profile_name(pytester: pytest.Pytester) -> Non
     ],
 )
 def test_a_factory_that_makes_no_planner_is_a_one_line_error(args: list[str]) -> None:
-    done = oracle(*args)
+    done = run_cli(*args)
     assert done.returncode == 2
     assert done.stderr.splitlines() == [
         "ifgm-ref: error: 'os:getcwd' made a str, not a planner: it has no name, reset, step "
