@@ -18,10 +18,11 @@ from pathlib import Path
 import pytest
 import shapely
 from hypothesis import find, given, settings
+from hypothesis import strategies as st
 
 import ifgm_ref.equations as reference
 from ifgm_ref.oracle.bounds import time_bound
-from ifgm_ref.oracle.checks import CHECKS, Kind
+from ifgm_ref.oracle.checks import CHECKS, Check, Kind
 from ifgm_ref.oracle.implementation import Implementation, promises_of
 from ifgm_ref.oracle.mutants import MUTANTS
 from ifgm_ref.oracle.runner import Profile, Status, check_planner, run_check
@@ -192,6 +193,26 @@ def test_ifgm_without_the_dead_end_rule_is_caught_in_the_papers_trap(check: str)
     impl = Implementation(MUTANTS["no_dead_end_rule"], "no_dead_end_rule", promises_of("ifgm"))
     result = run_check(CHECKS[check], impl, "quick", artifacts=None)
     assert result.status is Status.FAILED, result.line()
+
+
+def test_a_seeded_profile_draws_repeatable_random_examples() -> None:
+    """``Profile(seed=...)``: the same seed, the same examples; another seed, others."""
+
+    def drawn(seed: int | None) -> list[int]:
+        values: list[int] = []
+        check = Check(
+            "draws", "records its examples", Kind.SIMULATION,
+            lambda impl: st.integers(0, 10**9),
+            lambda impl, example, rec: values.append(example),
+            lambda impl: None,
+        )  # fmt: skip
+        impl = Implementation.from_spec("straight")
+        run_check(check, impl, Profile("seeded", 10, seed=seed), artifacts=None)
+        return values
+
+    assert drawn(3) == drawn(3)
+    assert drawn(3) != drawn(4)
+    assert drawn(None) == drawn(None) != drawn(3)
 
 
 @pytest.mark.parametrize("variant", sorted(VARIANTS))

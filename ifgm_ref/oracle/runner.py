@@ -23,7 +23,7 @@ from pathlib import Path
 from types import TracebackType
 from typing import Any
 
-from hypothesis import HealthCheck, Phase, given, settings
+from hypothesis import HealthCheck, Phase, given, seed, settings
 from hypothesis.errors import Flaky
 
 from ifgm_ref.errors import ImplementationError
@@ -36,12 +36,17 @@ from ifgm_ref.worldfile import save_world
 @dataclass(frozen=True)
 class Profile:
     """How hard to look: examples per check, derandomized draws, and whether a failing
-    example is shrunk (to the simplest world that still fails) before it is reported."""
+    example is shrunk (to the simplest world that still fails) before it is reported.
+
+    ``seed`` draws the examples from that seed instead (random, but repeatable): how the
+    oracle's power over many draws is measured (``benchmarks/bench_oracle_power.py``).
+    """
 
     name: str
     max_examples: int
     derandomize: bool = True
     shrink: bool = True
+    seed: int | None = None
 
     def settings(self) -> settings:
         """Hypothesis settings of this profile (no deadline, no example database)."""
@@ -49,7 +54,7 @@ class Profile:
         return settings(
             max_examples=self.max_examples,
             phases=[*phases, Phase.shrink] if self.shrink else phases,
-            derandomize=self.derandomize,
+            derandomize=self.derandomize and self.seed is None,
             deadline=None,
             database=None,
             print_blob=False,
@@ -214,6 +219,8 @@ def run_check(
         if progress is not None:
             progress(1)
 
+    if profile.seed is not None:
+        prop = seed(profile.seed)(prop)
     started = time.perf_counter()
     failure: Exception | None = None
     try:
