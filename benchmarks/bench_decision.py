@@ -11,7 +11,8 @@ line), with the default robot, sensor (135 degrees, 76 rays, 15 ft) and time ste
 observation and the command answered. So each planner is timed on its own decisions: moving
 to the goal, meeting and avoiding obstacles, and (FGM in the U) trapped with every ray
 blocked, where FGM's arrays are largest (every return against every ray). The default limit
-lets every planner finish ``scenario1``; FGM spends the rest of it trapped in the U.
+lets every planner finish ``scenario1``; FGM spends the rest of it trapped in the U (the
+simulator's stall rule is off here, so that those decisions are recorded).
 
 The wall-clock measurement
 --------------------------
@@ -189,9 +190,10 @@ class Timing(NamedTuple):
 
 
 def record(planner: str, world: str, max_time: float) -> Episode:
-    """Run ``planner`` in the built-in ``world`` for at most ``max_time`` s and keep it all."""
+    """Run ``planner`` in the built-in ``world`` for at most ``max_time`` s, stalled or not,
+    and keep it all."""
     recorder = RecordingPlanner(make_planner(planner))
-    simulate(resolve_world(world), recorder, SimParams(max_time=max_time))
+    simulate(resolve_world(world), recorder, SimParams(max_time=max_time, stall_time=None))
     assert recorder.reset_args is not None
     return Episode(world, recorder.reset_args, tuple(recorder.steps))
 

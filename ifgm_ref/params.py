@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, fields
-from typing import Any, Self
+from typing import Any, Final, Literal, Self
 
 from ifgm_ref.errors import ParameterError
 from ifgm_ref.paper import traces
@@ -144,6 +144,11 @@ class SensorParams(_Block):
         return self.fov / (self.rays - 1)
 
 
+#: :attr:`SimParams.stall_time`'s default: the stall time derived from the robot and the time
+#: step (:data:`ifgm_ref.simulator.STALL_TIME`).
+AUTO: Final = "auto"
+
+
 @dataclass(frozen=True)
 class SimParams:
     """How a simulation is run.
@@ -157,16 +162,29 @@ class SimParams:
         Time limit in s: four times the paper's longest reported run (205 s for Dist-Bug).
     goal_tolerance : float, default 0.5
         The goal counts as reached when the robot's centre is this close, in ft.
+    stall_time : float, "auto" or None, default "auto"
+        End the episode as ``stalled`` once the robot's centre has stayed within one robot
+        radius of where it was this many seconds before, for all of them (the stall rule of
+        :mod:`ifgm_ref.simulator`). ``"auto"`` derives it from the robot and ``dt``
+        (:data:`ifgm_ref.simulator.STALL_TIME`: 12 s for the paper's robot); ``None`` or 0
+        turns the rule off, so that a trapped robot runs to ``max_time``.
     """
 
     dt: float = 0.1
     max_time: float = 600.0
     goal_tolerance: float = 0.5
+    stall_time: float | Literal["auto"] | None = AUTO
 
     def __post_init__(self) -> None:
         _require("dt", self.dt, positive=True)
         _require("max_time", self.max_time, positive=True)
         _require("goal_tolerance", self.goal_tolerance, positive=True)
+        if self.stall_time is not None and self.stall_time != AUTO:
+            if isinstance(self.stall_time, str):
+                raise ParameterError(
+                    f"`stall_time` must be a number, {AUTO!r} or None, got {self.stall_time!r}"
+                )
+            _require("stall_time", self.stall_time, non_negative=True)
 
 
 def paper_ir(length_scale: float = 1.0) -> SensorParams:

@@ -5,8 +5,41 @@ observation alone (no map), the robot moves by one time step (:func:`ifgm_ref.ro
 and the disc swept between the two poses is checked for collision exactly
 (:class:`ifgm_ref.collision.ClearanceChecker`). An episode ends when the robot's centre is
 within ``goal_tolerance`` of the goal, the swept disc meets an obstacle, the robot's centre
-leaves the world's bounds, the planner sends an invalid command or asks to stop, or the time
-limit passes.
+leaves the world's bounds, the planner sends an invalid command or asks to stop, the robot
+stalls, or the time limit passes.
+
+The stall rule. A trapped robot makes no progress: FGM stands still at the base of a U, APF
+sits in a local minimum (Table 1), a port may turn in place for ever. Rather than wait for the
+time limit, the episode ends with stop reason ``stalled`` when the robot's centre has stayed
+within ``r``, the robot's radius, of where it was ``T`` seconds before, over all of those
+seconds. ``T`` is :attr:`SimParams.stall_time <ifgm_ref.params.SimParams.stall_time>`, by
+default the formula :data:`STALL_TIME` in the robot's radius ``r``, speed ``v`` and turn rate
+``w`` and the time step ``dt`` (the symbols of :mod:`ifgm_ref.planners.tuning`):
+
+    ``T = Max(6*pi/w, 10*r/v, 20*dt)``, 12 s for the paper's robot, 6 s for BARN's.
+
+Both the disc and ``T`` are derived from the robot, never absolute, so the rule fires at the
+same step when every length is scaled (``proofs/scale.py`` proves ``T`` a time). Why these
+numbers:
+
+* The disc of radius ``r``: a robot that drives on leaves it within ``r/v`` s (0.76 s for the
+  paper's robot); one that only turns in place, or rocks to and fro over less than its own
+  diameter, stays within ``r`` of a point it keeps passing.
+* ``6*pi/w``, three full turns in place: the longest legitimate manoeuvre on the spot is
+  IFGM's dead-end rule (section 4, Case 3), at most 180 degrees (four 45-degree steps, ``pi/w``
+  s); three full turns allow six such sequences in a row, and a boundary follower's turns at
+  inner corners are shorter still.
+* ``10*r/v``: for a robot that turns so fast that three turns take less, ten times the time
+  to cross the disc at full speed.
+* ``20*dt``: at least twenty decisions, for a coarse time step.
+
+Edge following (Bug1 round a whole obstacle) does not bring the robot nearer the goal for a
+long time, but it drives, so the disc rule never fires there. Measured on every planner in
+every built-in world, 20 generated worlds of each class and BARN's three sample worlds (944
+episodes), the longest time an episode that reached the goal spent within ``r`` of one point
+was 4.7 s, under 0.4 ``T`` (Bug1 at the corners of an H; IFGM's dead-end turns: 4.1 s); every
+episode that reached the goal runs exactly as without the rule, and each one that ran to the
+time limit (FGM and APF, trapped) stalls instead.
 """
 
 from __future__ import annotations
@@ -15,6 +48,7 @@ import csv
 import io
 import json
 import math
+from collections import deque
 from collections.abc import Sequence
 from dataclasses import asdict, dataclass, field
 from enum import StrEnum
@@ -25,6 +59,7 @@ from tqdm import tqdm
 
 from ifgm_ref.collision import ClearanceChecker
 from ifgm_ref.params import SimParams
+from ifgm_ref.planners.tuning import Scale, evaluate
 from ifgm_ref.pose import Pose, distance, wrap_angle
 from ifgm_ref.protocol import Command, EpisodeParams, Observation, Planner
 from ifgm_ref.robot import advance
@@ -40,6 +75,13 @@ class StopReason(StrEnum):
     TIME_LIMIT = "time_limit"
     OUT_OF_BOUNDS = "out_of_bounds"
     INVALID_COMMAND = "invalid_command"
+    #: No progress: the centre stayed within ``r`` of one point for the stall time.
+    STALLED = "stalled"
+
+
+#: The default stall time, s: a formula in the robot and the time step (the module docstring
+#: gives the reasons; :func:`ifgm_ref.planners.tuning.evaluate` computes it).
+STALL_TIME = "Max(6*pi/w, 10*r/v, 20*dt)"
 
 
 @dataclass(frozen=True)
@@ -148,7 +190,7 @@ def simulate(
     planner : Planner
         Any object with ``name``, ``reset`` and ``step`` (see :mod:`ifgm_ref.protocol`).
     sim : SimParams, optional
-        Time step, time limit and goal tolerance (defaults of :class:`SimParams`).
+        Time step, time limit, goal tolerance and stall time (defaults of :class:`SimParams`).
     params : dict, optional
         Planner-specific settings handed to ``planner.reset`` unchanged.
     progress : bool or None, default False
@@ -162,7 +204,9 @@ def simulate(
     planner.reset(world.start, world.goal, episode)
 
     max_steps = math.ceil(sim.max_time / sim.dt - 1e-9)
+    stall = stall_steps(sim, episode)
     pose = Pose(*world.start)
+    recent = deque([pose], maxlen=(stall or 0) + 1)  # the last stall + 1 positions
     trace: list[TraceStep] = []
     path_length = 0.0
     min_clearance = checker.pose_clearance(pose)
@@ -179,6 +223,9 @@ def simulate(
             if k >= max_steps:
                 stop = StopReason.TIME_LIMIT
                 break
+            if stall is not None and _stalled(recent, robot.radius):
+                stop = StopReason.STALLED
+                break
             command = planner.step(Observation(t, pose, world.goal, sensor.scan(pose)))
             detail = _problem(command)
             if detail is not None:
@@ -193,6 +240,7 @@ def simulate(
             min_clearance = min(min_clearance, clearance)
             path_length += distance(pose, new_pose)
             pose = new_pose
+            recent.append(pose)
             k += 1
             if k % 100 == 0:
                 bar.update(100)
@@ -216,6 +264,34 @@ def simulate(
         detail=detail,
     )
     return Run(result, trace)
+
+
+def stall_steps(sim: SimParams, episode: EpisodeParams) -> int | None:
+    """The stall time of ``sim`` for ``episode``'s robot and time step, in whole steps
+    (rounded up); ``None`` when the stall rule is off.
+
+    >>> stall_steps(SimParams(), EpisodeParams())  # Max(6 pi/w, 10 r/v, 20 dt) = 12 s
+    120
+    >>> stall_steps(SimParams(stall_time=2.05), EpisodeParams()), stall_steps(
+    ...     SimParams(stall_time=None), EpisodeParams())
+    (21, None)
+    """
+    if isinstance(sim.stall_time, str):  # AUTO, the one string SimParams allows
+        seconds = evaluate(STALL_TIME, Scale.of(episode))
+    elif sim.stall_time:
+        seconds = sim.stall_time
+    else:
+        return None
+    return math.ceil(seconds / sim.dt - 1e-9)
+
+
+def _stalled(recent: deque[Pose], radius: float) -> bool:
+    """Whether ``recent`` is full and every position in it lies within ``radius`` of the first
+    (newest first: a robot on the move fails at once)."""
+    if len(recent) != recent.maxlen:
+        return False
+    first = recent[0]
+    return all(distance(first, p) <= radius for p in reversed(recent))
 
 
 def _problem(command: object) -> str | None:

@@ -10,7 +10,9 @@ parameter of every registered planner (:data:`ifgm_ref.planners.PLANNERS`), is
 
     f(k r, k v, w, dt, k R, res, fov) = k**p * f(r, v, w, dt, R, res, fov)
 
-proved by ``simplify(lhs - rhs) == 0`` with ``k`` and every symbol positive. A formula with an
+proved by ``simplify(lhs - rhs) == 0`` with ``k`` and every symbol positive; the same for the
+simulator's default stall time (:data:`ifgm_ref.simulator.STALL_TIME`, a time, ``p = 0``),
+after which a robot that makes no progress ends its episode. A formula with an
 absolute constant (``r + 1`` declared a length) leaves a remainder and fails. The formulas are
 read from the code, so a changed formula is re-proved. The oracle's ``scale_invariant`` check
 (:mod:`ifgm_ref.oracle.checks`) tests the consequence on whole episodes.
@@ -31,7 +33,8 @@ import sympy as sp
 
 from ifgm_ref.paper import traces
 from ifgm_ref.planners import PLANNERS
-from ifgm_ref.planners.tuning import LENGTH_SYMBOLS, SYMBOLS, ParamInfo, formula_expr
+from ifgm_ref.planners.tuning import LENGTH_SYMBOLS, SYMBOLS, ParamInfo, Unit, formula_expr
+from ifgm_ref.simulator import STALL_TIME
 from proofs._util import Derivation, entry_points
 
 __all__ = ["PAPER_ROBOT", "PAPER_VALUES", "build", "claims", "derivation", "main"]
@@ -135,6 +138,9 @@ def build(
             f"{lemma.__name__}(k a, k b) = k {lemma.__name__}(a, b) for k > 0, whichever of a "
             "and b is the smaller (k > 0 keeps their order)",
         )
+    # The simulator's stall time (a trapped robot's episode ends after it) is held to the
+    # same rule: it must not depend on the unit either.
+    prove_homogeneous(d, "simulator", ParamInfo("stall_time", STALL_TIME, Unit.TIME))
     for planner, infos in planners.items():
         for info in infos:
             prove_homogeneous(d, planner, info)

@@ -157,7 +157,7 @@ def test_rows_of_one_world() -> None:
     assert 1.0 <= ifgm.path_ratio < 2.0
     assert ifgm.heading_change > 0 and ifgm.decisions_per_cpu_s > 0
     assert ifgm.steps == round(ifgm.time_s / 0.1)
-    assert not apf.reached and apf.stop_reason == "time_limit" and apf.path_ratio is None
+    assert not apf.reached and apf.stop_reason == "stalled" and apf.path_ratio is None
     assert straight.collided and straight.stop_reason == "collision"
 
 
@@ -168,7 +168,7 @@ def test_fgm_is_trapped_only_by_a_u_that_fills_its_view() -> None:
     it sees the whole U from outside as one obstacle, takes the gap beside it and arrives
     (docs/errata.md row 28)."""
     (trapped,) = run_world(WorldSpec("u_trap", "builtin", "u_trap"), ("fgm",))
-    assert not trapped.reached and trapped.stop_reason == "time_limit" and not trapped.collided
+    assert not trapped.reached and trapped.stop_reason == "stalled" and not trapped.collided
     (escaped,) = run_world(WorldSpec.generated("u", 0, 0), ("fgm",))
     assert escaped.reached
 

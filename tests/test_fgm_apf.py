@@ -4,12 +4,13 @@ Unit tests check FGM's gap array, maximum gap, gap-centre angle and final headin
 forces and safety rule, on hand-made scans; episode tests run both planners in the built-in
 worlds and check where they end up.
 
-What the episodes show (default parameters, default robot and sensor, ``max_time=300``):
+What the episodes show (default parameters, default robot and sensor, ``max_time=300``; a
+trapped robot is ended by the simulator's stall rule, within ``r`` of one point for 12 s):
 
 * ``free``: both reach the goal (196.6 ft in 148.7 s).
 * ``box``: FGM passes the box (49.4 s, 64.6 ft, clearance 3.4 ft). APF does *not*: the box is
   symmetric about the start-goal line, the forces cancel in front of it and the robot turns
-  to and fro 2.6 ft from its face for the rest of the episode -- Table 1's "The algo. cannot
+  to and fro 2.6 ft from its face until it stalls -- Table 1's "The algo. cannot
   avoid U, H-shaped and symmetric obstacles". A small post off the line APF does pass.
 * ``u_trap`` and ``h_block``: both are trapped, without collision. FGM drives straight at the
   cavity until every ray of its 135-degree view is blocked (section 5.2: "At the centre of
@@ -52,7 +53,7 @@ from ifgm_ref.pose import Point, Pose, wrap_angle
 from ifgm_ref.protocol import EpisodeParams, Observation, Planner
 from ifgm_ref.scenarios import resolve_world
 from ifgm_ref.shapes import circle
-from ifgm_ref.simulator import Run, simulate
+from ifgm_ref.simulator import Run, StopReason, simulate, stall_steps
 from ifgm_ref.world import World
 
 SENSOR = SensorParams()
@@ -110,17 +111,21 @@ def episode(world_name: str, planner: Planner, max_time: float = TRAP_TIME) -> R
     return simulate(resolve_world(world_name), planner, SimParams(max_time=max_time))
 
 
-def assert_trapped(run: Run, *, still_for: float) -> None:
-    """No arrival, no collision, the whole time used, and no headway in the last seconds."""
+def assert_trapped(run: Run) -> None:
+    """No arrival, no collision, and stalled: in the last stall time (12 s) no sample farther
+    than the robot's radius (1 ft) from where that time began."""
     __tracebackhide__ = True
     result = run.result
     assert not result.reached, f"reached=True, but should be trapped [{result}]"
     assert not result.collided, f"collided=True, but should stop short [{result}]"
-    assert result.stop_reason == "time_limit", f"stop_reason={result.stop_reason!r} [{result}]"
-    end = run.trace[-1]
-    late = [s for s in run.trace if s.t >= end.t - still_for]
-    spread = max(math.hypot(s.x - end.x, s.y - end.y) for s in late)
-    assert spread < 0.5, f"moved {spread:.2f} ft in the last {still_for} s, but should be stuck"
+    assert result.stop_reason == StopReason.STALLED, (
+        f"stop_reason={result.stop_reason!r}, but should be 'stalled' [{result}]"
+    )
+    steps = stall_steps(SimParams(), EpisodeParams())
+    assert steps is not None
+    window = run.trace[-1 - steps :]
+    spread = max(math.hypot(s.x - window[0].x, s.y - window[0].y) for s in window)
+    assert spread <= 1.0, f"moved {spread:.2f} ft in the last 12 s, but should be stuck"
 
 
 # --------------------------------------------------------------------------------------------
@@ -398,7 +403,7 @@ def test_apf_is_trapped_in_front_of_the_symmetric_box() -> None:
     # symmetric about the start-goal line; the robot halts in front of its face.
     world = resolve_world("box")
     run = simulate(world, APFPlanner(), SimParams(max_time=TRAP_TIME))
-    assert_trapped(run, still_for=200.0)
+    assert_trapped(run)
     xmin, ymin, _, ymax = bounding_box(world)
     end = run.trace[-1]
     assert xmin - 4.0 < end.x < xmin and ymin < end.y < ymax
@@ -421,7 +426,7 @@ def test_apf_passes_a_post_off_the_line() -> None:
 def test_fgm_is_trapped_in_the_u() -> None:
     world = resolve_world("u_trap")
     run = simulate(world, FGMPlanner(), SimParams(max_time=TRAP_TIME))
-    assert_trapped(run, still_for=250.0)
+    assert_trapped(run)
     assert run.trace[-1].branch is None and run.trace[-2].branch == "no_gap"
     end = run.trace[-1]
     assert outside_by((end.x, end.y), bounding_box(world)) == 0.0  # inside the U's outline
@@ -433,7 +438,7 @@ def test_fgm_is_trapped_in_the_u() -> None:
 def test_fgm_is_trapped_at_the_mouth_of_the_h() -> None:
     world = resolve_world("h_block")
     run = simulate(world, FGMPlanner(), SimParams(max_time=TRAP_TIME))
-    assert_trapped(run, still_for=250.0)
+    assert_trapped(run)
     assert run.trace[-2].branch == "no_gap"
     end = run.trace[-1]
     xmin, ymin, _, ymax = bounding_box(world)
@@ -446,7 +451,7 @@ def test_fgm_is_trapped_at_the_mouth_of_the_h() -> None:
 def test_apf_is_trapped_inside_the_cavity(world_name: str) -> None:
     world = resolve_world(world_name)
     run = simulate(world, APFPlanner(), SimParams(max_time=TRAP_TIME))
-    assert_trapped(run, still_for=250.0)
+    assert_trapped(run)
     end = run.trace[-1]
     assert outside_by((end.x, end.y), bounding_box(world)) == 0.0
     assert run.result.min_clearance > 1.0

@@ -1,4 +1,5 @@
-"""The simulator (ifgm_ref.simulator): stop reasons, result figures, trace, determinism."""
+"""The simulator (ifgm_ref.simulator): stop reasons, the stall rule, result figures, trace,
+determinism."""
 
 from __future__ import annotations
 
@@ -9,11 +10,18 @@ import math
 
 import pytest
 
-from ifgm_ref.params import PAPER_FREE_DISTANCE_FT, PAPER_FREE_TIME_S, SimParams
+from ifgm_ref.errors import ParameterError
+from ifgm_ref.oracle.metamorphic import scale_sim, scale_world
+from ifgm_ref.params import PAPER_FREE_DISTANCE_FT, PAPER_FREE_TIME_S, RobotParams, SimParams
+from ifgm_ref.planners.bug1 import Bug1Planner
+from ifgm_ref.planners.fgm import FGMPlanner
+from ifgm_ref.planners.ifgm import IFGMPlanner
 from ifgm_ref.planners.straight import StraightPlanner
-from ifgm_ref.pose import Point, Pose
+from ifgm_ref.pose import Point, Pose, distance
 from ifgm_ref.protocol import Command, EpisodeParams, Observation
-from ifgm_ref.simulator import TRACE_FIELDS, StopReason, simulate
+from ifgm_ref.scenarios import resolve_world
+from ifgm_ref.shapes import rectangle
+from ifgm_ref.simulator import TRACE_FIELDS, StopReason, TraceStep, simulate, stall_steps
 from ifgm_ref.world import Bounds, Polygon, World
 
 FREE = World(start=Pose(0.0, 0.0, 0.0), goal=Point(PAPER_FREE_DISTANCE_FT, 0.0), name="free")
@@ -63,12 +71,158 @@ def test_straight_into_a_wall_collides_at_the_wall() -> None:
 
 
 def test_time_limit_stops_the_episode() -> None:
-    sim = SimParams(max_time=2.0)
+    sim = SimParams(max_time=2.0)  # less than the stall time: the limit comes first
     result = simulate(FREE, ScriptedPlanner(Command(heading=0.0, speed=0.0)), sim).result
     assert result.stop_reason == StopReason.TIME_LIMIT
     assert result.steps == 20
     assert result.time_s == pytest.approx(2.0)
     assert result.path_length == 0.0
+
+
+class SpinningPlanner:
+    """Turns in place for ever: always a quarter turn further left than it faces."""
+
+    name = "spinning"
+
+    def reset(self, start: Pose, goal: Point, params: EpisodeParams) -> None:
+        """Nothing to prepare."""
+
+    def step(self, observation: Observation) -> Command:
+        return Command(heading=observation.pose.theta + math.pi / 2, speed=0.0)
+
+
+class RockingPlanner:
+    """Drives along the x axis to ``x = reach``, turns on the spot, drives back to ``x = 0``,
+    turns, and so on for ever."""
+
+    name = "rocking"
+
+    def __init__(self, reach: float) -> None:
+        self.reach = reach
+        self.heading = 0.0
+
+    def reset(self, start: Pose, goal: Point, params: EpisodeParams) -> None:
+        self.heading = 0.0
+
+    def step(self, observation: Observation) -> Command:
+        x = observation.pose.x
+        if (x >= self.reach and self.heading == 0.0) or (x <= 0.0 and self.heading == math.pi):
+            self.heading = math.pi - self.heading
+        facing = math.cos(observation.pose.theta - self.heading) > 1.0 - 1e-9
+        return Command(heading=self.heading, speed=1.0 if facing else 0.0)
+
+
+def within(trace: list[TraceStep], radius: float) -> float:
+    """How long, s, the end of ``trace`` has stayed within ``radius`` of where it began: the
+    duration of the longest suffix whose samples all lie within ``radius`` of its first."""
+    points = [(s.x, s.y) for s in trace]
+    start = len(points) - 1
+    while start > 0 and all(distance(points[start - 1], p) <= radius for p in points[start:]):
+        start -= 1
+    return trace[-1].t - trace[start].t
+
+
+def test_stall_time_is_three_full_turns_for_the_papers_robot() -> None:
+    # Max(6 pi/w, 10 r/v, 20 dt): 12 s (w = pi/2), 7.6 s and 2 s; BARN's robot (w = pi): 6 s.
+    assert stall_steps(SimParams(), EpisodeParams()) == 120
+    barn = EpisodeParams(robot=RobotParams(radius=0.22, speed=1.0, max_turn_rate=math.pi), dt=0.05)
+    assert stall_steps(SimParams(dt=0.05), barn) == 120
+    fast_turner = EpisodeParams(robot=RobotParams(max_turn_rate=20.0))  # 10 r/v = 7.6 s
+    assert stall_steps(SimParams(), fast_turner) == 76
+    assert stall_steps(SimParams(dt=1.0), EpisodeParams(dt=1.0)) == 20  # 20 decisions
+
+
+def test_a_robot_that_stands_still_stalls_at_the_stall_time() -> None:
+    result = simulate(FREE, ScriptedPlanner(Command(heading=0.0, speed=0.0))).result
+    assert result.stop_reason == StopReason.STALLED and not result.reached
+    assert result.steps == 120 and result.time_s == pytest.approx(12.0)
+    sim = SimParams(stall_time=5.0)
+    assert simulate(FREE, ScriptedPlanner(Command(heading=0.0, speed=0.0)), sim).result.steps == 50
+
+
+def test_a_robot_that_spins_in_place_for_ever_stalls() -> None:
+    run = simulate(FREE, SpinningPlanner())
+    assert run.result.stop_reason == StopReason.STALLED and run.result.steps == 120
+    assert len({round(s.theta, 6) for s in run.trace}) > 4  # it did turn
+
+
+def test_a_robot_rocking_within_its_diameter_stalls_and_one_rocking_wider_does_not() -> None:
+    # Rocking over 1.5 ft, the robot stays within r = 1 ft of the middle of its beat, where it
+    # passes every few seconds: stalled. Over 2.5 ft it never stays within r of any point.
+    run = simulate(FREE, RockingPlanner(reach=1.5))
+    assert run.result.stop_reason == StopReason.STALLED and run.result.steps < 150
+    assert max(s.x for s in run.trace) > 1.5 and run.result.path_length > 6.0  # it did move
+    wider = simulate(FREE, RockingPlanner(reach=2.5), SimParams(max_time=60.0)).result
+    assert wider.stop_reason == StopReason.TIME_LIMIT
+
+
+def test_a_stall_ends_stall_time_after_the_robot_last_left_the_disc() -> None:
+    run = simulate(resolve_world("u_trap"), FGMPlanner())
+    result = run.result
+    assert result.stop_reason == StopReason.STALLED and not result.collided
+    assert run.trace[-2].branch == "no_gap" and run.trace[-2].speed_cmd == 0.0
+    radius = resolve_world("u_trap").robot.radius
+    assert within(run.trace, radius) == pytest.approx(12.0)  # the stall time, no more
+    assert within(run.trace[:-1], radius) < 12.0  # one step earlier it had not stalled
+
+
+def test_stall_time_none_or_zero_turns_the_rule_off() -> None:
+    for off in (None, 0.0):
+        sim = SimParams(max_time=30.0, stall_time=off)
+        result = simulate(FREE, ScriptedPlanner(Command(heading=0.0, speed=0.0)), sim).result
+        assert result.stop_reason == StopReason.TIME_LIMIT and result.steps == 300
+
+
+@pytest.mark.parametrize("value", ["soon", -1.0, math.nan, True])
+def test_a_bad_stall_time_is_rejected(value: object) -> None:
+    with pytest.raises(ParameterError, match="`stall_time` must be"):
+        SimParams(stall_time=value)  # type: ignore[arg-type]
+
+
+def test_ifgms_dead_end_turns_in_the_u_do_not_stall() -> None:
+    """Section 4: IFGM turns in place at the base of the U, 45 degrees at a time (it stays
+    about 3 s within r of one point, a quarter of the stall time); the episode is the one
+    without the stall rule, step for step."""
+    world = resolve_world("u_trap")
+    run = simulate(world, IFGMPlanner())
+    assert run.result.reached
+    assert sum(s.branch == "dead_end_turn" and s.speed_cmd == 0.0 for s in run.trace) >= 10
+    unstalled = simulate(world, IFGMPlanner(), SimParams(stall_time=None))
+    assert run.trace == unstalled.trace and run.result == unstalled.result
+
+
+def test_bug1_round_a_big_obstacle_does_not_stall() -> None:
+    """Bug1 goes right round a 40 ft box and back (section 2.1.1): for most of a minute no
+    nearer the goal than it has been, but always on the move."""
+    world = World(
+        start=Pose(0.0, 0.0, 0.0),
+        goal=Point(70.0, 0.0),
+        obstacles=(rectangle((35.0, 0.0), 20.0, 40.0),),
+        name="big box",
+    )
+    run = simulate(world, Bug1Planner())
+    assert run.result.reached
+    best, since = math.inf, 0.0
+    longest = 0.0  # the longest time without a new best distance to the goal
+    for s in run.trace:
+        d = distance((s.x, s.y), world.goal)
+        if d < best:
+            best, since = d, s.t
+        longest = max(longest, s.t - since)
+    assert longest > 5 * 12.0
+    unstalled = simulate(world, Bug1Planner(), SimParams(stall_time=None))
+    assert run.trace == unstalled.trace and run.result == unstalled.result
+
+
+@pytest.mark.parametrize("k", [0.25, 2.0, 4.0])
+def test_the_stall_rule_scales_with_the_robot(k: float) -> None:
+    """Every length (the world, the robot's radius and speed, the sensor) times ``k``: the
+    trapped FGM stalls at the same step (the rule holds no absolute length)."""
+    world = resolve_world("u_trap")
+    first = simulate(world, FGMPlanner()).result
+    scaled = simulate(scale_world(world, k), FGMPlanner(), scale_sim(SimParams(), k)).result
+    assert first.stop_reason == scaled.stop_reason == StopReason.STALLED
+    assert scaled.steps == first.steps
 
 
 @pytest.mark.parametrize(

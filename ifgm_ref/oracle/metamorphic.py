@@ -124,7 +124,8 @@ def scale_world(world: World, k: float) -> World:
 
 
 def scale_sim(sim: SimParams, k: float) -> SimParams:
-    """``sim`` with the goal tolerance scaled by ``k``; ``dt`` and ``max_time`` kept."""
+    """``sim`` with the goal tolerance scaled by ``k``; the times ``dt``, ``max_time`` and
+    ``stall_time`` kept."""
     return replace(sim, goal_tolerance=_factor(k) * sim.goal_tolerance)
 
 
