@@ -6,8 +6,10 @@ paths, ``../shared/barn/README.md``) into a temporary folder; ``--barn DIR`` tak
 or a clone of BARN's repository instead. Each planner runs with the Jackal's LiDAR; IFGM runs
 a second time with the paper's IR sensor scaled to the robot (``paper_ir``). Each line gives,
 for one planner and sensor, the share of episodes that reached the goal, collided and timed
-out, the mean BARN score (``ifgm_ref.bench.barn.barn_score``; BARN's DWA baseline in Gazebo
-scores 0.159 on BARN's 50 test worlds) and the wall time. It measures, it asserts nothing.
+out (in BARN's sense: neither arrived nor collided, so a run ended by the simulator's stall
+rule counts as a time-out: it would still be there at BARN's 100 s), the mean BARN score
+(``ifgm_ref.bench.barn.barn_score``; BARN's DWA baseline in Gazebo scores 0.159 on BARN's 50
+test worlds) and the wall time. It measures, it asserts nothing.
 """
 
 from __future__ import annotations
@@ -39,9 +41,10 @@ def _measure(folder: Path, args: argparse.Namespace) -> None:
             rows = run_bench(specs, [planner], jobs=args.jobs, progress=False)
             wall = time.perf_counter() - begin
             s = summarize_rows(planner, "barn", rows)
+            timeout = (s.timeout_rate or 0.0) + (s.stall_rate or 0.0)
             print(
                 f"{planner:<10} {sensor:<13} {s.worlds:>6} {s.success_rate:>8.1%} "
-                f"{s.collision_rate or 0.0:>9.1%} {s.timeout_rate or 0.0:>8.1%} "
+                f"{s.collision_rate or 0.0:>9.1%} {timeout:>8.1%} "
                 f"{s.barn_score_mean or 0.0:>6.3f} {wall:>7.1f}",
                 flush=True,
             )

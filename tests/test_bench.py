@@ -280,14 +280,19 @@ def _row(planner: str, world_class: str, **kw: object) -> Row:
 
 def test_summary_statistics() -> None:
     """Success rate over all episodes, path-ratio median and 90th percentile over the
-    successful ones only, collisions and errors counted."""
+    successful ones only, collisions, errors, time-outs and stalls counted."""
     rows = [_row("p", "u", path_ratio=1.0 + k / 10) for k in range(10)]
     rows += [_row("p", "u", reached=False, collided=True, stop_reason="collision",
                   path_ratio=None)]  # fmt: skip
     rows += [_row("p", "u", reached=False, stop_reason=ERROR, path_ratio=None)]
+    rows += [_row("p", "u", reached=False, stop_reason=stop, path_ratio=None)
+             for stop in ("time_limit", "stalled", "stalled")]  # fmt: skip
     s = summarize_rows("p", "u", rows)
-    assert s.worlds == 12 and s.success_rate == pytest.approx(10 / 12)
+    assert s.worlds == 15 and s.success_rate == pytest.approx(10 / 15)
     assert s.collisions == 1 and s.errors == 1
+    assert (s.collision_rate, s.timeout_rate, s.stall_rate) == pytest.approx(
+        (1 / 15, 1 / 15, 2 / 15)
+    )
     assert s.path_ratio_median == pytest.approx(1.45)
     assert s.path_ratio_p90 == pytest.approx(1.81)
     assert summarize_rows("p", "u", rows[-2:]).path_ratio_median is None

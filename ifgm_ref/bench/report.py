@@ -43,9 +43,10 @@ class Summary:
     ``success_rate`` is the fraction of episodes that reached the goal; the path-ratio
     statistics are over those episodes (``None`` when there is none); ``collisions`` counts
     episodes that ended in a collision and ``errors`` those whose planner raised.
-    ``collision_rate`` and ``timeout_rate`` are the fractions of episodes that ended in a
-    collision and at the time limit; ``barn_score_mean`` is the mean BARN score over the
-    episodes that have one (BARN worlds; ``None`` elsewhere), as BARN reports it.
+    ``collision_rate``, ``timeout_rate`` and ``stall_rate`` are the fractions of episodes
+    that ended in a collision, at the time limit and stalled (no progress: the simulator's
+    stall rule, :mod:`ifgm_ref.simulator`); ``barn_score_mean`` is the mean BARN score over
+    the episodes that have one (BARN worlds; ``None`` elsewhere), as BARN reports it.
     """
 
     planner: str
@@ -62,6 +63,7 @@ class Summary:
     decisions_per_cpu_s_median: float | None
     collision_rate: float | None = None
     timeout_rate: float | None = None
+    stall_rate: float | None = None
     barn_score_mean: float | None = None
 
     @classmethod
@@ -96,6 +98,7 @@ def summarize_rows(planner: str, world_class: str, rows: Sequence[Row]) -> Summa
         decisions_per_cpu_s_median=_median(speeds),
         collision_rate=sum(r.collided for r in rows) / len(rows),
         timeout_rate=sum(r.stop_reason == StopReason.TIME_LIMIT for r in rows) / len(rows),
+        stall_rate=sum(r.stop_reason == StopReason.STALLED for r in rows) / len(rows),
         barn_score_mean=float(np.mean(scores)) if scores else None,
     )
 
@@ -188,12 +191,14 @@ def summary_markdown(summaries: Sequence[Summary], rows: Sequence[Row], header: 
         lines += [
             "## BARN worlds (BARN's score; its DWA baseline in Gazebo: 0.159 on 50 test worlds)",
             "",
-            "| planner | class | worlds | mean BARN score | success | collisions | timeouts |",
-            "|---|---|---:|---:|---:|---:|---:|",
+            "| planner | class | worlds | mean BARN score | success | collisions | timeouts "
+            "| stalls |",
+            "|---|---|---:|---:|---:|---:|---:|---:|",
         ]
         lines += [
             f"| {s.planner} | {s.world_class} | {s.worlds} | {s.barn_score_mean:.3f} | "
-            f"{s.success_rate:.1%} | {s.collision_rate or 0.0:.1%} | {s.timeout_rate or 0.0:.1%} |"
+            f"{s.success_rate:.1%} | {s.collision_rate or 0.0:.1%} | {s.timeout_rate or 0.0:.1%} "
+            f"| {s.stall_rate or 0.0:.1%} |"
             for s in barn
         ]
         lines.append("")
