@@ -36,10 +36,11 @@ numbers:
 Edge following (Bug1 round a whole obstacle) does not bring the robot nearer the goal for a
 long time, but it drives, so the disc rule never fires there. Measured on every planner in
 every built-in world, 20 generated worlds of each class and BARN's three sample worlds (944
-episodes), the longest time an episode that reached the goal spent within ``r`` of one point
-was 4.7 s, under 0.4 ``T`` (Bug1 at the corners of an H; IFGM's dead-end turns: 4.1 s); every
-episode that reached the goal runs exactly as without the rule, and each one that ran to the
-time limit (FGM and APF, trapped) stalls instead.
+episodes, run with the oracle's world classes before and after the paper's head-on U and H
+traps joined them), the longest time an episode that reached the goal spent within ``r`` of
+one point was 4.7 s, under 0.4 ``T`` (Bug1 at the corners of an H; IFGM's dead-end turns:
+4.1 s); every episode that reached the goal runs exactly as without the rule, and each one
+that ran to the time limit (FGM and APF, trapped: 104, then 124 of the 944) stalls instead.
 """
 
 from __future__ import annotations
