@@ -19,6 +19,7 @@ from hypothesis import strategies as st
 
 from ifgm_ref.bench.optimal import optimal_path
 from ifgm_ref.bench.report import (
+    plot_path_ratio,
     read_rows,
     summarize,
     summarize_rows,
@@ -388,3 +389,24 @@ def test_bench_command_refuses_bad_input(args: list[str], message: str, tmp_path
     assert done.returncode == 2
     assert message in done.stderr
     assert "Traceback" not in done.stderr
+
+
+def test_path_ratio_title_lies_within_the_figure(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """With one planner in one class the figure is narrowest: its title must still fit."""
+    import matplotlib.figure
+
+    boxes = []
+    save = matplotlib.figure.Figure.savefig
+
+    def checked(fig: matplotlib.figure.Figure, path: Path, **kwargs: object) -> None:
+        fig.canvas.draw()
+        boxes.append((fig._suptitle.get_window_extent(), fig.bbox))
+        save(fig, path, **kwargs)
+
+    monkeypatch.setattr(matplotlib.figure.Figure, "savefig", checked)
+    rows = [_row("ifgm", "open", path_ratio=1.0 + k / 10) for k in range(5)]
+    plot_path_ratio(rows, tmp_path / "path_ratio.png")
+    ((title, figure),) = boxes
+    assert figure.x0 <= title.x0 and title.x1 <= figure.x1, (title, figure)

@@ -240,6 +240,11 @@ def plot_success(summaries: Sequence[Summary], path: Path) -> None:
     plt.close(fig)
 
 
+#: Width (in) below which the path ratio plot's title no longer fits (4.3 in at the default
+#: title size): one or two planners would clip it.
+MIN_PLOT_WIDTH = 5.0
+
+
 def plot_path_ratio(rows: Sequence[Row], path: Path) -> None:
     """Box plots of path length / optimal over the successful episodes, a panel per class."""
     import matplotlib.pyplot as plt
@@ -248,8 +253,9 @@ def plot_path_ratio(rows: Sequence[Row], path: Path) -> None:
     planners = list(dict.fromkeys(r.planner for r in rows))
     columns = min(len(classes), 2)
     lines = math.ceil(len(classes) / columns)
+    width = max(MIN_PLOT_WIDTH, 1.0 + 0.6 * len(planners) * columns)
     fig, axes = plt.subplots(
-        lines, columns, figsize=(1.0 + 0.6 * len(planners) * columns, 0.5 + 3.3 * lines),
+        lines, columns, figsize=(width, 0.5 + 3.3 * lines),
         sharey=True, squeeze=False, layout="constrained",
     )  # fmt: skip
     for ax in axes.flat[len(classes) :]:
