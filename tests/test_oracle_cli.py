@@ -14,11 +14,9 @@ from pathlib import Path
 import pytest
 from hypothesis import strategies as st
 
-from ifgm_ref.oracle.checks import CHECKS, Check, Kind
+from ifgm_ref.oracle.checks import CHECKS, NO_EQUATIONS, NO_EQUATIONS_PROGRAM, Check, Kind
 from ifgm_ref.oracle.implementation import Implementation
 from ifgm_ref.oracle.runner import (
-    NO_EQUATIONS,
-    NO_EQUATIONS_PROGRAM,
     Status,
     check_planner,
     crash,

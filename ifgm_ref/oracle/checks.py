@@ -114,6 +114,17 @@ ROUNDED_SCALES = (0.3048, 0.22, 3.7)
 #: (APF), 2e-5 (Bug2, DistBug, IBA), 7e-14 (FGM). A length constant that does not scale
 #: changes the path by far more; the powers of two catch small ones exactly.
 SCALE_PATH_TOL = 0.01
+#: Why the equation checks do not apply to a Python implementation given without equations:
+#: how to give them, on the command line, under pytest and in Python.
+NO_EQUATIONS = (
+    "no equations given: --equations MODULE (ifgm-ref oracle), --ifgm-equations MODULE "
+    "(pytest), equations= (check_planner)"
+)
+#: ... and to a program: it has no Python functions to call.
+NO_EQUATIONS_PROGRAM = (
+    "a program exposes no Python functions: check its eqs. (1)-(4) against the vectors of "
+    "`ifgm-ref vectors` (docs/vectors-format.md)"
+)
 #: Equation outputs may differ from the reference by this much (ft, or rad modulo 2 pi).
 EQUATION_TOL = 1e-9
 
@@ -525,7 +536,7 @@ def _equation_check(
 
     def applies(impl: Implementation) -> str | None:
         if impl.equations is None:
-            return "no equations given (equations=...)"
+            return NO_EQUATIONS_PROGRAM if impl.is_program else NO_EQUATIONS
         if not callable(getattr(impl.equations, name, None)):
             return f"the equations object has no {name}"
         return None

@@ -27,7 +27,14 @@ from hypothesis import HealthCheck, Phase, given, seed, settings
 from hypothesis.errors import Flaky
 
 from ifgm_ref.errors import ImplementationError
-from ifgm_ref.oracle.checks import CHECKS, Check, CheckFailed, Evidence, Kind, Recorder
+from ifgm_ref.oracle.checks import (
+    CHECKS,
+    Check,
+    CheckFailed,
+    Evidence,
+    Kind,
+    Recorder,
+)
 from ifgm_ref.oracle.implementation import Implementation, Promises, promises_of
 from ifgm_ref.protocol import Planner
 from ifgm_ref.worldfile import save_world
@@ -78,18 +85,6 @@ PROFILES: dict[str, Profile] = {
 #: Old profile names that still work: ``default`` was ``standard``'s name (it was never the
 #: default: ``quick`` is).
 PROFILE_ALIASES: dict[str, str] = {"default": "standard"}
-
-#: Why the equation checks do not apply to a Python implementation given without equations:
-#: how to give them, on the command line, under pytest and in Python.
-NO_EQUATIONS = (
-    "no equations given: --equations MODULE (ifgm-ref oracle), --ifgm-equations MODULE "
-    "(pytest), equations= (check_planner)"
-)
-#: ... and to a program: it has no Python functions to call.
-NO_EQUATIONS_PROGRAM = (
-    "a program exposes no Python functions: check its eqs. (1)-(4) against the vectors of "
-    "`ifgm-ref vectors` (docs/vectors-format.md)"
-)
 
 
 def profile_named(name: str) -> Profile:
@@ -207,8 +202,6 @@ def run_check(
     profile = profile_named(profile) if isinstance(profile, str) else profile
     reason = check.applies(impl)
     if reason is not None:
-        if check.kind is Kind.EQUATION and impl.equations is None:
-            reason = NO_EQUATIONS_PROGRAM if impl.is_program else NO_EQUATIONS
         return CheckResult(check.name, Status.NOT_APPLICABLE, message=reason)
     recorder = Recorder()
 
