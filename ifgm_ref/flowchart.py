@@ -18,6 +18,7 @@ percept. :func:`decide` checks that at every call.
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Callable
 from dataclasses import dataclass, fields
 from enum import StrEnum
@@ -127,7 +128,9 @@ def decide(atoms: Atoms) -> Branch:
     """The one Figure 3 branch whose guard holds for ``atoms`` (plain or numpy booleans).
 
     Raises ``AssertionError`` if the guards do not hold for exactly one branch -- the
-    partition property, proved for all atom values in ``proofs/flowchart.py``.
+    partition property, proved for all atom values in ``proofs/flowchart.py``. The guards
+    are evaluated, and the partition checked, once per combination of atom values in a
+    process (:func:`branch_of`): a planner's step looks the branch up.
 
     Examples
     --------
@@ -139,7 +142,17 @@ def decide(atoms: Atoms) -> Branch:
     >>> decide(Atoms(**{**base, "blocked": True, "wide": True, "close": True}))
     <Branch.TOO_CLOSE: 'too_close'>
     """
-    values = Atoms(*(np.bool_(getattr(atoms, name)) for name in Atoms.names()))
-    holding = [branch for branch, guard in GUARDS.items() if bool(guard(values))]
+    return branch_of(tuple(bool(getattr(atoms, name)) for name in _NAMES))
+
+
+_NAMES = Atoms.names()
+
+
+@functools.cache
+def branch_of(values: tuple[bool, ...]) -> Branch:
+    """The one branch whose guard holds for the atom ``values`` (in :meth:`Atoms.names`
+    order), the guards evaluated on numpy booleans and checked to partition; cached."""
+    atoms = Atoms(*(np.bool_(value) for value in values))
+    holding = [branch for branch, guard in GUARDS.items() if bool(guard(atoms))]
     assert len(holding) == 1, f"guards hold for {holding}, but should for exactly one [{atoms}]"
     return holding[0]

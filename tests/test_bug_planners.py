@@ -13,16 +13,17 @@ from dataclasses import dataclass
 from functools import cache
 from itertools import pairwise
 
+import numpy as np
 import pytest
 import shapely
 
 from ifgm_ref.errors import ParameterError
-from ifgm_ref.laserscan import LaserScan
 from ifgm_ref.params import RobotParams, SensorParams, SimParams
 from ifgm_ref.planners.boundary import GOAL_UNREACHABLE, BoundaryParams, BoundaryPlanner
 from ifgm_ref.planners.bug1 import Bug1Planner
 from ifgm_ref.planners.bug2 import Bug2Planner, signed_distance
-from ifgm_ref.planners.distbug import DistBugPlanner
+from ifgm_ref.planners.distbug import DistBugPlanner, DistBugRule
+from ifgm_ref.planners.sight import Body, Sight
 from ifgm_ref.pose import Point, Pose, distance
 from ifgm_ref.protocol import EpisodeParams, Planner
 from ifgm_ref.scenarios import resolve_world
@@ -353,18 +354,24 @@ def test_distbug_leaves_no_farther_from_the_goal_than_d_min_minus_step(world_nam
 def test_distbug_free_range_counts_only_what_the_robot_can_travel() -> None:
     """F = 0 with the goal out of view; d(x, T) with the way to a goal within range clear;
     otherwise the free length (at most ``range_max``) less the encounter distance."""
-    planner = DistBugPlanner()
     params = EpisodeParams()
+    tuning = BoundaryParams.for_episode(params)
     here = Pose(0.0, 0.0, 0.0)
-    planner.reset(here, Point(10.0, 0.0), params)
-    assert planner.free_range(here) == 10.0  # nothing seen: the goal, 10 ft away, is visible
-    assert planner.free_range(Pose(0.0, 0.0, math.pi)) == 0.0  # the goal behind the robot
+
+    def free_range(goal: Point, pose: Pose, points: tuple[tuple[float, float], ...] = ()) -> float:
+        body = Body.of(goal, params, tuning)
+        seen = np.array(points, dtype=float).reshape(-1, 2)
+        bearing = math.atan2(goal.y - pose.y, goal.x - pose.x)
+        return DistBugRule.free_range(Sight(pose, body, seen, bearing))
+
+    goal = Point(10.0, 0.0)
+    assert free_range(goal, here) == 10.0  # nothing seen: the goal, 10 ft away, is visible
+    assert free_range(goal, Pose(0.0, 0.0, math.pi)) == 0.0  # the goal behind the robot
     encounter = STANDOFF + BoundaryParams.paper().hit_margin
-    planner.reset(here, Point(100.0, 0.0), params)
-    assert planner.free_range(here) == params.sensor.range_max - encounter
-    wall = LaserScan(-0.1, 0.1, 0.1, 0.0, params.sensor.range_max, [math.inf, 6.0, math.inf])
-    planner.memory.add(0.0, here, wall)  # an obstacle 6 ft dead ahead
-    assert planner.free_range(here) == pytest.approx(6.0 - encounter)
+    far = Point(100.0, 0.0)
+    assert free_range(far, here) == params.sensor.range_max - encounter
+    wall = ((6.0, 0.0),)  # an obstacle 6 ft dead ahead
+    assert free_range(far, here, wall) == pytest.approx(6.0 - encounter)
 
 
 def test_step_length_beyond_the_sensor_reach_leaves_only_in_sight_of_the_goal() -> None:

@@ -5,10 +5,11 @@ from __future__ import annotations
 import itertools
 import math
 import re
+from collections.abc import Iterator
 
 import pytest
 
-from ifgm_ref.flowchart import GUARDS, Atoms, Branch, decide
+from ifgm_ref.flowchart import GUARDS, Atoms, Branch, branch_of, decide
 
 ALL_ATOMS = list(itertools.product([False, True], repeat=len(Atoms.names())))
 
@@ -24,11 +25,30 @@ def test_guards_partition_every_combination_of_atoms() -> None:
     assert taken == set(Branch)
 
 
+@pytest.fixture
+def fresh_branches() -> Iterator[None]:
+    """:func:`decide` with an empty cache of checked atom combinations, emptied again after."""
+    branch_of.cache_clear()
+    yield
+    branch_of.cache_clear()
+
+
+@pytest.mark.usefixtures("fresh_branches")
 def test_decide_rejects_guards_that_overlap(monkeypatch: pytest.MonkeyPatch) -> None:
     monkeypatch.setitem(GUARDS, Branch.CASE1_GAP, lambda a: a.blocked)  # overlaps Case-2
     atoms = Atoms(**{**dict.fromkeys(Atoms.names(), False), "blocked": True})
     with pytest.raises(AssertionError, match="exactly one"):
         decide(atoms)
+
+
+@pytest.mark.usefixtures("fresh_branches")
+def test_decide_checks_each_combination_of_atoms_once() -> None:
+    """The guards are evaluated (and their partition checked) at the first sight of a
+    combination; a step that meets it again looks the branch up."""
+    atoms = Atoms(**{**dict.fromkeys(Atoms.names(), False), "blocked": True})
+    assert decide(atoms) is decide(atoms) is Branch.CASE2_NARROW_GAP
+    info = branch_of.cache_info()
+    assert (info.misses, info.hits) == (1, 1)
 
 
 @pytest.mark.paper("fig3.both_conditions")

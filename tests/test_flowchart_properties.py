@@ -439,6 +439,12 @@ TIE_GOAL_RIGHT = _seen([(slice(33, 43), 3.0)], goal_at(Pose(0.0, 0.0, 0.0), -0.0
 #: ... and with the goal dead ahead, away from the nearest return (right or left of ahead).
 TIE_NEAREST_RIGHT = _seen([(slice(33, 43), 3.0), (slice(36, 37), 2.9)], Point(30.0, 0.0))
 TIE_NEAREST_LEFT = _seen([(slice(33, 43), 3.0), (slice(39, 40), 2.9)], Point(30.0, 0.0))
+#: Found by Hypothesis: a return 1.25 ft away, the corridor's half-width, so the guard (errata
+#: row 29) bends IFGM's first follow command 45 degrees further off the edge, turning in place.
+AT_THE_MARGIN = _seen(
+    [(slice(23, 30), 3.0), (slice(68, 69), 1.25), (slice(69, 70), 3.0)],
+    Point(8.082248181845541, -3.9594525287032356),
+)
 
 
 @pytest.mark.paper("fig3.case2", "iba.bidirectional")
@@ -447,6 +453,7 @@ TIE_NEAREST_LEFT = _seen([(slice(33, 43), 3.0), (slice(39, 40), 2.9)], Point(30.
 @example(observation=TIE_GOAL_RIGHT)
 @example(observation=TIE_NEAREST_RIGHT)
 @example(observation=TIE_NEAREST_LEFT)
+@example(observation=AT_THE_MARGIN)
 @given(
     observation=observations(scans=scans(layouts=("sides", "one side", "open")), goal_distances=FAR)
 )
@@ -455,8 +462,12 @@ def test_case2_follows_the_edge_on_the_freer_side(observation: Observation) -> N
     sensor's configuration" (section 4.1) turns towards the freer side beam (errata rows 20
     and 26): the followed obstacle is kept on the other side, and the first command already
     heads along its edge that way -- the nearest return lies on the followed side, 30 to 150
-    degrees off the heading (the tangent, corrected by at most 60 degrees)."""
-    planner, command = fresh_step(observation)
+    degrees off the heading (the tangent, corrected by at most 60 degrees). The command is
+    IFGM's decision (:meth:`IFGMPlanner.act`), before the guard, which may bend it further
+    off a return already within the corridor's margin (errata row 29, ``AT_THE_MARGIN``)."""
+    planner = IFGMPlanner()
+    planner.reset(observation.pose, observation.goal, EPISODE)
+    command = planner.act(observation)
     assume(command.branch in IBA_STARTS)
     choice = freer_follow_side(observation.scan, observation.pose, observation.goal)
     assume(choice is not None)

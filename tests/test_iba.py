@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -13,10 +14,12 @@ from hypothesis import strategies as st
 from ifgm_ref.laserscan import Beam, LaserScan
 from ifgm_ref.percepts.corridor import disc_travel
 from ifgm_ref.planners import make_planner
+from ifgm_ref.planners.boundary import EdgeFollower, guard
 from ifgm_ref.planners.edge_following import FollowSide
-from ifgm_ref.planners.iba import IBAPlanner, beam_openness, freer_side
+from ifgm_ref.planners.iba import IBAPlanner, IBARule, beam_openness, freer_side
+from ifgm_ref.planners.sight import Body, BoundaryParams, Sight
 from ifgm_ref.pose import Point, Pose, wrap_angle
-from ifgm_ref.protocol import Behaviour, Command, EpisodeParams, Observation
+from ifgm_ref.protocol import Behaviour, Command, EpisodeParams
 from ifgm_ref.scenarios import resolve_world
 from ifgm_ref.simulator import simulate
 from ifgm_ref.world import Polygon, World
@@ -102,26 +105,26 @@ def test_one_way_turning_costs_time_where_the_room_is_on_the_other_side() -> Non
     assert time_s("distbug", mirrored) == time_s("iba", mirrored)
 
 
-def _iba_seeing(points: list[tuple[float, float]]) -> IBAPlanner:
-    """An IBA planner at the origin facing +x that remembers one scan's worth of ``points``."""
-    planner = IBAPlanner()
-    planner.reset(Pose(0.0, 0.0, 0.0), Point(20.0, 0.0), EpisodeParams())
-    planner.memory._scans.append((0.0, np.array(points, dtype=float)))
-    return planner
+#: The paper's robot on its way to (20, 0) ft, as IBA plans with it.
+BODY = Body.of(Point(20.0, 0.0), EpisodeParams(), BoundaryParams.for_episode(EpisodeParams()))
+
+
+def _guarded(points: list[tuple[float, float]], command: Command, pose: Pose) -> Command:
+    """``command`` through the guard, with one scan's worth of ``points`` remembered."""
+    return guard(command, pose, BODY, np.array(points, dtype=float))
 
 
 def test_the_guard_turns_the_robot_off_an_obstacle_it_would_hit() -> None:
     """Errata row 29: a command that would sweep the disc (r 1 ft, plus the corridor margin)
     into a remembered point this step is bent to the nearest free heading."""
     pose = Pose(0.0, 0.0, 0.0)
-    ahead = _iba_seeing([(1.3, 0.0)])  # 1.3 ft ahead: the disc plus 0.25 ft would touch it
     command = Command(0.0, 1.0, behaviour=Behaviour.MOVE_TO_GOAL, branch="move_to_goal")
-    bent = ahead.guard(command, pose)
+    bent = _guarded([(1.3, 0.0)], command, pose)  # 1.3 ft ahead: the disc + 0.25 ft touch it
     assert bent.heading != 0.0 and abs(bent.heading) <= math.pi / 2
     assert (bent.behaviour, bent.branch) == (command.behaviour, command.branch)
-    assert _iba_seeing([(3.0, 0.0)]).guard(command, pose) is command  # far enough: unchanged
+    assert _guarded([(3.0, 0.0)], command, pose) is command  # far enough: unchanged
     ring = [(1.2 * math.cos(a), 1.2 * math.sin(a)) for a in np.linspace(-math.pi, math.pi, 73)]
-    stopped = _iba_seeing(ring).guard(command, pose)  # already inside the margin all round
+    stopped = _guarded(ring, command, pose)  # already inside the margin all round
     assert (stopped.heading, stopped.speed) == (0.0, 0.0)  # nothing free: turn in place
 
 
@@ -134,20 +137,20 @@ def test_the_guard_turns_the_robot_off_an_obstacle_it_would_hit() -> None:
 def test_the_guard_never_sweeps_the_disc_into_a_remembered_point(
     points: list[tuple[float, float]], heading: float, speed: float
 ) -> None:
-    planner, pose = _iba_seeing(points), Pose(0.0, 0.0, 0.0)
-    out = planner.guard(Command(heading, speed), pose)
-    turn = max(-planner.turn_limit, min(planner.turn_limit, wrap_angle(out.heading)))
-    travel = min(out.speed, planner.speed) * planner.dt
-    free = disc_travel(planner.memory.points, (0.0, 0.0), turn, planner.half_width)
+    out = _guarded(points, Command(heading, speed), Pose(0.0, 0.0, 0.0))
+    turn = max(-BODY.turn_limit, min(BODY.turn_limit, wrap_angle(out.heading)))
+    travel = min(out.speed, BODY.speed) * BODY.dt
+    free = disc_travel(np.array(points, dtype=float), (0.0, 0.0), turn, BODY.half_width)
     assert out.speed == 0.0 or travel <= free
 
 
 def test_iba_measures_progress_over_the_whole_episode() -> None:
     """Errata row 31: a later hit point farther from the goal keeps the best distance."""
-    planner = IBAPlanner()
-    planner.reset(Pose(0.0, 0.0, 0.0), Point(10.0, 0.0), EpisodeParams())
-    scan = LaserScan(-1.0, 1.0, 1.0, 0.0, 15.0, [math.inf] * 3)
+    rule, follower = IBARule(), EdgeFollower()
+    goal = Point(10.0, 0.0)
+    rule.reset(Pose(0.0, 0.0, 0.0), goal, EpisodeParams())
+    body = replace(BODY, goal=goal)
     for x in (6.0, 2.0, 7.0):
-        planner.hit_point = Point(x, 0.0)
-        planner.on_hit(Observation(0.0, Pose(x, 0.0, 0.0), Point(10.0, 0.0), scan))
-    assert planner.d_min == 3.0  # the distance at the hit point x = 7, not x = 2's 8
+        follower.start(Point(x, 0.0), FollowSide.RIGHT)
+        rule.on_hit(Sight(Pose(x, 0.0, 0.0), body, np.zeros((0, 2)), 0.0), follower)
+    assert rule.d_min == 3.0  # the distance at the hit point x = 7, not x = 2's 8

@@ -15,8 +15,10 @@ from ifgm_ref.equations import eq3_goal_angle_literal
 from ifgm_ref.paper import traces
 from ifgm_ref.percepts.clusters import Gap
 from ifgm_ref.planners.ifgm import IFGMPlanner
+from ifgm_ref.planners.ifgm_atoms import Percepts
+from ifgm_ref.planners.sight import Sight
 from ifgm_ref.pose import Point, Pose
-from ifgm_ref.protocol import Behaviour, Command, EpisodeParams, Observation
+from ifgm_ref.protocol import Behaviour, Command, EpisodeParams
 
 
 class GapAngleSignFlipped(IFGMPlanner):
@@ -44,7 +46,7 @@ class NeverLeavesEdge(IFGMPlanner):
 
     name = "ifgm-never-leaves"
 
-    def _may_leave(self, observation: Observation) -> bool:
+    def may_leave(self, sight: Sight) -> bool:
         return False
 
 
@@ -55,7 +57,7 @@ class IgnoresDObs(IFGMPlanner):
 
     def reset(self, start: Pose, goal: Point, params: EpisodeParams) -> None:
         super().reset(start, goal, params)
-        self.d_obs = 0.0
+        self.ifgm = replace(self.ifgm, d_obs=0.0)
 
 
 @traces("t1.bug_point_robot")
@@ -99,8 +101,8 @@ class NoDeadEndRule(IFGMPlanner):
 
     name = "ifgm-no-dead-end-rule"
 
-    def _dead_end(self, observation: Observation) -> Command:
-        pose = observation.pose
+    def dead_end(self, percepts: Percepts) -> Command:
+        pose = percepts.sight.pose
         return Command(pose.theta, 0.0, behaviour=Behaviour.OBSTACLE_AVOIDANCE)
 
 

@@ -27,7 +27,7 @@ from numpy.typing import NDArray
 
 from ifgm_ref.laserscan import LaserScan
 from ifgm_ref.paper import traces
-from ifgm_ref.percepts.points import scan_points
+from ifgm_ref.percepts.points import ScanPoints, scan_points
 from ifgm_ref.pose import Point, distance
 
 
@@ -112,7 +112,12 @@ def cluster_scan(scan: LaserScan, *, jump: float) -> tuple[Cluster, ...]:
     >>> [(c.first, c.last) for c in cluster_scan(scan, jump=3.0)]
     [(0, 0), (1, 2)]
     """
-    pts = scan_points(scan)
+    return cluster_points(scan_points(scan), jump)
+
+
+def cluster_points(pts: ScanPoints, jump: float) -> tuple[Cluster, ...]:
+    """Group a scan's returns (:func:`~ifgm_ref.percepts.points.scan_points`) into obstacles,
+    ordered right to left: :func:`cluster_scan` for returns already resolved."""
     if len(pts) == 0:
         return ()
     steps = np.hypot(*np.diff(pts.xy, axis=0).T)

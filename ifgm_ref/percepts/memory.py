@@ -49,7 +49,11 @@ class PerceptMemory:
 
     def add(self, t: float, pose: Pose, scan: LaserScan) -> None:
         """Remember the returns of ``scan`` taken at time ``t`` from ``pose``."""
-        self._scans.append((t, to_world(scan_points(scan).xy, pose)))
+        self.add_points(t, to_world(scan_points(scan).xy, pose))
+
+    def add_points(self, t: float, points: NDArray[np.float64]) -> None:
+        """Remember world-frame obstacle ``points`` seen at time ``t``."""
+        self._scans.append((t, points))
         while self._scans and self._scans[0][0] < t - self.horizon:
             self._scans.popleft()
         self._points = None

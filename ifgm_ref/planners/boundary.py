@@ -1,4 +1,4 @@
-"""The shared skeleton of the boundary-following planners: Bug1, Bug2, DistBug and IBA.
+"""The Bug family's skeleton, composed: an edge follower and a leaving rule.
 
 Section 2.1 of the paper: Bug algorithms have "two behaviours, *move to goal* and *obstacle
 avoidance*. In *move to goal*, initially the robot generates a reference path and follows it
@@ -6,25 +6,48 @@ until obstacle is encountered or destination is reached." In *obstacle avoidance
 the obstacle's edge until a leaving condition -- the one thing the variants disagree on --
 holds, then regenerates the reference path from where it is (section 4).
 
-A subclass chooses the side to follow (:meth:`BoundaryPlanner.choose_side`), the leaving rule
-(:meth:`BoundaryPlanner.should_leave`) and what to do when the robot comes back to the point
-where it met the obstacle (:meth:`BoundaryPlanner.on_loop_closed`).
+So a Bug planner here is a :class:`BoundaryPlanner` made of parts:
+
+* an :class:`EdgeFollower`, the *obstacle avoidance* behaviour (which side, since where, how
+  far followed);
+* a :class:`LeaveRule`: Bug1's loop (:mod:`~ifgm_ref.planners.bug1`), Bug2's m-line
+  (:mod:`~ifgm_ref.planners.bug2`), DistBug's progress (:mod:`~ifgm_ref.planners.distbug`)
+  or IBA's free path (:mod:`~ifgm_ref.planners.iba`);
+* a side choice: the Bug family's fixed one (:func:`bug_side`) or IBA's freer side;
+* :func:`guard`, which never drives into a remembered obstacle.
+
+IFGM (:mod:`~ifgm_ref.planners.ifgm`) holds the same follower and IBA's rule.
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
+from collections.abc import Callable
+from dataclasses import replace
 from typing import ClassVar
 
-from ifgm_ref.laserscan import PAPER_HALF_FOV
+import numpy as np
+from numpy.typing import NDArray
+
+from ifgm_ref.laserscan import LaserScan
 from ifgm_ref.paper import traces
-from ifgm_ref.percepts.corridor import disc_travel, free_length
+from ifgm_ref.percepts.corridor import disc_travel
 from ifgm_ref.percepts.memory import PerceptMemory
 from ifgm_ref.planners.edge_following import FollowSide, follow_heading, turn_speed
-from ifgm_ref.planners.tuning import Tuning, Unit, check_names, derived
+from ifgm_ref.planners.sight import Body, BoundaryParams, Sight
+from ifgm_ref.planners.tuning import Tuning, check_names
 from ifgm_ref.pose import Point, Pose, distance, wrap_angle
 from ifgm_ref.protocol import Behaviour, Command, EpisodeParams, Observation
+
+__all__ = [
+    "GOAL_UNREACHABLE",
+    "BoundaryParams",
+    "BoundaryPlanner",
+    "EdgeFollower",
+    "LeaveRule",
+    "bug_side",
+    "guard",
+]
 
 #: The guard's search step round a blocked heading, rad, and the number of steps each way (a
 #: right angle): coarse enough to be cheap, fine enough to find a gap the robot fits.
@@ -34,57 +57,175 @@ GUARD_STEPS = 6
 #: Stop reason of a planner that has proved the goal cannot be reached.
 GOAL_UNREACHABLE = "goal_unreachable"
 
+#: How a planner picks the side to follow an obstacle on: from the scan, the pose and the
+#: goal's bearing.
+SideChoice = Callable[[LaserScan, Pose, float], FollowSide]
 
-@dataclass(frozen=True)
-class BoundaryParams(Tuning):
-    """Tuning shared by the boundary followers; every default is a formula in the robot's
-    radius ``r`` (and the other symbols of :mod:`ifgm_ref.planners.tuning`).
 
-    Parameters
+@traces("t1.bug_unidirectional")
+def bug_side(scan: LaserScan, pose: Pose, goal_bearing: float) -> FollowSide:
+    """The Bug family turns one fixed way: left, keeping the obstacle on the right.
+
+    >>> bug_side(LaserScan(-1.0, 1.0, 1.0, 0.0, 5.0, [1.0, 1.0, 1.0]), Pose(0, 0, 0), 0.0)
+    <FollowSide.RIGHT: 'right'>
+    """
+    return FollowSide.RIGHT
+
+
+class EdgeFollower:
+    """*Obstacle avoidance* (section 2.1): keep the nearest remembered edge on :attr:`side`
+    at the stand-off, counting the distance followed since the hit point.
+
+    Attributes
     ----------
-    standoff_margin : float, default ``Max(2 r / 3, pi r / (2 fov))``
-        Free space kept between the robot's disc and the followed edge, a length: the
-        follower keeps the edge at ``radius + standoff_margin`` from the robot's centre.
-        ``2 r / 3`` with the paper's 135-degree sensor or a wider one. It was ``r`` (1 ft for
-        the paper's robot); on BARN's 200 worlds IFGM then reached the goal in 90 % of them,
-        and in 97 % with ``2 r / 3`` (the paper's IR sensor): BARN's passages are little
-        wider than the robot. A narrower sensor sees less of the edge it rounds, so the
-        margin grows as the field of view shrinks: ``r`` at 90 degrees, where ``2 r / 3``
-        swept the robot into the unseen far corner of a U's arm (errata row 29).
-    corridor_margin : float, default ``r/4``
-        The path towards the goal is tested in a corridor of half-width
-        ``radius + corridor_margin``: as wide as the robot, plus a little.
-    hit_margin : float, default ``r/2``
-        An obstacle is *encountered* when the corridor towards the goal is blocked nearer
-        than ``radius + standoff_margin + hit_margin``.
-    memory_horizon : float, default 8 s
-        How long obstacle points are remembered (:class:`PerceptMemory`), a time: long enough
-        to round the corner of an obstacle the size of the paper's, short enough to forget it
-        once passed.
-    return_radius : float, default ``r``
-        The robot is back at its hit point when this close to it ...
-    min_loop : float, default ``12 r``
-        ... after following the edge at least this far.
-    view_range : float, default ``Min(R, 15 r)``
-        How far the paper's rules look: IBA's free path must be free this far (or to the
-        goal), and IFGM's view is closed when every ray of the paper's 135-degree view
-        returns within it and a dead-end turn ends where the way ahead is free this far. The
-        paper's IR sensor sees 15 robot radii (15 ft); a longer sensor (a 30 m LiDAR in a
-        walled field) would find no path free and every view closed, so the rules look no
-        farther than the paper's sensor does (errata row 30).
+    following : bool
+        An edge is being followed.
+    side : FollowSide
+        The side the edge is kept on.
+    hit_point : Point
+        H, where the robot met the obstacle.
+    travelled : float
+        The distance followed since H.
     """
 
-    standoff_margin: float = derived("Max(2*r/3, pi*r/(2*fov))", Unit.LENGTH)
-    corridor_margin: float = derived("r/4", Unit.LENGTH)
-    hit_margin: float = derived("r/2", Unit.LENGTH)
-    memory_horizon: float = derived("8", Unit.TIME)
-    return_radius: float = derived("r", Unit.LENGTH)
-    min_loop: float = derived("12*r", Unit.LENGTH)
-    view_range: float = derived("Min(R, 15*r)", Unit.LENGTH)
+    def __init__(self) -> None:
+        self.following = False
+        self.side = FollowSide.RIGHT
+        self.hit_point = Point(0.0, 0.0)
+        self.travelled = 0.0
+        self._last = Point(0.0, 0.0)
+
+    def reset(self, start: Point) -> None:
+        """Not following, at ``start``."""
+        self.following = False
+        self._last = Point(start[0], start[1])
+
+    def track(self, here: Point) -> None:
+        """The robot is at ``here``: add the way from the last position while following."""
+        if self.following:
+            self.travelled += distance(self._last, here)
+        self._last = here
+
+    def start(self, here: Point, side: FollowSide) -> None:
+        """Start following on ``side`` from the hit point ``here``."""
+        self.following = True
+        self.hit_point = here
+        self.travelled = 0.0
+        self.side = side
+
+    def back_at_hit(self, here: Point, tuning: BoundaryParams) -> bool:
+        """Whether the robot is back at H (within ``return_radius``) after a loop of at least
+        ``min_loop``."""
+        return self.travelled >= tuning.min_loop and (
+            distance(here, self.hit_point) <= tuning.return_radius
+        )
+
+    def heading(self, sight: Sight) -> float | None:
+        """The heading that follows the nearest remembered edge, ``None`` if none is left."""
+        pose, body = sight.pose, sight.body
+        return follow_heading(
+            (pose.x, pose.y),
+            sight.points,
+            self.side,
+            standoff=body.standoff,
+            gain=1.0 / body.radius,
+        )
+
+
+class LeaveRule:
+    """When to leave the followed edge: the part of a Bug planner its variants disagree on.
+
+    The base rule never leaves, and reports the goal unreachable when the robot is back at
+    its hit point after a whole loop. A rule is reset with the episode and told of every hit
+    point (:meth:`on_hit`); :meth:`update` is called once at every later step of following.
+    """
+
+    #: The rule's own parameter classes.
+    tunings: ClassVar[tuple[type[Tuning], ...]] = ()
+    #: The trace's branch label of a departure by this rule.
+    leave_branch: ClassVar[str] = "leave"
+
+    def __init__(self) -> None:
+        #: A stop reason the rule found (Bug1's ``q_blocked``): the planner stops with it.
+        self.stop: str | None = None
+
+    def reset(self, start: Pose, goal: Point, params: EpisodeParams) -> None:
+        """A new episode from ``start`` to ``goal``."""
+        self.stop = None
+
+    def on_hit(self, sight: Sight, follower: EdgeFollower) -> None:
+        """An obstacle was met at ``follower.hit_point``."""
+
+    def update(self, sight: Sight, follower: EdgeFollower) -> bool:
+        """Advance the rule by one step of following; whether to leave here."""
+        return False
+
+    def on_loop_closed(self, sight: Sight, follower: EdgeFollower) -> str | None:
+        """Back at H after a whole loop: the branch to follow on with, or ``None`` when the
+        goal is unreachable."""
+        return None
+
+    def follow_branch(self) -> str:
+        """The trace's branch label of an ordinary following step."""
+        return "follow_edge"
+
+
+def guard(command: Command, pose: Pose, body: Body, points: NDArray[np.float64]) -> Command:
+    """``command``, or the nearest heading to it that does not bring the robot's disc nearer a
+    remembered obstacle point than the corridor margin during this step.
+
+    The robot turns by at most ``max_turn_rate * dt`` and then drives
+    (:mod:`ifgm_ref.robot`), so the disc of the corridor's half-width is swept along the
+    heading it will have. Headings are tried in :data:`GUARD_STEP` steps either side of the
+    commanded one, up to a right angle; if none is free the robot turns in place towards the
+    command. The paper's robot, keeping ``standoff_margin`` from edges at 0.13 ft a step,
+    never needs it in the paper's scenarios; a fast robot in clutter (BARN: 1 m/s, 0.22 m)
+    can be carried into an obstacle by its own limited turn rate, or follow an edge into a
+    gap narrower than itself (errata row 29).
+    """
+    if command.speed <= 0.0 or command.stop is not None:
+        return command
+    for k in range(GUARD_STEPS + 1):
+        for sign in (1, -1) if k else (1,):
+            heading = wrap_angle(command.heading + sign * k * GUARD_STEP)
+            error = wrap_angle(heading - pose.theta)
+            speed = min(command.speed, turn_speed(error, body.speed) if k else body.speed)
+            turn = max(-body.turn_limit, min(body.turn_limit, error))
+            free = disc_travel(points, (pose.x, pose.y), pose.theta + turn, body.half_width)
+            if free >= speed * body.dt:
+                return command if k == 0 else replace(command, heading=heading, speed=speed)
+    return replace(command, speed=0.0)
+
+
+def steer(heading: float, pose: Pose, body: Body, behaviour: Behaviour, branch: str) -> Command:
+    """Turn towards ``heading``, slowing with the turn still to go."""
+    return Command(
+        heading,
+        turn_speed(wrap_angle(heading - pose.theta), body.speed),
+        behaviour=behaviour,
+        branch=branch,
+    )
 
 
 class BoundaryPlanner:
-    """Move to goal; on meeting an obstacle, follow its edge until the leaving rule holds."""
+    """Move to goal; on meeting an obstacle, follow its edge until ``rule`` says leave.
+
+    Parameters
+    ----------
+    rule : LeaveRule, default the base rule (never leaves)
+        The leaving rule.
+    choose_side : SideChoice, default :func:`bug_side`
+        How the side to follow on is picked at each hit point.
+
+    Attributes
+    ----------
+    follower : EdgeFollower
+        The *obstacle avoidance* behaviour and its state.
+    memory : PerceptMemory
+        The obstacle points of the last ``memory_horizon`` seconds.
+    body : Body
+        The robot and the episode.
+    """
 
     name: ClassVar[str] = "boundary"
     #: The parameter classes the planner reads (``ifgm-ref planners`` lists their fields).
@@ -92,202 +233,91 @@ class BoundaryPlanner:
     #: The planner's parameter names.
     parameters: ClassVar[tuple[str, ...]] = BoundaryParams.names()
 
-    def __init__(self) -> None:
-        self.tuning = BoundaryParams.for_episode(EpisodeParams())
-        self.memory = PerceptMemory(self.tuning.memory_horizon)
-        self.goal = Point(0.0, 0.0)
-        self.radius = 1.0
-        self.speed = 1.0
-        self.fov = math.pi
-        self.range_max = math.inf
-        self.turn_limit = math.pi
-        self.dt = 0.1
-        self.following = False
-        self.side = FollowSide.RIGHT
-        self.hit_point = Point(0.0, 0.0)
-        self.travelled = 0.0
-        self._last = Point(0.0, 0.0)
+    def __init__(self, rule: LeaveRule | None = None, choose_side: SideChoice = bug_side) -> None:
+        self.rule = rule if rule is not None else LeaveRule()
+        self.choose_side = choose_side
+        tuning = BoundaryParams.for_episode(EpisodeParams())
+        self.body = Body.of(Point(0.0, 0.0), EpisodeParams(), tuning)
+        self.memory = PerceptMemory(tuning.memory_horizon)
+        self.follower = EdgeFollower()
 
     # -- protocol ---------------------------------------------------------------------------
     def reset(self, start: Pose, goal: Point, params: EpisodeParams) -> None:
         """Start in *move to goal* towards ``goal``; read tuning from ``params.params``
         (unknown names are an error)."""
         check_names(params.params, self.parameters, self.name)
-        self.tuning = BoundaryParams.for_episode(params)
-        self.memory = PerceptMemory(self.tuning.memory_horizon)
-        self.goal = Point(*goal)
-        self.radius = params.robot.radius
-        self.speed = params.robot.speed
-        self.fov = params.sensor.fov
-        self.range_max = params.sensor.range_max
-        self.turn_limit = params.robot.max_turn_rate * params.dt
-        self.dt = params.dt
-        self.following = False
-        self._last = Point(start[0], start[1])
+        tuning = BoundaryParams.for_episode(params)
+        self.body = Body.of(goal, params, tuning)
+        self.memory = PerceptMemory(tuning.memory_horizon)
+        self.follower.reset(Point(start[0], start[1]))
+        self.rule.reset(start, goal, params)
 
     def step(self, observation: Observation) -> Command:
-        """Decide (:meth:`act`), then never drive into a remembered obstacle (:meth:`guard`)."""
-        return self.guard(self.act(observation), observation.pose)
+        """Decide (:meth:`act`), then never drive into a remembered obstacle (:func:`guard`);
+        stop if the rule found the goal unreachable."""
+        pose = observation.pose
+        command = guard(self.act(observation), pose, self.body, self.memory.points)
+        if self.rule.stop is None:
+            return command
+        return Command(
+            pose.theta,
+            0.0,
+            behaviour=Behaviour.OBSTACLE_AVOIDANCE,
+            branch=self.rule.stop,
+            stop=GOAL_UNREACHABLE,
+        )
 
     def act(self, observation: Observation) -> Command:
-        """Remember the scan, then move to goal or follow the edge (see the class docstring)."""
-        pose = observation.pose
-        here = self.observe(observation)
-        if not self.following:
-            if not self.goal_blocked(pose):
-                return self.move_to_goal(pose, "move_to_goal")
-            self.start_following(observation)
-        elif self.should_leave(observation):
-            self.following = False
-            return self.move_to_goal(pose, "leave")
-        elif self.travelled >= self.tuning.min_loop and (
-            distance(here, self.hit_point) <= self.tuning.return_radius
-        ):
-            closed = self.on_loop_closed(observation)
-            if closed is not None:
-                return closed
-        return self.follow(pose, "follow_edge")
-
-    def guard(self, command: Command, pose: Pose) -> Command:
-        """``command``, or the nearest heading to it that does not bring the robot's disc
-        nearer a remembered obstacle point than the corridor margin during this step.
-
-        The robot turns by at most ``max_turn_rate * dt`` and then drives
-        (:mod:`ifgm_ref.robot`), so the disc of the corridor's half-width is swept along the
-        heading it will have. Headings are tried in :data:`GUARD_STEP` steps either side of
-        the commanded one, up to a right angle; if none is free the robot turns in place
-        towards the command. The paper's robot, keeping ``standoff_margin`` from edges at
-        0.13 ft a step, never needs it in the paper's scenarios; a fast robot in clutter (BARN:
-        1 m/s, 0.22 m) can be carried into an obstacle by its own limited turn rate, or
-        follow an edge into a gap narrower than itself (errata row 29).
-        """
-        if command.speed <= 0.0 or command.stop is not None:
-            return command
-        for k in range(GUARD_STEPS + 1):
-            for sign in (1, -1) if k else (1,):
-                heading = wrap_angle(command.heading + sign * k * GUARD_STEP)
-                error = wrap_angle(heading - pose.theta)
-                speed = min(command.speed, turn_speed(error, self.speed) if k else self.speed)
-                turn = max(-self.turn_limit, min(self.turn_limit, error))
-                free = disc_travel(
-                    self.memory.points, (pose.x, pose.y), pose.theta + turn, self.half_width
-                )
-                if free >= speed * self.dt:
-                    return command if k == 0 else replace(command, heading=heading, speed=speed)
-        return replace(command, speed=0.0)
-
-    # -- pieces for subclasses --------------------------------------------------------------
-    def observe(self, observation: Observation) -> Point:
-        """Remember the scan, as far as the paper's sensor sees (``view_range``), and count
-        the distance followed; return the robot's position."""
-        scan = observation.scan.limited(self.tuning.view_range)
-        self.memory.add(observation.t, observation.pose, scan)
+        """Remember the scan, then move to goal or follow the edge (see the module docstring)."""
+        sight = self.observe(observation)
+        follower, rule = self.follower, self.rule
         here = observation.pose.position
-        if self.following:
-            self.travelled += distance(self._last, here)
-        self._last = here
-        return here
+        if not follower.following:
+            if not sight.goal_blocked():
+                return self.move_to_goal(sight, "move_to_goal")
+            side = self.choose_side(observation.scan, sight.pose, sight.bearing)
+            follower.start(here, side)
+            rule.on_hit(sight, follower)
+        elif rule.update(sight, follower):
+            follower.following = False
+            return self.move_to_goal(sight, rule.leave_branch)
+        elif follower.back_at_hit(here, self.body.tuning):
+            branch = rule.on_loop_closed(sight, follower)
+            if branch is None:
+                return Command(
+                    sight.pose.theta,
+                    0.0,
+                    behaviour=Behaviour.OBSTACLE_AVOIDANCE,
+                    branch="loop_closed",
+                    stop=GOAL_UNREACHABLE,
+                )
+            return self.follow(sight, branch)
+        return self.follow(sight, rule.follow_branch())
 
-    @property
-    def standoff(self) -> float:
-        """Distance kept from the followed edge to the robot's centre."""
-        return self.radius + self.tuning.standoff_margin
-
-    @property
-    def half_width(self) -> float:
-        """Half-width of the corridor the robot needs."""
-        return self.radius + self.tuning.corridor_margin
+    # -- parts ------------------------------------------------------------------------------
+    def observe(self, observation: Observation) -> Sight:
+        """Remember the scan, as far as the paper's sensor sees (``view_range``), and count
+        the distance followed; return this step's sight of the goal."""
+        scan = observation.scan.limited(self.body.tuning.view_range)
+        self.memory.add(observation.t, observation.pose, scan)
+        self.follower.track(observation.pose.position)
+        return Sight(
+            observation.pose, self.body, self.memory.points, self.goal_bearing(observation.pose)
+        )
 
     def goal_bearing(self, pose: Pose) -> float:
         """World-frame direction from the robot to the goal, radians."""
-        return math.atan2(self.goal.y - pose.y, self.goal.x - pose.x)
+        goal = self.body.goal
+        return math.atan2(goal.y - pose.y, goal.x - pose.x)
 
-    def goal_free_length(self, pose: Pose) -> float:
-        """How far the corridor towards the goal is free of remembered obstacle points."""
-        return free_length(
-            self.memory.points, (pose.x, pose.y), self.goal_bearing(pose), self.half_width
-        )
-
-    def goal_blocked(self, pose: Pose) -> bool:
-        """Whether an obstacle stands in the corridor towards the goal, nearer than both the
-        goal and the encounter distance ``standoff + hit_margin``."""
-        reach = min(self.standoff + self.tuning.hit_margin, distance(pose, self.goal))
-        return self.goal_free_length(pose) < reach
-
-    def goal_in_view(self, pose: Pose, margin: float = math.radians(10.0)) -> bool:
-        """Whether the goal's bearing lies inside the view, ``margin`` from its edge.
-
-        The view is the field of view, but no wider than the paper's 135 degrees: a robot
-        that "sees" its goal behind it would leave the edge for a goal it must first turn
-        to, meet the same edge again and circle for ever (errata row 30)."""
-        half = min(self.fov / 2, PAPER_HALF_FOV)
-        return abs(wrap_angle(self.goal_bearing(pose) - pose.theta)) <= half - margin
-
-    def path_free(self, pose: Pose) -> bool:
-        """IBA's free path: the goal in view and its corridor clear as far as the paper's
-        sensor sees (``view_range``) or to the goal (section 4.1: "the leaving point is
-        selected based on free path")."""
-        if not self.goal_in_view(pose):
-            return False
-        needed = min(self.tuning.view_range, distance(pose, self.goal))
-        return self.goal_free_length(pose) >= needed
-
-    def start_following(self, observation: Observation) -> None:
-        """Record the hit point and pick the side to follow on."""
-        self.following = True
-        self.hit_point = observation.pose.position
-        self.travelled = 0.0
-        self.side = self.choose_side(observation)
-        self.on_hit(observation)
-
-    def move_to_goal(self, pose: Pose, branch: str) -> Command:
+    def move_to_goal(self, sight: Sight, branch: str) -> Command:
         """Head for the goal on the regenerated reference path."""
-        heading = self.goal_bearing(pose)
-        return Command(
-            heading,
-            turn_speed(wrap_angle(heading - pose.theta), self.speed),
-            behaviour=Behaviour.MOVE_TO_GOAL,
-            branch=branch,
-        )
+        return steer(sight.bearing, sight.pose, self.body, Behaviour.MOVE_TO_GOAL, branch)
 
-    def follow(self, pose: Pose, branch: str) -> Command:
-        """Follow the nearest remembered edge on :attr:`side` at the stand-off."""
-        heading = follow_heading(
-            (pose.x, pose.y),
-            self.memory.points,
-            self.side,
-            standoff=self.standoff,
-            gain=1.0 / self.radius,
-        )
+    def follow(self, sight: Sight, branch: str) -> Command:
+        """Follow the nearest remembered edge; move to goal if the edge is forgotten."""
+        heading = self.follower.heading(sight)
         if heading is None:  # the edge is forgotten: the obstacle is behind us
-            self.following = False
-            return self.move_to_goal(pose, "edge_lost")
-        return Command(
-            heading,
-            turn_speed(wrap_angle(heading - pose.theta), self.speed),
-            behaviour=Behaviour.OBSTACLE_AVOIDANCE,
-            branch=branch,
-        )
-
-    # -- hooks ------------------------------------------------------------------------------
-    @traces("t1.bug_unidirectional")
-    def choose_side(self, observation: Observation) -> FollowSide:
-        """The Bug family turns one fixed way: left, keeping the obstacle on the right."""
-        return FollowSide.RIGHT
-
-    def on_hit(self, observation: Observation) -> None:
-        """Called once when an obstacle is met (after :attr:`hit_point` is set)."""
-
-    def should_leave(self, observation: Observation) -> bool:
-        """The leaving rule; the base class never leaves."""
-        return False
-
-    def on_loop_closed(self, observation: Observation) -> Command | None:
-        """Back at the hit point after a whole loop: by default the goal is unreachable."""
-        return Command(
-            observation.pose.theta,
-            0.0,
-            behaviour=Behaviour.OBSTACLE_AVOIDANCE,
-            branch="loop_closed",
-            stop=GOAL_UNREACHABLE,
-        )
+            self.follower.following = False
+            return self.move_to_goal(sight, "edge_lost")
+        return steer(heading, sight.pose, self.body, Behaviour.OBSTACLE_AVOIDANCE, branch)

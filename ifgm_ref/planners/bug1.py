@@ -8,7 +8,8 @@ destination. The robot restarts following the edge until it reaches to the compu
 point and generates a new referenced path to destination."
 
 The three phases of one obstacle, as this planner runs them on the
-:class:`~ifgm_ref.planners.boundary.BoundaryPlanner` skeleton:
+:class:`~ifgm_ref.planners.boundary.BoundaryPlanner` skeleton, as its leaving rule
+(:class:`Bug1Rule`):
 
 1. *circumnavigate*: from the hit point H follow the edge right round the obstacle, keeping
    the point Q of least distance to the goal seen on the way, and the distance followed from
@@ -25,7 +26,7 @@ The three phases of one obstacle, as this planner runs them on the
    blocked, or if the robot meets the obstacle again right at Q, the goal cannot be reached
    (Lumelsky and Stepanov's test) and the episode stops with ``goal_unreachable``.
 
-Symbols: H (hit point, :attr:`BoundaryPlanner.hit_point`), Q (:attr:`Bug1Planner.q_point`),
+Symbols: H (hit point, :attr:`EdgeFollower.hit_point`), Q (:attr:`Bug1Rule.q_point`),
 d(x, T) (distance to the goal). The bound on the path length, ``D + 1.5 * sum(p_i)`` (D the
 start-goal distance, ``p_i`` the perimeters of the obstacles met), is checked by the tests
 with ``p_i`` the perimeter of the curve the robot can follow: the obstacle grown by the
@@ -40,10 +41,12 @@ from enum import StrEnum
 from typing import ClassVar
 
 from ifgm_ref.paper import traces
-from ifgm_ref.planners.boundary import GOAL_UNREACHABLE, BoundaryPlanner
+from ifgm_ref.planners.boundary import BoundaryPlanner, EdgeFollower, LeaveRule
 from ifgm_ref.planners.edge_following import FollowSide
+from ifgm_ref.planners.sight import BoundaryParams, Sight
+from ifgm_ref.planners.tuning import Tuning
 from ifgm_ref.pose import Point, Pose, distance
-from ifgm_ref.protocol import Behaviour, Command, EpisodeParams, Observation
+from ifgm_ref.protocol import EpisodeParams
 
 #: Slack on the distance followed to Q on the second pass, as a fraction of the loop length:
 #: the second pass starts up to ``return_radius`` before H and cuts corners a little
@@ -60,13 +63,8 @@ class Bug1Phase(StrEnum):
     LEFT_AT_Q = "left_at_q"
 
 
-@traces("bug1", "t1.bug_long_paths")
-class Bug1Planner(BoundaryPlanner):
-    """Lumelsky and Stepanov's Bug1 on the boundary-following skeleton.
-
-    Tunables (``params`` mapping of :func:`ifgm_ref.simulator.simulate`) are those of
-    :class:`~ifgm_ref.planners.boundary.BoundaryParams`; ``return_radius`` doubles as the
-    radius within which Q counts as reached.
+class Bug1Rule(LeaveRule):
+    """Bug1's leaving rule: round the whole obstacle, back to Q, leave there.
 
     Attributes
     ----------
@@ -75,13 +73,128 @@ class Bug1Planner(BoundaryPlanner):
     q_point : Point
         Q, the point nearest the goal found so far on the current obstacle.
     q_distance : float
-        d(Q, T), ft.
+        d(Q, T).
     q_travelled : float
-        Distance followed from the hit point to Q on the first pass, ft.
+        Distance followed from the hit point to Q on the first pass.
     loop_length : float
-        Length of the whole loop round the obstacle (``nan`` until it is closed), ft.
+        Length of the whole loop round the obstacle (``nan`` until it is closed).
     arc_to_q : float
-        Length of the shorter way from the loop's closure to Q (``nan`` until then), ft.
+        Length of the shorter way from the loop's closure to Q (``nan`` until then).
+    """
+
+    leave_branch: ClassVar[str] = "leave_at_q"
+
+    def __init__(self) -> None:
+        super().__init__()
+        self.phase = Bug1Phase.MOVE_TO_GOAL
+        self.q_point = Point(0.0, 0.0)
+        self.q_distance = math.inf
+        self.q_travelled = 0.0
+        self.loop_length = math.nan
+        self.arc_to_q = math.nan
+        self._closed_at = math.nan
+        self._q_gap = math.inf
+
+    def reset(self, start: Pose, goal: Point, params: EpisodeParams) -> None:
+        """Start in *move to goal*; forget any obstacle of a previous episode."""
+        super().reset(start, goal, params)
+        self.phase = Bug1Phase.MOVE_TO_GOAL
+        self.q_point = Point(start[0], start[1])
+        self.q_distance = math.inf
+        self.q_travelled = 0.0
+        self.loop_length = math.nan
+        self.arc_to_q = math.nan
+        self._closed_at = math.nan
+
+    def on_hit(self, sight: Sight, follower: EdgeFollower) -> None:
+        """Start circumnavigating from H; H is the first candidate for Q.
+
+        Meeting an obstacle again within ``return_radius`` of the Q just left means the
+        robot could not move towards the goal from Q: the goal is unreachable.
+        """
+        here = sight.pose.position
+        tuning = sight.body.tuning
+        if (
+            self.phase is Bug1Phase.LEFT_AT_Q
+            and distance(here, self.q_point) <= tuning.return_radius
+        ):
+            self.stop = "q_blocked"
+        self.phase = Bug1Phase.CIRCUMNAVIGATE
+        self.q_point = here
+        self.q_distance = sight.goal_distance
+        self.q_travelled = 0.0
+        self.loop_length = math.nan
+        self.arc_to_q = math.nan
+        self._closed_at = math.nan
+
+    def update(self, sight: Sight, follower: EdgeFollower) -> bool:
+        """On the first pass, track Q; on the second, leave at Q if the goal way is free."""
+        if self.phase is Bug1Phase.CIRCUMNAVIGATE:
+            d = sight.goal_distance
+            if d < self.q_distance:
+                self.q_point = sight.pose.position
+                self.q_distance, self.q_travelled = d, follower.travelled
+            return False
+        if self.phase is not Bug1Phase.RETURN_TO_Q or not self.at_q(sight, follower.travelled):
+            return False
+        if sight.goal_blocked():
+            self.stop = "q_blocked"
+            return False
+        self.phase = Bug1Phase.LEFT_AT_Q
+        return True
+
+    def on_loop_closed(self, sight: Sight, follower: EdgeFollower) -> str | None:
+        """Back at H after the whole loop: note its length, then follow on to Q the shorter
+        way round (turning back when Q is in the second half of the loop)."""
+        if self.phase is not Bug1Phase.CIRCUMNAVIGATE:
+            return self.follow_branch()
+        travelled = follower.travelled
+        self.loop_length = travelled + distance(sight.pose.position, follower.hit_point)
+        onwards = self.loop_length - travelled + self.q_travelled
+        back = travelled - self.q_travelled
+        if back < onwards:
+            follower.side = (
+                FollowSide.LEFT if follower.side is FollowSide.RIGHT else FollowSide.RIGHT
+            )
+        self.arc_to_q = min(onwards, back)
+        self._closed_at = travelled
+        self._q_gap = math.inf
+        self.phase = Bug1Phase.RETURN_TO_Q
+        return "loop_closed"
+
+    def follow_branch(self) -> str:
+        """The second pass is labelled ``follow_to_q`` in the trace."""
+        return "follow_to_q" if self.phase is Bug1Phase.RETURN_TO_Q else "follow_edge"
+
+    def at_q(self, sight: Sight, travelled: float) -> bool:
+        """Whether the robot, on its second pass, has reached Q.
+
+        The distance followed since the loop closed is compared with :attr:`arc_to_q`. From
+        ``ARC_SLACK_FRACTION`` of a loop (at least ``return_radius``) before it, Q is reached
+        at the closest approach: within ``return_radius`` of Q, the first sample whose
+        distance to Q is no smaller than the previous one's. That far after it, Q counts as
+        reached anyway.
+        """
+        return_radius = sight.body.tuning.return_radius
+        gap = distance(sight.pose.position, self.q_point)
+        receding = gap >= self._q_gap
+        self._q_gap = gap
+        expected = self._closed_at + self.arc_to_q
+        slack = max(return_radius, ARC_SLACK_FRACTION * self.loop_length)
+        if travelled < expected - slack:
+            return False
+        if travelled >= expected + slack:
+            return True
+        return gap <= return_radius and receding
+
+
+@traces("bug1", "t1.bug_long_paths")
+class Bug1Planner(BoundaryPlanner):
+    """Lumelsky and Stepanov's Bug1: the boundary-following skeleton with :class:`Bug1Rule`.
+
+    Tunables (``params`` mapping of :func:`ifgm_ref.simulator.simulate`) are those of
+    :class:`~ifgm_ref.planners.sight.BoundaryParams`; ``return_radius`` doubles as the
+    radius within which Q counts as reached.
 
     Examples
     --------
@@ -95,128 +208,8 @@ class Bug1Planner(BoundaryPlanner):
     """
 
     name: ClassVar[str] = "bug1"
-    parameters: ClassVar[tuple[str, ...]] = BoundaryPlanner.parameters
+    tunings: ClassVar[tuple[type[Tuning], ...]] = (BoundaryParams,)
+    parameters: ClassVar[tuple[str, ...]] = BoundaryParams.names()
 
     def __init__(self) -> None:
-        super().__init__()
-        self.phase = Bug1Phase.MOVE_TO_GOAL
-        self.q_point = Point(0.0, 0.0)
-        self.q_distance = math.inf
-        self.q_travelled = 0.0
-        self.loop_length = math.nan
-        self.arc_to_q = math.nan
-        self._closed_at = math.nan
-        self._q_gap = math.inf
-        self._stop: str | None = None
-
-    def reset(self, start: Pose, goal: Point, params: EpisodeParams) -> None:
-        """Start in *move to goal*; forget any obstacle of a previous episode."""
-        super().reset(start, goal, params)
-        self.phase = Bug1Phase.MOVE_TO_GOAL
-        self.q_point = Point(start[0], start[1])
-        self.q_distance = math.inf
-        self.q_travelled = 0.0
-        self.loop_length = math.nan
-        self.arc_to_q = math.nan
-        self._closed_at = math.nan
-        self._stop = None
-
-    def step(self, observation: Observation) -> Command:
-        """The skeleton's step, turned into a ``goal_unreachable`` stop when the way to the
-        goal is blocked at Q."""
-        command = super().step(observation)
-        if self._stop is None:
-            return command
-        return Command(
-            observation.pose.theta,
-            0.0,
-            behaviour=Behaviour.OBSTACLE_AVOIDANCE,
-            branch=self._stop,
-            stop=GOAL_UNREACHABLE,
-        )
-
-    # -- hooks ------------------------------------------------------------------------------
-    def on_hit(self, observation: Observation) -> None:
-        """Start circumnavigating from H; H is the first candidate for Q.
-
-        Meeting an obstacle again within ``return_radius`` of the Q just left means the
-        robot could not move towards the goal from Q: the goal is unreachable.
-        """
-        here = observation.pose.position
-        if (
-            self.phase is Bug1Phase.LEFT_AT_Q
-            and distance(here, self.q_point) <= self.tuning.return_radius
-        ):
-            self._stop = "q_blocked"
-        self.phase = Bug1Phase.CIRCUMNAVIGATE
-        self.q_point = here
-        self.q_distance = distance(here, self.goal)
-        self.q_travelled = 0.0
-        self.loop_length = math.nan
-        self.arc_to_q = math.nan
-        self._closed_at = math.nan
-
-    def should_leave(self, observation: Observation) -> bool:
-        """On the first pass, track Q; on the second, leave at Q if the goal way is free."""
-        pose = observation.pose
-        here = pose.position
-        if self.phase is Bug1Phase.CIRCUMNAVIGATE:
-            d = distance(here, self.goal)
-            if d < self.q_distance:
-                self.q_point, self.q_distance, self.q_travelled = here, d, self.travelled
-            return False
-        if self.phase is not Bug1Phase.RETURN_TO_Q or not self.at_q(pose):
-            return False
-        if self.goal_blocked(pose):
-            self._stop = "q_blocked"
-            return False
-        self.phase = Bug1Phase.LEFT_AT_Q
-        return True
-
-    def on_loop_closed(self, observation: Observation) -> Command | None:
-        """Back at H after the whole loop: note its length, then follow on to Q the shorter
-        way round (turning back when Q is in the second half of the loop)."""
-        if self.phase is not Bug1Phase.CIRCUMNAVIGATE:
-            return None
-        pose = observation.pose
-        self.loop_length = self.travelled + distance(pose.position, self.hit_point)
-        onwards = self.loop_length - self.travelled + self.q_travelled
-        back = self.travelled - self.q_travelled
-        if back < onwards:
-            self.side = FollowSide.LEFT if self.side is FollowSide.RIGHT else FollowSide.RIGHT
-        self.arc_to_q = min(onwards, back)
-        self._closed_at = self.travelled
-        self._q_gap = math.inf
-        self.phase = Bug1Phase.RETURN_TO_Q
-        return self.follow(pose, "loop_closed")
-
-    # -- pieces -----------------------------------------------------------------------------
-    def at_q(self, pose: Pose) -> bool:
-        """Whether the robot, on its second pass, has reached Q.
-
-        The distance followed since the loop closed is compared with :attr:`arc_to_q`. From
-        ``ARC_SLACK_FRACTION`` of a loop (at least ``return_radius``) before it, Q is reached
-        at the closest approach: within ``return_radius`` of Q, the first sample whose
-        distance to Q is no smaller than the previous one's. That far after it, Q counts as
-        reached anyway.
-        """
-        gap = distance(pose.position, self.q_point)
-        receding = gap >= self._q_gap
-        self._q_gap = gap
-        expected = self._closed_at + self.arc_to_q
-        slack = max(self.tuning.return_radius, ARC_SLACK_FRACTION * self.loop_length)
-        if self.travelled < expected - slack:
-            return False
-        if self.travelled >= expected + slack:
-            return True
-        return gap <= self.tuning.return_radius and receding
-
-    def follow(self, pose: Pose, branch: str) -> Command:
-        """Follow the edge; the second pass is labelled ``follow_to_q`` in the trace."""
-        if branch == "follow_edge" and self.phase is Bug1Phase.RETURN_TO_Q:
-            branch = "follow_to_q"
-        return super().follow(pose, branch)
-
-    def move_to_goal(self, pose: Pose, branch: str) -> Command:
-        """Head for the goal; the departure from Q is labelled ``leave_at_q``."""
-        return super().move_to_goal(pose, "leave_at_q" if branch == "leave" else branch)
+        super().__init__(Bug1Rule())

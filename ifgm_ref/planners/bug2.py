@@ -32,10 +32,11 @@ from dataclasses import dataclass
 from typing import ClassVar
 
 from ifgm_ref.paper import traces
-from ifgm_ref.planners.boundary import BoundaryParams, BoundaryPlanner
+from ifgm_ref.planners.boundary import BoundaryPlanner, EdgeFollower, LeaveRule
+from ifgm_ref.planners.sight import BoundaryParams, Sight
 from ifgm_ref.planners.tuning import Tuning, Unit, derived
 from ifgm_ref.pose import Point, Pose, distance
-from ifgm_ref.protocol import Command, EpisodeParams, Observation
+from ifgm_ref.protocol import EpisodeParams
 
 
 def signed_distance(point: tuple[float, float], start: Point, goal: Point) -> float:
@@ -57,7 +58,6 @@ def signed_distance(point: tuple[float, float], start: Point, goal: Point) -> fl
     return (ux * (point[1] - start.y) - uy * (point[0] - start.x)) / math.hypot(ux, uy)
 
 
-@traces("bug2")
 @dataclass(frozen=True)
 class Bug2Params(Tuning):
     """Bug2's own parameter.
@@ -72,11 +72,78 @@ class Bug2Params(Tuning):
     m_line_tolerance: float = derived("v*dt", Unit.LENGTH)
 
 
+class Bug2Rule(LeaveRule):
+    """Bug2's leaving rule: back on the m-line, nearer the goal than H, the goal way free.
+
+    Attributes
+    ----------
+    start : Point
+        S, the m-line's start.
+    goal : Point
+        T, the m-line's end.
+    m_line_tolerance : float
+        How near the m-line counts as on it (:class:`Bug2Params`).
+    hit_distance : float
+        d(H, T) of the current obstacle.
+    """
+
+    tunings: ClassVar[tuple[type[Tuning], ...]] = (Bug2Params,)
+    leave_branch: ClassVar[str] = "leave_on_m_line"
+
+    def __init__(self) -> None:
+        super().__init__()
+        self.start = Point(0.0, 0.0)
+        self.goal = Point(0.0, 0.0)
+        self.m_line_tolerance = 0.1
+        self.hit_distance = math.inf
+        self._side = 0.0
+
+    def reset(self, start: Pose, goal: Point, params: EpisodeParams) -> None:
+        """Store the m-line from ``start`` to ``goal`` and read ``m_line_tolerance``."""
+        super().reset(start, goal, params)
+        self.start = Point(start[0], start[1])
+        self.goal = Point(*goal)
+        self.m_line_tolerance = Bug2Params.for_episode(params).m_line_tolerance
+        self.hit_distance = math.inf
+        self._side = 0.0
+
+    def on_hit(self, sight: Sight, follower: EdgeFollower) -> None:
+        """Remember d(H, T) and which side of the m-line the robot starts following on."""
+        self.hit_distance = distance(follower.hit_point, self.goal)
+        self._side = self.m_line_offset(follower.hit_point)
+
+    def update(self, sight: Sight, follower: EdgeFollower) -> bool:
+        """Leave on the m-line, strictly nearer the goal than H, the goal way free."""
+        here = sight.pose.position
+        offset = self.m_line_offset(here)
+        crossed = offset * self._side < 0.0
+        self._side = offset
+        on_line = (abs(offset) <= self.m_line_tolerance or crossed) and self.on_segment(here)
+        if not on_line:
+            return False
+        if sight.goal_distance >= self.hit_distance - self.m_line_tolerance:
+            return False
+        return not sight.goal_blocked()
+
+    def m_line_offset(self, point: tuple[float, float]) -> float:
+        """Signed distance of ``point`` to the m-line (0 when start and goal coincide)."""
+        if distance(self.start, self.goal) == 0.0:
+            return 0.0
+        return signed_distance(point, self.start, self.goal)
+
+    def on_segment(self, point: tuple[float, float]) -> bool:
+        """Whether ``point`` projects onto the m-line between the start and the goal."""
+        ux, uy = self.goal.x - self.start.x, self.goal.y - self.start.y
+        along = ux * (point[0] - self.start.x) + uy * (point[1] - self.start.y)
+        return 0.0 <= along <= ux * ux + uy * uy
+
+
+@traces("bug2")
 class Bug2Planner(BoundaryPlanner):
-    """Lumelsky and Stepanov's Bug2 on the boundary-following skeleton.
+    """Lumelsky and Stepanov's Bug2: the boundary-following skeleton with :class:`Bug2Rule`.
 
     Parameters (``params`` mapping of :func:`ifgm_ref.simulator.simulate`): those of
-    :class:`~ifgm_ref.planners.boundary.BoundaryParams` and :class:`Bug2Params`.
+    :class:`~ifgm_ref.planners.sight.BoundaryParams` and :class:`Bug2Params`.
 
     Examples
     --------
@@ -98,54 +165,4 @@ class Bug2Planner(BoundaryPlanner):
     parameters: ClassVar[tuple[str, ...]] = (*BoundaryParams.names(), *Bug2Params.names())
 
     def __init__(self) -> None:
-        super().__init__()
-        self.start = Point(0.0, 0.0)
-        self.m_line_tolerance = 0.1
-        self.hit_distance = math.inf
-        self._side = 0.0
-
-    def reset(self, start: Pose, goal: Point, params: EpisodeParams) -> None:
-        """Store the m-line from ``start`` to ``goal`` and read ``m_line_tolerance``."""
-        super().reset(start, goal, params)
-        self.start = Point(start[0], start[1])
-        self.m_line_tolerance = Bug2Params.for_episode(params).m_line_tolerance
-        self.hit_distance = math.inf
-        self._side = 0.0
-
-    # -- hooks ------------------------------------------------------------------------------
-    def on_hit(self, observation: Observation) -> None:
-        """Remember d(H, T) and which side of the m-line the robot starts following on."""
-        self.hit_distance = distance(self.hit_point, self.goal)
-        self._side = self.m_line_offset(self.hit_point)
-
-    def should_leave(self, observation: Observation) -> bool:
-        """Leave on the m-line, strictly nearer the goal than H, the goal way free."""
-        pose = observation.pose
-        offset = self.m_line_offset(pose.position)
-        crossed = offset * self._side < 0.0
-        self._side = offset
-        on_line = (abs(offset) <= self.m_line_tolerance or crossed) and self.on_segment(
-            pose.position
-        )
-        if not on_line:
-            return False
-        if distance(pose.position, self.goal) >= self.hit_distance - self.m_line_tolerance:
-            return False
-        return not self.goal_blocked(pose)
-
-    # -- pieces -----------------------------------------------------------------------------
-    def m_line_offset(self, point: tuple[float, float]) -> float:
-        """Signed distance of ``point`` to the m-line, ft (0 when start and goal coincide)."""
-        if distance(self.start, self.goal) == 0.0:
-            return 0.0
-        return signed_distance(point, self.start, self.goal)
-
-    def on_segment(self, point: tuple[float, float]) -> bool:
-        """Whether ``point`` projects onto the m-line between the start and the goal."""
-        ux, uy = self.goal.x - self.start.x, self.goal.y - self.start.y
-        along = ux * (point[0] - self.start.x) + uy * (point[1] - self.start.y)
-        return 0.0 <= along <= ux * ux + uy * uy
-
-    def move_to_goal(self, pose: Pose, branch: str) -> Command:
-        """Head for the goal; the departure from the m-line is labelled ``leave_on_m_line``."""
-        return super().move_to_goal(pose, "leave_on_m_line" if branch == "leave" else branch)
+        super().__init__(Bug2Rule())

@@ -18,14 +18,14 @@ hit point H, with x the robot's position and T the goal,
   point of this one and the algorithm terminates.
 
 Back at H without having left, the goal is unreachable (the skeleton's loop closure, stop
-reason ``goal_unreachable``).
+reason ``goal_unreachable``). The rule is :class:`DistBugRule`; IBA's rule builds on it.
 
 Our robot is a disc that sees 135 degrees ahead, so ``F`` is adapted, and says so:
 
 * ``F = 0`` when the goal is outside the field of view (``goal_in_view`` fails): the
   sensor cannot see towards it, and nothing is known to be free;
 * ``F = d(x, T)`` when the corridor towards the goal (as wide as the robot, see
-  :meth:`~ifgm_ref.planners.boundary.BoundaryPlanner.goal_free_length`) is free up to the
+  :attr:`~ifgm_ref.planners.sight.Sight.goal_free_length`) is free up to the
   goal and the goal is within ``range_max``: T is visible;
 * otherwise ``F = min(free length, range_max) - (standoff + hit_margin)``, at least 0: the
   distance the robot can move towards T before the skeleton's hit test (an obstacle nearer
@@ -48,10 +48,11 @@ from dataclasses import dataclass
 from typing import ClassVar
 
 from ifgm_ref.paper import traces
-from ifgm_ref.planners.boundary import BoundaryParams, BoundaryPlanner
+from ifgm_ref.planners.boundary import BoundaryPlanner, EdgeFollower, LeaveRule
+from ifgm_ref.planners.sight import BoundaryParams, Sight
 from ifgm_ref.planners.tuning import Tuning, Unit, derived
 from ifgm_ref.pose import Point, Pose, distance
-from ifgm_ref.protocol import Command, EpisodeParams, Observation
+from ifgm_ref.protocol import EpisodeParams
 
 
 @dataclass(frozen=True)
@@ -68,17 +69,69 @@ class DistBugParams(Tuning):
     step_length: float = derived("2*r", Unit.LENGTH)
 
 
-@traces("distbug")
-class DistBugPlanner(BoundaryPlanner):
-    """Kamon and Rivlin's DistBug on the boundary-following skeleton.
-
-    Parameters (``params`` mapping of :func:`ifgm_ref.simulator.simulate`): those of
-    :class:`~ifgm_ref.planners.boundary.BoundaryParams` and :class:`DistBugParams`.
+class DistBugRule(LeaveRule):
+    """Kamon and Rivlin's leaving rule: ``d - F <= 0`` or ``d - F <= d_min - Step``.
 
     Attributes
     ----------
     d_min : float
-        Least distance to the goal seen while following the current obstacle, ft.
+        Least distance to the goal seen while following the current obstacle.
+    step_length : float
+        Step (:class:`DistBugParams`).
+    """
+
+    tunings: ClassVar[tuple[type[Tuning], ...]] = (DistBugParams,)
+    leave_branch: ClassVar[str] = "leave_distbug"
+
+    def __init__(self) -> None:
+        super().__init__()
+        self.step_length = 2.0
+        self.d_min = math.inf
+
+    def reset(self, start: Pose, goal: Point, params: EpisodeParams) -> None:
+        """Read ``step_length`` (default ``2 r``); no distance seen yet."""
+        super().reset(start, goal, params)
+        self.step_length = DistBugParams.for_episode(params).step_length
+        self.d_min = math.inf
+
+    def on_hit(self, sight: Sight, follower: EdgeFollower) -> None:
+        """A new obstacle: ``d_min`` starts at d(H, T)."""
+        self.d_min = distance(follower.hit_point, sight.body.goal)
+
+    def note(self, sight: Sight) -> None:
+        """Count this step's distance to the goal into ``d_min``."""
+        self.d_min = min(self.d_min, sight.goal_distance)
+
+    def update(self, sight: Sight, follower: EdgeFollower) -> bool:
+        """Note the distance (:meth:`note`), then apply the rule (:meth:`progress`)."""
+        self.note(sight)
+        return self.progress(sight)
+
+    def progress(self, sight: Sight) -> bool:
+        """Kamon and Rivlin's rule on this step's sight, with the ``d_min`` noted so far."""
+        reach = sight.goal_distance - self.free_range(sight)
+        return reach <= 0.0 or reach <= self.d_min - self.step_length
+
+    @staticmethod
+    def free_range(sight: Sight) -> float:
+        """F: how far the robot can move towards the goal, as the sensor tells (see the
+        module docstring)."""
+        if not sight.goal_in_view():
+            return 0.0
+        d = sight.goal_distance
+        free = sight.goal_free_length
+        range_max = sight.body.range_max
+        if free >= d and d <= range_max:
+            return d
+        return max(0.0, min(free, range_max) - sight.body.encounter)
+
+
+@traces("distbug")
+class DistBugPlanner(BoundaryPlanner):
+    """Kamon and Rivlin's DistBug: the boundary-following skeleton with :class:`DistBugRule`.
+
+    Parameters (``params`` mapping of :func:`ifgm_ref.simulator.simulate`): those of
+    :class:`~ifgm_ref.planners.sight.BoundaryParams` and :class:`DistBugParams`.
 
     Examples
     --------
@@ -105,45 +158,4 @@ class DistBugPlanner(BoundaryPlanner):
     parameters: ClassVar[tuple[str, ...]] = (*BoundaryParams.names(), *DistBugParams.names())
 
     def __init__(self) -> None:
-        super().__init__()
-        self.step_length = 2.0
-        self.d_min = math.inf
-
-    def reset(self, start: Pose, goal: Point, params: EpisodeParams) -> None:
-        """Start in *move to goal*; read ``step_length`` (default ``2 r``)."""
-        super().reset(start, goal, params)
-        self.step_length = DistBugParams.for_episode(params).step_length
-        self.d_min = math.inf
-
-    # -- hooks ------------------------------------------------------------------------------
-    def on_hit(self, observation: Observation) -> None:
-        """A new obstacle: ``d_min`` starts at d(H, T)."""
-        self.d_min = distance(self.hit_point, self.goal)
-
-    def should_leave(self, observation: Observation) -> bool:
-        """Kamon and Rivlin's rule: ``d - F <= 0`` or ``d - F <= d_min - Step``."""
-        pose = observation.pose
-        d = distance(pose.position, self.goal)
-        self.d_min = min(self.d_min, d)
-        reach = d - self.free_range(pose)
-        return reach <= 0.0 or reach <= self.d_min - self.step_length
-
-    # -- pieces -----------------------------------------------------------------------------
-    @property
-    def encounter(self) -> float:
-        """The skeleton's hit distance: an obstacle this near in the corridor is met, ft."""
-        return self.standoff + self.tuning.hit_margin
-
-    def free_range(self, pose: Pose) -> float:
-        """F: how far the robot can move towards the goal, as the sensor tells (see above)."""
-        if not self.goal_in_view(pose):
-            return 0.0
-        d = distance(pose.position, self.goal)
-        free = self.goal_free_length(pose)
-        if free >= d and d <= self.range_max:
-            return d
-        return max(0.0, min(free, self.range_max) - self.encounter)
-
-    def move_to_goal(self, pose: Pose, branch: str) -> Command:
-        """Head for the goal; the departure by the DistBug rule is labelled ``leave_distbug``."""
-        return super().move_to_goal(pose, "leave_distbug" if branch == "leave" else branch)
+        super().__init__(DistBugRule())

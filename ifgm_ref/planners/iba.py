@@ -8,7 +8,8 @@ changes its behaviour to *move to goal* in order to generate new reference path.
 contrast with Bug family algorithms, bidirectional mechanism is introduced in IBA using the
 sensor's configuration on the robot."
 
-So IBA is DistBug (:class:`~ifgm_ref.planners.distbug.DistBugPlanner`) with these changes:
+So IBA is DistBug (:class:`~ifgm_ref.planners.distbug.DistBugPlanner`) with these changes
+(:class:`IBARule` and :func:`freer_side`):
 
 * **bidirectional**: on meeting an obstacle the robot turns towards the freer of its left and
   right beams (ties: towards the goal's side), instead of always the same way;
@@ -31,16 +32,18 @@ Back at its hit point after a whole loop it reports the goal unreachable, as Dis
 from __future__ import annotations
 
 import math
+from typing import ClassVar
 
 import numpy as np
 
 from ifgm_ref.laserscan import Beam, LaserScan
 from ifgm_ref.paper import traces
-from ifgm_ref.planners.boundary import BoundaryPlanner
-from ifgm_ref.planners.distbug import DistBugPlanner
+from ifgm_ref.planners.boundary import BoundaryPlanner, EdgeFollower
+from ifgm_ref.planners.distbug import DistBugParams, DistBugRule
 from ifgm_ref.planners.edge_following import FollowSide
+from ifgm_ref.planners.sight import BoundaryParams, Sight
+from ifgm_ref.planners.tuning import Tuning
 from ifgm_ref.pose import Pose, distance, wrap_angle
-from ifgm_ref.protocol import Command, Observation
 
 
 def beam_openness(scan: LaserScan, beam: Beam) -> float:
@@ -85,41 +88,44 @@ def freer_side(scan: LaserScan, pose: Pose, goal_bearing: float) -> FollowSide:
     return FollowSide.RIGHT if goes_left else FollowSide.LEFT
 
 
-class IBAPlanner(DistBugPlanner):
-    """Bidirectional edge following, leaving at the first free path towards the goal (or,
-    failing that, where DistBug would)."""
+class IBARule(DistBugRule):
+    """IBA's leaving rule: the first free path towards the goal, or DistBug's progress, with
+    one ``d_min`` for the whole episode (see the module docstring)."""
 
-    name = "iba"
+    leave_branch: ClassVar[str] = "leave"
 
-    def on_hit(self, observation: Observation) -> None:
+    def on_hit(self, sight: Sight, follower: EdgeFollower) -> None:
         """A new obstacle, the same yardstick: ``d_min`` stays the least distance to the goal
         of the whole episode (DistBug restarts it at every hit point). IBA leaves by its free
         path with less promise than DistBug's ``Step``, so it may meet the next obstacle
         farther from the goal than it has been; measured from there, the next leave would
         count a return as progress, and the robot could circle an enclosure or swap between
         two walls for ever (BARN worlds; errata row 31)."""
-        self.d_min = min(self.d_min, distance(self.hit_point, self.goal))
-
-    def choose_side(self, observation: Observation) -> FollowSide:
-        """Bidirectional: turn towards the freer beam (section 4.1)."""
-        pose = observation.pose
-        return freer_side(observation.scan, pose, self.goal_bearing(pose))
+        self.d_min = min(self.d_min, distance(follower.hit_point, sight.body.goal))
 
     @traces("iba.leave_free_path", "s3.clear_path")
-    def should_leave(self, observation: Observation) -> bool:
+    def update(self, sight: Sight, follower: EdgeFollower) -> bool:
         """Leave at the first free path towards the goal (section 4.1), or where the free
         range promises progress (DistBug's rule, errata row 24)."""
-        progress = super().should_leave(observation)  # keeps d_min up to date
-        return progress or self.free_path_leads_on(observation.pose)
+        self.note(sight)
+        return self.progress(sight) or self.free_path_leads_on(sight)
 
-    def free_path_leads_on(self, pose: Pose) -> bool:
+    def free_path_leads_on(self, sight: Sight) -> bool:
         """IBA's free path, where following it as far as it is seen free would bring the robot
         at least as near the goal as it has been in this episode (``d_min``)."""
-        if not self.path_free(pose):
+        if not sight.path_free():
             return False
-        d = distance(pose.position, self.goal)
-        return d - min(self.goal_free_length(pose), self.tuning.view_range) <= self.d_min
+        view_range = sight.body.tuning.view_range
+        return sight.goal_distance - min(sight.goal_free_length, view_range) <= self.d_min
 
-    def move_to_goal(self, pose: Pose, branch: str) -> Command:
-        """Head for the goal; a departure is labelled ``leave`` whichever rule fired."""
-        return BoundaryPlanner.move_to_goal(self, pose, branch)
+
+class IBAPlanner(BoundaryPlanner):
+    """Bidirectional edge following (:func:`freer_side`), leaving at the first free path
+    towards the goal or, failing that, where DistBug would (:class:`IBARule`)."""
+
+    name: ClassVar[str] = "iba"
+    tunings: ClassVar[tuple[type[Tuning], ...]] = (BoundaryParams, DistBugParams)
+    parameters: ClassVar[tuple[str, ...]] = (*BoundaryParams.names(), *DistBugParams.names())
+
+    def __init__(self) -> None:
+        super().__init__(IBARule(), choose_side=freer_side)

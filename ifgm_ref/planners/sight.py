@@ -1,0 +1,206 @@
+"""What a boundary follower knows at one step: its body and episode, and its sight of the goal.
+
+Section 4.1 of the paper: "the robot continuously monitors the obstacles in the path toward
+destination during edge detection". Every rule of the Bug family, IBA's and IFGM's asks the
+same few questions of one step's percepts: how far the goal is, whether it is in view, how far
+the robot-wide corridor towards it is free of remembered obstacle points. :class:`Sight`
+answers each of them once per step (the corridor test is the costly one), and every rule reads
+the answer from it.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from functools import cached_property
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ifgm_ref.laserscan import PAPER_HALF_FOV
+from ifgm_ref.percepts.corridor import free_length
+from ifgm_ref.planners.tuning import Tuning, Unit, derived
+from ifgm_ref.pose import Point, Pose, distance, wrap_angle
+from ifgm_ref.protocol import EpisodeParams
+
+#: The goal counts as in view this far inside the view's edge, rad (:meth:`Sight.goal_in_view`).
+IN_VIEW_MARGIN = math.radians(10.0)
+
+
+@dataclass(frozen=True)
+class BoundaryParams(Tuning):
+    """Tuning shared by the boundary followers; every default is a formula in the robot's
+    radius ``r`` (and the other symbols of :mod:`ifgm_ref.planners.tuning`).
+
+    Parameters
+    ----------
+    standoff_margin : float, default ``Max(2 r / 3, pi r / (2 fov))``
+        Free space kept between the robot's disc and the followed edge, a length: the
+        follower keeps the edge at ``radius + standoff_margin`` from the robot's centre.
+        ``2 r / 3`` with the paper's 135-degree sensor or a wider one. It was ``r`` (1 ft for
+        the paper's robot); on BARN's 200 worlds IFGM then reached the goal in 90 % of them,
+        and in 97 % with ``2 r / 3`` (the paper's IR sensor): BARN's passages are little
+        wider than the robot. A narrower sensor sees less of the edge it rounds, so the
+        margin grows as the field of view shrinks: ``r`` at 90 degrees, where ``2 r / 3``
+        swept the robot into the unseen far corner of a U's arm (errata row 29).
+    corridor_margin : float, default ``r/4``
+        The path towards the goal is tested in a corridor of half-width
+        ``radius + corridor_margin``: as wide as the robot, plus a little.
+    hit_margin : float, default ``r/2``
+        An obstacle is *encountered* when the corridor towards the goal is blocked nearer
+        than ``radius + standoff_margin + hit_margin``.
+    memory_horizon : float, default 8 s
+        How long obstacle points are remembered (:class:`PerceptMemory`), a time: long enough
+        to round the corner of an obstacle the size of the paper's, short enough to forget it
+        once passed.
+    return_radius : float, default ``r``
+        The robot is back at its hit point when this close to it ...
+    min_loop : float, default ``12 r``
+        ... after following the edge at least this far.
+    view_range : float, default ``Min(R, 15 r)``
+        How far the paper's rules look: IBA's free path must be free this far (or to the
+        goal), and IFGM's view is closed when every ray of the paper's 135-degree view
+        returns within it and a dead-end turn ends where the way ahead is free this far. The
+        paper's IR sensor sees 15 robot radii (15 ft); a longer sensor (a 30 m LiDAR in a
+        walled field) would find no path free and every view closed, so the rules look no
+        farther than the paper's sensor does (errata row 30).
+    """
+
+    standoff_margin: float = derived("Max(2*r/3, pi*r/(2*fov))", Unit.LENGTH)
+    corridor_margin: float = derived("r/4", Unit.LENGTH)
+    hit_margin: float = derived("r/2", Unit.LENGTH)
+    memory_horizon: float = derived("8", Unit.TIME)
+    return_radius: float = derived("r", Unit.LENGTH)
+    min_loop: float = derived("12*r", Unit.LENGTH)
+    view_range: float = derived("Min(R, 15*r)", Unit.LENGTH)
+
+
+@dataclass(frozen=True)
+class Body:
+    """The robot and its episode as a boundary follower plans with them, fixed at reset.
+
+    Attributes
+    ----------
+    goal : Point
+        The destination T.
+    radius, speed : float
+        The robot's radius (a length) and top speed (length/s).
+    fov, range_max : float
+        The sensor's field of view (rad) and range (a length).
+    turn_limit : float
+        The largest turn in one step, ``max_turn_rate * dt``, rad.
+    dt : float
+        The time step, s.
+    tuning : BoundaryParams
+        The boundary followers' parameters for this episode.
+    """
+
+    goal: Point
+    radius: float
+    speed: float
+    fov: float
+    range_max: float
+    turn_limit: float
+    dt: float
+    tuning: BoundaryParams
+
+    @classmethod
+    def of(cls, goal: Point, params: EpisodeParams, tuning: BoundaryParams) -> Body:
+        """The body of an episode towards ``goal``."""
+        return cls(
+            goal=Point(*goal),
+            radius=params.robot.radius,
+            speed=params.robot.speed,
+            fov=params.sensor.fov,
+            range_max=params.sensor.range_max,
+            turn_limit=params.robot.max_turn_rate * params.dt,
+            dt=params.dt,
+            tuning=tuning,
+        )
+
+    @property
+    def standoff(self) -> float:
+        """Distance kept from the followed edge to the robot's centre."""
+        return self.radius + self.tuning.standoff_margin
+
+    @property
+    def half_width(self) -> float:
+        """Half-width of the corridor the robot needs."""
+        return self.radius + self.tuning.corridor_margin
+
+    @property
+    def encounter(self) -> float:
+        """The hit distance: an obstacle this near in the corridor is met."""
+        return self.standoff + self.tuning.hit_margin
+
+
+class Sight:
+    """One step's sight of the goal from ``pose``: each question asked once, then remembered.
+
+    Parameters
+    ----------
+    pose : Pose
+        Where the robot is.
+    body : Body
+        The robot and its episode.
+    points : (n, 2) array
+        The remembered obstacle points (:class:`~ifgm_ref.percepts.memory.PerceptMemory`).
+    bearing : float
+        The world-frame direction to the goal (the planner's reading of it), rad.
+
+    Examples
+    --------
+    >>> body = Body.of(Point(10.0, 0.0), EpisodeParams(), BoundaryParams.paper())
+    >>> sight = Sight(Pose(0.0, 0.0, 0.0), body, np.array([[4.0, 0.5]]), 0.0)
+    >>> sight.goal_distance, sight.goal_free_length, sight.goal_blocked()
+    (10.0, 4.0, False)
+    >>> sight.goal_in_view(), sight.path_free()
+    (True, False)
+    """
+
+    def __init__(self, pose: Pose, body: Body, points: NDArray[np.float64], bearing: float) -> None:
+        self.pose = pose
+        self.body = body
+        self.points = points
+        self.bearing = bearing
+
+    @cached_property
+    def goal_distance(self) -> float:
+        """The distance to the goal."""
+        return distance(self.pose, self.body.goal)
+
+    @cached_property
+    def goal_free_length(self) -> float:
+        """How far the robot-wide corridor towards the goal is free of remembered points."""
+        pose = self.pose
+        return free_length(self.points, (pose.x, pose.y), self.bearing, self.body.half_width)
+
+    @cached_property
+    def point_distances(self) -> NDArray[np.float64]:
+        """The distance from the robot to each remembered point."""
+        pose, pts = self.pose, self.points
+        return np.hypot(pts[:, 0] - pose.x, pts[:, 1] - pose.y)
+
+    def goal_blocked(self) -> bool:
+        """Whether an obstacle stands in the corridor towards the goal, nearer than both the
+        goal and the encounter distance ``standoff + hit_margin``."""
+        return self.goal_free_length < min(self.body.encounter, self.goal_distance)
+
+    def goal_in_view(self) -> bool:
+        """Whether the goal's bearing lies inside the view, :data:`IN_VIEW_MARGIN` from its
+        edge.
+
+        The view is the field of view, but no wider than the paper's 135 degrees: a robot
+        that "sees" its goal behind it would leave the edge for a goal it must first turn
+        to, meet the same edge again and circle for ever (errata row 30)."""
+        half = min(self.body.fov / 2, PAPER_HALF_FOV)
+        return abs(wrap_angle(self.bearing - self.pose.theta)) <= half - IN_VIEW_MARGIN
+
+    def path_free(self) -> bool:
+        """IBA's free path: the goal in view and its corridor clear as far as the paper's
+        sensor sees (``view_range``) or to the goal (section 4.1: "the leaving point is
+        selected based on free path")."""
+        if not self.goal_in_view():
+            return False
+        needed = min(self.body.tuning.view_range, self.goal_distance)
+        return self.goal_free_length >= needed
