@@ -445,9 +445,9 @@ def write_all(out: str | Path = "paper_figs", *, progress: bool | None = None) -
         fig = build()
         png, svg = out / f"{stem}.png", out / f"{stem}.svg"
         fig.savefig(png, dpi=110, metadata={"Software": None})
-        text = io.StringIO()
-        fig.savefig(text, format="svg", dpi=110, metadata={"Date": None})
-        svg.write_text(stable_svg_ids(text.getvalue()), encoding="utf-8")
+        svg_text = io.StringIO()
+        fig.savefig(svg_text, format="svg", dpi=110, metadata={"Date": None})
+        svg.write_text(stable_svg_ids(svg_text.getvalue()), encoding="utf-8")
         written += [png, svg]
         plt.close(fig)
     rows = reproduction_rows()

@@ -108,7 +108,7 @@ def box_polygon(pose: Pose2D, size_x: float, size_y: float) -> Polygon:
     """
     hx, hy = size_x / 2.0, size_y / 2.0
     corners = [Pose2D(dx, dy, 0.0) for dx, dy in ((-hx, -hy), (hx, -hy), (hx, hy), (-hx, hy))]
-    return Polygon([pose.compose(c)[:2] for c in corners])
+    return Polygon(tuple(pose.compose(c)[:2] for c in corners))
 
 
 def _geometry(geometry: ET.Element, pose: Pose2D, model: str, where: str) -> Obstacle | None:
@@ -172,7 +172,7 @@ def load_sdf_world(
     name: str | None = None,
     robot: RobotParams | None = None,
     sensor: SensorParams | None = None,
-    bounds: Bounds | tuple[float, float, float, float] | None = None,
+    bounds: Bounds | None = None,
 ) -> World:
     """A :class:`~ifgm_ref.world.World` from a Gazebo SDF world file.
 
@@ -185,7 +185,7 @@ def load_sdf_world(
     name : a label; default the file's stem.
     robot, sensor : the robot and sensor (default: the package defaults, sized in feet; give
         metre-sized ones for a Gazebo world).
-    bounds : an arena ``(xmin, ymin, xmax, ymax)``, or ``None`` for the unbounded plane.
+    bounds : an arena ``Bounds(xmin, ymin, xmax, ymax)``, or ``None`` for the unbounded plane.
 
     Raises
     ------
@@ -206,7 +206,7 @@ def load_sdf_world(
         raise WorldError(f"{file}: no obstacles (no static model with collision geometry)")
     try:
         return World(
-            start=start, goal=goal, obstacles=obstacles, bounds=bounds,
+            start=start, goal=goal, obstacles=tuple(obstacles), bounds=bounds,
             robot=robot or RobotParams(), sensor=sensor or SensorParams(),
             name=file.stem if name is None else name,
         )  # fmt: skip

@@ -11,6 +11,7 @@ import math
 from collections import Counter
 from collections.abc import Sequence
 from pathlib import Path
+from typing import TypedDict
 
 import matplotlib
 
@@ -25,6 +26,7 @@ from matplotlib.figure import Figure
 from matplotlib.patches import Circle as CirclePatch
 from matplotlib.patches import Polygon as PolygonPatch
 from matplotlib.patches import Wedge
+from numpy.typing import NDArray
 from tqdm import tqdm
 
 from ifgm_ref.sensor import IRSensor
@@ -41,8 +43,24 @@ MAX_FRAMES = 120
 #: A path label (behaviour or branch) drawn along less than this share of the path's length
 #: is marked where each of its runs begins: a line that short cannot be seen.
 RARE_SHARE = 0.05
+
+
+class MarkerStyle(TypedDict, total=False):
+    """Marker keywords of a matplotlib line (``Axes.plot``); none given: no marker."""
+
+    marker: str
+    markersize: float
+    markeredgecolor: str
+    markeredgewidth: float
+
+
 #: How those runs are marked: a diamond twice as large as a behaviour switch's circle.
-RARE_MARKER = {"marker": "D", "markersize": 7, "markeredgecolor": "black", "markeredgewidth": 0.6}
+RARE_MARKER: MarkerStyle = {
+    "marker": "D",
+    "markersize": 7,
+    "markeredgecolor": "black",
+    "markeredgewidth": 0.6,
+}
 
 
 def draw_world(ax: Axes, world: World) -> None:
@@ -87,7 +105,7 @@ def _colours(labels: Sequence[str], *, by_frequency: bool) -> dict[str, str]:
     return colours
 
 
-def _run_starts(mask: np.ndarray) -> np.ndarray:
+def _run_starts(mask: NDArray[np.bool_]) -> NDArray[np.intp]:
     """Indices where a run of ``True`` in ``mask`` begins."""
     return np.flatnonzero(mask & ~np.concatenate([[False], mask[:-1]]))
 
@@ -136,7 +154,7 @@ def draw_path(
                 color=colour,
                 linewidth=2.0,
                 label=f"{name} ({steps} step{'s' if steps > 1 else ''})",
-                **(RARE_MARKER if rare else {}),
+                **(RARE_MARKER if rare else MarkerStyle()),
             )
     switches = switch_indices(trace)
     if switches:

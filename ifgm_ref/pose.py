@@ -6,7 +6,7 @@ Lengths are in feet, angles in radians, as everywhere in this package.
 from __future__ import annotations
 
 import math
-from typing import NamedTuple
+from typing import NamedTuple, TypeAlias
 
 
 class Point(NamedTuple):
@@ -44,10 +44,17 @@ def wrap_angle(angle: float) -> float:
     return (angle + math.pi) % (2.0 * math.pi) - math.pi
 
 
-def distance(a: tuple[float, float], b: tuple[float, float]) -> float:
-    """Euclidean distance between two points given as ``(x, y)``.
+#: A position as a tuple whose first two fields are ``x`` and ``y``: a :class:`Point`, a
+#: :class:`Pose` (its heading not read) or a plain ``(x, y)`` pair.
+PointLike: TypeAlias = tuple[float, float, *tuple[float, ...]]
+
+
+def distance(a: PointLike, b: PointLike) -> float:
+    """Euclidean distance between two positions given as ``(x, y, ...)``.
 
     >>> distance((0.0, 0.0), (3.0, 4.0))
+    5.0
+    >>> distance(Pose(0.0, 0.0, 1.0), Point(3.0, 4.0))  # a pose's heading is not read
     5.0
     """
     return math.hypot(b[0] - a[0], b[1] - a[1])

@@ -93,9 +93,16 @@ class Command:
 
 @runtime_checkable
 class Planner(Protocol):
-    """What every planner implements (built-in ones and the oracle's implementations)."""
+    """What every planner implements (built-in ones and the oracle's implementations).
 
-    name: str
+    ``name`` is read-only here, so that a class constant (``name: ClassVar[str] = "ifgm"``, as
+    the built-in planners have), an instance attribute or a property all satisfy it.
+    """
+
+    @property
+    def name(self) -> str:
+        """The planner's name in results and reports."""
+        ...
 
     def reset(self, start: Pose, goal: Point, params: EpisodeParams) -> None:
         """Start a new episode from ``start`` towards ``goal``."""

@@ -297,7 +297,7 @@ class RayCaster:
         q = np.subtract(s_b, s_a, out=s_b)
         q /= cross_ab[:, None]
         q *= crossing
-        out = q.max(axis=0, initial=self._q_floor)
+        out: NDArray[np.float64] = q.max(axis=0, initial=self._q_floor)
         if along is not None:
             np.maximum(out, along, out=out)
         return out
@@ -340,7 +340,8 @@ def dot2(a: NDArray[np.float64], b: NDArray[np.float64]) -> NDArray[np.float64]:
     >>> dot2(a, b).tolist() == (a @ b).tolist()
     True
     """
-    return a[:, :1] * b[0] + a[:, 1:] * b[1]
+    out: NDArray[np.float64] = a[:, :1] * b[0] + a[:, 1:] * b[1]
+    return out
 
 
 def _as_array(name: str, value: ArrayLike, shape: tuple[int, ...]) -> NDArray[np.float64]:
@@ -368,7 +369,8 @@ def _along_edge_inverse_distances(
     ahead = dot2(ends.T, rows[1:])
     on_ray = (side == 0.0) & (ahead > 0.0)
     inv = np.divide(1.0, ahead, out=np.zeros_like(ahead), where=on_ray)
-    return inv.max(axis=0)
+    nearest: NDArray[np.float64] = inv.max(axis=0)
+    return nearest
 
 
 def cast_rays(

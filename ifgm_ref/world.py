@@ -46,7 +46,7 @@ from numpy.typing import NDArray
 
 from ifgm_ref.errors import WorldError
 from ifgm_ref.params import RobotParams, SensorParams
-from ifgm_ref.pose import Point, Pose
+from ifgm_ref.pose import Point, PointLike, Pose
 
 _SHORT = reprlib.Repr()
 _SHORT.maxlist = _SHORT.maxtuple = 8
@@ -109,8 +109,9 @@ class Bounds(NamedTuple):
     xmax: float
     ymax: float
 
-    def contains(self, point: tuple[float, float]) -> bool:
-        """Whether ``point`` lies in the closed rectangle.
+    def contains(self, point: PointLike) -> bool:
+        """Whether ``point`` (a position, or a pose: its heading not read) lies in the closed
+        rectangle.
 
         >>> Bounds(0.0, 0.0, 10.0, 5.0).contains((10.0, 5.0))
         True
@@ -165,7 +166,7 @@ class Circle:
         object.__setattr__(self, "radius", radius)
 
     @property
-    def geometry(self) -> shapely.Geometry:
+    def geometry(self) -> shapely.Polygon:
         """The exact disc as far as shapely allows (a fine polygon; use for plots only)."""
         return shapely.Point(self.center).buffer(self.radius, quad_segs=64)
 

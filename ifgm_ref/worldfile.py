@@ -201,9 +201,9 @@ def world_from_dict(data: object, *, source: str = "<dict>") -> World:
         raw_obstacles = []
     if not isinstance(raw_obstacles, list):
         raise WorldError(f"{source}: obstacles: must be an array, got {_json_type(raw_obstacles)}")
-    obstacles = [
+    obstacles = tuple(
         _obstacle(entry, f"{source}: obstacles[{i}]") for i, entry in enumerate(raw_obstacles)
-    ]
+    )
     robot = _block(RobotParams, data.get("robot"), "robot", source)
     sensor = _block(SensorParams, data.get("sensor"), "sensor", source)
     try:

@@ -27,7 +27,7 @@ import numpy as np
 
 from ifgm_ref.errors import ParameterError, WorldError
 from ifgm_ref.gazebo import load_sdf_world
-from ifgm_ref.params import SENSOR_PRESETS, RobotParams, SensorParams, SimParams
+from ifgm_ref.params import SENSOR_PRESETS, RobotParams, SensorParams, SimParams, paper_ir
 from ifgm_ref.pose import Point, Pose
 from ifgm_ref.world import World
 
@@ -61,7 +61,7 @@ def barn_sensor(name: str = DEFAULT_SENSOR) -> SensorParams:
     sensor scaled to the 0.22 m robot: ``paper_ir(0.22)``, as the paper's robot is a 1 ft
     disc)."""
     if name == "paper_ir":
-        return SENSOR_PRESETS["paper_ir"](ROBOT.radius)
+        return paper_ir(ROBOT.radius)
     if name in SENSOR_PRESETS:
         return SENSOR_PRESETS[name]()
     raise ParameterError(f"unknown sensor {name!r}; known: {', '.join(SENSOR_PRESETS)}")
@@ -159,10 +159,10 @@ def find_barn_worlds(
     for index in sorted(found):
         name = f"path_{index}.npy"
         candidates = (where / name, where / "path_files" / name)
-        path = next((p for p in candidates if p.is_file()), None)
-        if path is None:
+        path_file = next((p for p in candidates if p.is_file()), None)
+        if path_file is None:
             raise WorldError(f"{found[index]}: no path file {name} beside it or in path_files/")
-        out.append(BarnFiles(index, found[index], path))
+        out.append(BarnFiles(index, found[index], path_file))
     return out
 
 

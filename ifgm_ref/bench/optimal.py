@@ -30,10 +30,14 @@ A disc of radius 2 halfway along 20 ft, robot radius 1: two tangents of length
 
 from __future__ import annotations
 
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
+from typing import Protocol
 
 import numpy as np
 import shapely
+from numpy.typing import NDArray
+from shapely.geometry.base import BaseGeometry
 from shapely.geometry.polygon import orient
 
 from ifgm_ref.errors import ParameterError, WorldError
@@ -67,7 +71,27 @@ class OptimalPath:
     waypoints: tuple[Point, ...]
 
 
-def require_pathfinder() -> type:
+class PathEnvironment(Protocol):
+    """The part of extremitypathfinder's ``PolygonEnvironment`` used here (it has no types).
+
+    Coordinates are ``(n, 2)`` arrays in ft, the boundary counter-clockwise and the holes
+    clockwise; a path is its corners from start to goal and its length, ``None`` (with no
+    corners) when none exists.
+    """
+
+    def store(
+        self,
+        boundary_coordinates: NDArray[np.float64],
+        list_of_hole_coordinates: Sequence[NDArray[np.float64]],
+        validate: bool = False,
+    ) -> None: ...
+
+    def find_shortest_path(
+        self, start_coordinates: tuple[float, float], goal_coordinates: tuple[float, float]
+    ) -> tuple[list[tuple[float, float]], float | None]: ...
+
+
+def require_pathfinder() -> Callable[[], PathEnvironment]:
     """extremitypathfinder's ``PolygonEnvironment``, or a :class:`ParameterError` saying how
     to install it (it is the optional extra ``ifgm-ref[bench]``)."""
     try:
@@ -76,7 +100,8 @@ def require_pathfinder() -> type:
         raise ParameterError(
             "the benchmark needs extremitypathfinder: pip install 'ifgm-ref[bench]'"
         ) from None
-    return PolygonEnvironment
+    environment: Callable[[], PathEnvironment] = PolygonEnvironment
+    return environment
 
 
 def inflated(obstacle: Obstacle, radius: float, quad_segs: int = QUAD_SEGS) -> shapely.Polygon:
@@ -88,7 +113,7 @@ def inflated(obstacle: Obstacle, radius: float, quad_segs: int = QUAD_SEGS) -> s
 
 def configuration_space(
     world: World, quad_segs: int = QUAD_SEGS
-) -> tuple[shapely.Polygon, shapely.Geometry]:
+) -> tuple[shapely.Polygon, BaseGeometry]:
     """The box the robot's centre must stay in, and the obstacles inflated by the robot radius
     (their union) it must stay out of.
 
@@ -106,7 +131,7 @@ def configuration_space(
     return box, blocked
 
 
-def _parts(geometry: shapely.Geometry) -> list[shapely.Polygon]:
+def _parts(geometry: BaseGeometry) -> list[shapely.Polygon]:
     return list(getattr(geometry, "geoms", [geometry])) if not geometry.is_empty else []
 
 
