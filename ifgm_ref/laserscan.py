@@ -19,6 +19,7 @@ on a narrower one each beam holds the part of it the sensor covers (errata row 3
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 from enum import StrEnum
@@ -60,6 +61,32 @@ def beam_of(angle: float) -> Beam | None:
     if angle < -FRONT_HALF_WIDTH - BORDER_TOLERANCE:
         return Beam.RIGHT
     return Beam.FRONT
+
+
+@functools.lru_cache(maxsize=32)
+def _ray_angles(angle_min: float, angle_increment: float, rays: int) -> NDArray[np.float64]:
+    """The ray angles of a sensor, computed once per sensor (read-only)."""
+    angles = angle_min + angle_increment * np.arange(rays)
+    angles.setflags(write=False)
+    return angles
+
+
+@functools.lru_cache(maxsize=96)
+def _beam_mask(
+    angle_min: float, angle_increment: float, rays: int, beam: Beam
+) -> NDArray[np.bool_]:
+    """Which rays of a sensor belong to ``beam``, computed once per sensor (read-only)."""
+    angles = _ray_angles(angle_min, angle_increment, rays)
+    border = FRONT_HALF_WIDTH + BORDER_TOLERANCE
+    outer = PAPER_HALF_FOV + BORDER_TOLERANCE
+    if beam is Beam.LEFT:
+        mask = (angles > border) & (angles <= outer)
+    elif beam is Beam.RIGHT:
+        mask = (angles < -border) & (angles >= -outer)
+    else:
+        mask = np.abs(angles) <= border
+    mask.setflags(write=False)
+    return mask
 
 
 @dataclass(frozen=True, eq=False)
@@ -110,8 +137,9 @@ class LaserScan:
 
     @property
     def angles(self) -> NDArray[np.float64]:
-        """Robot-frame angle of every ray, radians (``angle_min`` to ``angle_max`` inclusive)."""
-        return self.angle_min + self.angle_increment * np.arange(len(self.ranges))
+        """Robot-frame angle of every ray, radians (``angle_min`` to ``angle_max`` inclusive);
+        read-only, shared by every scan of the same sensor."""
+        return _ray_angles(self.angle_min, self.angle_increment, len(self.ranges))
 
     @property
     def beams(self) -> tuple[Beam | None, ...]:
@@ -125,14 +153,7 @@ class LaserScan:
         >>> scan.beam_mask(Beam.LEFT).tolist(), scan.beam_mask(Beam.FRONT).tolist()
         ([False, False, False, True, True], [False, False, True, False, False])
         """
-        angles = self.angles
-        border = FRONT_HALF_WIDTH + BORDER_TOLERANCE
-        outer = PAPER_HALF_FOV + BORDER_TOLERANCE
-        if beam is Beam.LEFT:
-            return (angles > border) & (angles <= outer)
-        if beam is Beam.RIGHT:
-            return (angles < -border) & (angles >= -outer)
-        return np.abs(angles) <= border
+        return _beam_mask(self.angle_min, self.angle_increment, len(self.ranges), beam)
 
     def limited(self, range_max: float) -> LaserScan:
         """The scan of a sensor that sees no farther than ``range_max``: returns beyond it

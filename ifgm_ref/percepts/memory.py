@@ -39,29 +39,47 @@ class PerceptMemory:
 
     def __init__(self, horizon: float) -> None:
         self.horizon = horizon
-        self._scans: deque[tuple[float, NDArray[np.float64]]] = deque()
-        self._points: NDArray[np.float64] | None = None
+        #: Each remembered scan's time and number of points, oldest first.
+        self._scans: deque[tuple[float, int]] = deque()
+        #: The points, oldest first, are ``_buffer[_start:_end]``; new ones go after them.
+        self._buffer = np.zeros((0, 2))
+        self._start = 0
+        self._end = 0
 
     def clear(self) -> None:
         """Forget everything."""
         self._scans.clear()
-        self._points = None
+        self._start = self._end = 0
 
     def add(self, t: float, pose: Pose, scan: LaserScan) -> None:
         """Remember the returns of ``scan`` taken at time ``t`` from ``pose``."""
         self.add_points(t, to_world(scan_points(scan).xy, pose))
 
     def add_points(self, t: float, points: NDArray[np.float64]) -> None:
-        """Remember world-frame obstacle ``points`` seen at time ``t``."""
-        self._scans.append((t, points))
+        """Remember world-frame obstacle ``points`` seen at time ``t``; forget those seen
+        more than ``horizon`` seconds before it."""
+        n = len(points)
+        if self._end + n > len(self._buffer):
+            self._make_room(n)
+        self._buffer[self._end : self._end + n] = points
+        self._end += n
+        self._scans.append((t, n))
         while self._scans and self._scans[0][0] < t - self.horizon:
-            self._scans.popleft()
-        self._points = None
+            self._start += self._scans.popleft()[1]
+
+    def _make_room(self, n: int) -> None:
+        """A new buffer with the remembered points at its start and room for twice as many
+        again as they and ``n`` more take (earlier :attr:`points` stay valid: the old buffer
+        is left as it was)."""
+        live = self._buffer[self._start : self._end]
+        buffer = np.empty((max(64, 2 * (len(live) + n)), 2))
+        buffer[: len(live)] = live
+        self._buffer, self._start, self._end = buffer, 0, len(live)
 
     @property
     def points(self) -> NDArray[np.float64]:
-        """Every remembered point, oldest first, an ``(n, 2)`` array."""
-        if self._points is None:
-            parts = [pts for _, pts in self._scans]
-            self._points = np.concatenate(parts) if parts else np.zeros((0, 2))
-        return self._points
+        """Every remembered point, oldest first, an ``(n, 2)`` read-only array (a view that
+        later additions leave unchanged)."""
+        points = self._buffer[self._start : self._end]
+        points.flags.writeable = False
+        return points

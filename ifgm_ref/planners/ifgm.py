@@ -198,7 +198,7 @@ class IFGMPlanner:
         try:  # the flowchart reads the paper's 135-degree view of the scan
             LaserScan(
                 -sensor.fov / 2, sensor.fov / 2, sensor.angle_increment, 0.0, 1.0,
-                [math.inf] * sensor.rays,
+                np.full(sensor.rays, math.inf),
             ).window()  # fmt: skip
         except ValueError as err:
             raise ParameterError(f"IFGM reads the paper's 135-degree view: {err}") from None
@@ -239,15 +239,9 @@ class IFGMPlanner:
         sight = Sight(pose, self.body, self.memory.points, self.goal_bearing(pose))
         may_leave = False
         if self.state.mode is Mode.FOLLOWING:
-            state = self.state
-            tracked = (
-                nearest_remembered(sight, state.followed, self.ifgm.jump)
-                if state.followed
-                else None
-            )
-            self.state = replace(
-                state, followed=tracked or nearest_remembered(sight, None, self.ifgm.jump)
-            )
+            tracked = self._track(sight, self.state.followed)
+            if tracked != self.state.followed:
+                self.state = replace(self.state, followed=tracked)
             self.iba.note(sight)
             may_leave = self.may_leave(sight)
         return Percepts(
@@ -274,7 +268,9 @@ class IFGMPlanner:
         """Decide with Figure 3, then act on the branch."""
         percepts = self.perceive(observation)
         reading = read(percepts, self.state)
-        self.state = replace(self.state, gap_mid=reading.gap_mid, short_look=reading.short_look)
+        state = self.state
+        if (reading.gap_mid, reading.short_look) != (state.gap_mid, state.short_look):
+            self.state = replace(state, gap_mid=reading.gap_mid, short_look=reading.short_look)
         self.last_atoms, self.last_gap = reading.atoms, reading.gap
         branch = self.last_branch = decide(reading.atoms)
         sight = percepts.sight
@@ -283,7 +279,8 @@ class IFGMPlanner:
             speed = min(self.body.speed, sight.goal_distance / self.body.dt)
             return Command(sight.bearing, speed, behaviour=Behaviour.MOVE_TO_GOAL, branch=branch)
         if branch is Branch.MOVE_TO_GOAL:
-            self.state = replace(self.state, mode=Mode.MOVE_TO_GOAL)
+            if self.state.mode is not Mode.MOVE_TO_GOAL:
+                self.state = replace(self.state, mode=Mode.MOVE_TO_GOAL)
             return self._steer(sight.bearing, pose, Behaviour.MOVE_TO_GOAL, branch)
         if branch is Branch.PATH_REGENERATED:
             # Left by the progress rule, with an obstacle still ahead: meet it at IBA's short
