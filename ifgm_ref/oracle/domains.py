@@ -234,13 +234,14 @@ def _finite(low: float, high: float) -> st.SearchStrategy[float]:
 def inputs(equation: str, args: tuple[str, ...] | None = None) -> st.SearchStrategy[dict[str, Any]]:
     """The Hypothesis strategy of keyword arguments of ``equation`` drawn from its domain.
 
-    ``args`` picks some of the arguments (a printed form takes fewer: no ``heading``);
-    points are tuples. Draws may hit the domain's singular points (``EquationDomain.singular``).
+    ``args`` picks some of the arguments (a printed form takes fewer: no ``heading``), in
+    their order; points are tuples. Draws may hit the domain's singular points
+    (``EquationDomain.singular``).
     """
     domain = DOMAINS[equation]
     names = args if args is not None else tuple(a.name for a in domain.arguments)
-    chosen = {name: _argument(domain.argument(name)) for name in names}
-    return st.fixed_dictionaries(chosen)
+    values = st.tuples(*(_argument(domain.argument(name)) for name in names))
+    return values.map(lambda drawn: dict(zip(names, drawn, strict=True)))
 
 
 def _argument(argument: Argument) -> st.SearchStrategy[Any]:
