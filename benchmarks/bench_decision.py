@@ -77,11 +77,11 @@ from numpy.typing import NDArray
 import ifgm_ref
 from ifgm_ref.bench.report import machine
 from ifgm_ref.laserscan import LaserScan
-from ifgm_ref.oracle.recording import RecordingPlanner
+from ifgm_ref.oracle.recording import Recording, RecordingPlanner
+from ifgm_ref.oracle.recording import replay as replay_recording
 from ifgm_ref.params import SimParams
 from ifgm_ref.planners import make_planner
-from ifgm_ref.pose import Point, Pose
-from ifgm_ref.protocol import Command, EpisodeParams, Observation, Planner
+from ifgm_ref.protocol import Command, Observation, Planner
 from ifgm_ref.scenarios import resolve_world
 from ifgm_ref.simulator import simulate
 
@@ -152,11 +152,15 @@ class McuModel:
 
 @dataclass(frozen=True)
 class Episode:
-    """One recorded episode: the reset and every (observation, command) exchanged."""
+    """One recorded episode: its world, and the reset and every (observation, command)."""
 
     world: str
-    reset_args: tuple[Pose, Point, EpisodeParams]
-    steps: tuple[tuple[Observation, Command], ...]
+    recording: Recording
+
+    @property
+    def steps(self) -> tuple[tuple[Observation, Command], ...]:
+        """Every (observation, command) exchanged, in order."""
+        return self.recording.steps
 
 
 class OpCount(NamedTuple):
@@ -194,8 +198,7 @@ def record(planner: str, world: str, max_time: float) -> Episode:
     and keep it all."""
     recorder = RecordingPlanner(make_planner(planner))
     simulate(resolve_world(world), recorder, SimParams(max_time=max_time, stall_time=None))
-    assert recorder.reset_args is not None
-    return Episode(world, recorder.reset_args, tuple(recorder.steps))
+    return Episode(world, recorder.recording())
 
 
 def replay(
@@ -204,17 +207,16 @@ def replay(
     step: Callable[[Planner, Observation], Command],
     swap: Callable[[Observation], Observation] | None = None,
 ) -> None:
-    """Replay ``episodes`` into fresh planners, deciding each step by ``step(planner,
-    observation)``; check that every command equals the recorded one. ``swap`` may replace
-    the observations handed over (prepared before the episode starts)."""
+    """Replay ``episodes`` into fresh planners (:func:`ifgm_ref.oracle.recording.replay`),
+    deciding each step by ``step(planner, observation)``; check that every command equals the
+    recorded one. ``swap`` may replace the observations handed over (prepared before the
+    episode starts)."""
     for episode in episodes:
-        fresh = make_planner(planner)
-        fresh.reset(*episode.reset_args)
-        observations = [obs if swap is None else swap(obs) for obs, _ in episode.steps]
-        for k, (observation, (_, recorded)) in enumerate(
-            zip(observations, episode.steps, strict=True)
-        ):
-            command = step(fresh, observation)
+        observations = None if swap is None else [swap(obs) for obs, _ in episode.steps]
+        replayed = replay_recording(
+            episode.recording, make_planner(planner), step=step, observations=observations
+        )
+        for k, (_, recorded, command) in enumerate(replayed):
             assert command == recorded, (
                 f"{planner} in {episode.world}, step {k}: command={command}, but should be "
                 f"{recorded} (the recorded one)"
@@ -381,7 +383,19 @@ def counting_observation(observation: Observation) -> Observation:
 
 
 def count_operations(name: str, episodes: Sequence[Episode], every: int) -> list[OpCount]:
-    """Count what every ``every``-th decision of planner ``name`` executes (see the docstring)."""
+    """Count what every ``every``-th decision of planner ``name`` executes (see the docstring):
+    one replay traces bytecodes and ``math`` calls on plain scans, a second counts array
+    elements on counting scans."""
+    traced = _trace_bytecodes(name, episodes, every)
+    counted = _count_elements(name, episodes, every)
+    return [OpCount(*a, *b) for a, b in zip(traced, counted, strict=True)]
+
+
+def _trace_bytecodes(
+    name: str, episodes: Sequence[Episode], every: int
+) -> list[tuple[int, int, int, int]]:
+    """Own and other bytecodes, all and transcendental ``math`` calls, of every ``every``-th
+    decision."""
     bytecodes = [0, 0]  # own, other
     maths = [0, 0]  # all math calls, transcendental ones
 
@@ -404,7 +418,6 @@ def count_operations(name: str, episodes: Sequence[Episode], every: int) -> list
             maths[0] += 1
             maths[1] += arg.__name__ in MATH_TRANSCENDENTAL
 
-    # Pass 1: bytecodes and math calls, on plain scans.
     traced: list[tuple[int, int, int, int]] = []
     decisions = 0
 
@@ -425,8 +438,14 @@ def count_operations(name: str, episodes: Sequence[Episode], every: int) -> list
         return command
 
     replay(name, episodes, trace)
+    return traced
 
-    # Pass 2: array elements, on counting scans; and how much is seen and remembered.
+
+def _count_elements(
+    name: str, episodes: Sequence[Episode], every: int
+) -> list[tuple[int, int, int, int, int]]:
+    """Array operations, elements and transcendental elements, returns and remembered points
+    of every ``every``-th decision."""
     counted: list[tuple[int, int, int, int, int]] = []
     decisions = 0
 
@@ -450,7 +469,7 @@ def count_operations(name: str, episodes: Sequence[Episode], every: int) -> list
         return command
 
     replay(name, episodes, count, counting_observation)
-    return [OpCount(*a, *b) for a, b in zip(traced, counted, strict=True)]
+    return counted
 
 
 def _median_max(values: Iterable[int]) -> str:
@@ -468,8 +487,7 @@ def _short(value: float) -> str:
     return f"{value:.2g}" if value < 100 else f"{value:.0f}"
 
 
-def main(argv: Sequence[str] | None = None) -> int:
-    """Record, time and count the decisions of the planners; print the report."""
+def _arguments(argv: Sequence[str] | None) -> argparse.Namespace:
     parser = argparse.ArgumentParser(description=__doc__.split("\n", 1)[0])
     parser.add_argument("--planners", nargs="+", default=PLANNERS, help="planners (%(default)s)")
     parser.add_argument("--worlds", nargs="+", default=WORLDS, help="built-in worlds (%(default)s)")
@@ -478,8 +496,13 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser.add_argument(
         "--count-every", type=int, default=5, help="count the ops of every N-th decision (5)"
     )
-    args = parser.parse_args(argv)
-    mcu, dt = McuModel(), SimParams().dt
+    return parser.parse_args(argv)
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Record, time and count the decisions of the planners; print the report."""
+    args = _arguments(argv)
+    dt = SimParams().dt
     print(f"machine: {machine()}")
     episodes = {
         name: [record(name, world, args.max_time) for world in args.worlds]
@@ -492,38 +515,45 @@ def main(argv: Sequence[str] | None = None) -> int:
     )
     ops = {name: count_operations(name, episodes[name], args.count_every) for name in args.planners}
     timings = time_decisions(args.planners, episodes, args.repeats)
+    _print_timings(timings, episodes)
+    _print_counts(ops, args.count_every)
+    _print_estimate(ops, McuModel(), dt)
+    return 0
 
+
+def _print_timings(timings: dict[str, Timing], episodes: dict[str, list[Episode]]) -> None:
     print("\nwall-clock per decision, us")
     print(f"{'planner':8s} {'decisions':>9s} {'median':>15s} {'90th percentile':>17s}")
-    for name in args.planners:
-        t = timings[name]
+    for name, t in timings.items():
         n = sum(len(ep.steps) for ep in episodes[name])
         print(
             f"{name:8s} {n:9d} {t.median:8.0f} ({t.median_best:4.0f}) "
             f"{t.p90:10.0f} ({t.p90_best:4.0f})"
         )
-    for name in args.planners:
-        parts = [f"{b} {us:.0f} ({n})" for b, (us, n) in timings[name].branches.items()]
+    for name, t in timings.items():
+        parts = [f"{b} {us:.0f} ({n})" for b, (us, n) in t.branches.items()]
         print(f"  {name} by branch, median us (decisions): {', '.join(parts)}")
 
-    print(
-        f"\noperations per decision, median/max over every {args.count_every}-th decision "
-        "(deterministic)"
-    )
-    columns = (
-        ("own bc", lambda o: o.own_bytecodes),
-        ("other bc", lambda o: o.other_bytecodes),
-        ("math", lambda o: o.math_calls),
-        ("np ops", lambda o: o.array_ops),
-        ("elements", lambda o: o.elements),
-        ("transc.", lambda o: o.transcendental_elements),
-        ("returns", lambda o: o.returns),
-        ("memory", lambda o: o.remembered),
-        ("ops", lambda o: o.ops),
-    )
-    print(f"{'planner':8s} " + " ".join(f"{label:>11s}" for label, _ in columns))
-    for name in args.planners:
-        cells = [_median_max(get(o) for o in ops[name]) for _, get in columns]
+
+#: The columns of the operation counts: label, value of one decision.
+COLUMNS: tuple[tuple[str, Callable[[OpCount], int]], ...] = (
+    ("own bc", lambda o: o.own_bytecodes),
+    ("other bc", lambda o: o.other_bytecodes),
+    ("math", lambda o: o.math_calls),
+    ("np ops", lambda o: o.array_ops),
+    ("elements", lambda o: o.elements),
+    ("transc.", lambda o: o.transcendental_elements),
+    ("returns", lambda o: o.returns),
+    ("memory", lambda o: o.remembered),
+    ("ops", lambda o: o.ops),
+)
+
+
+def _print_counts(ops: dict[str, list[OpCount]], every: int) -> None:
+    print(f"\noperations per decision, median/max over every {every}-th decision (deterministic)")
+    print(f"{'planner':8s} " + " ".join(f"{label:>11s}" for label, _ in COLUMNS))
+    for name, counts in ops.items():
+        cells = [_median_max(get(o) for o in counts) for _, get in COLUMNS]
         print(f"{name:8s} " + " ".join(f"{cell:>11s}" for cell in cells))
     print(
         "  own bc: bytecodes of ifgm_ref code; other bc: of numpy's Python layer, stdlib, "
@@ -533,6 +563,8 @@ def main(argv: Sequence[str] | None = None) -> int:
         "+ math"
     )
 
+
+def _print_estimate(ops: dict[str, list[OpCount]], mcu: McuModel, dt: float) -> None:
     print(
         f"\nmicrocontroller estimate (an estimate, not a measurement): "
         f"{mcu.per_bytecode[0]:g}-{mcu.per_bytecode[1]:g} instructions per own bytecode, "
@@ -543,8 +575,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         f"control period dt = {dt * 1e6:,.0f} us"
     )
     print(f"{'planner':8s} {'decision':>9s} {'ops':>7s} {'cycles':>15s} {'us':>13s} {'of dt':>12s}")
-    for name in args.planners:
-        counts = ops[name]
+    for name, counts in ops.items():
         median_k = sorted(range(len(counts)), key=lambda i: counts[i].ops)[len(counts) // 2]
         for label, op in (
             ("median", counts[median_k]),
@@ -557,7 +588,6 @@ def main(argv: Sequence[str] | None = None) -> int:
                 f"{_short(low):>7s}-{_short(high):<7s} {us_low:6.0f}-{us_high:<6.0f} "
                 f"{100 * us_low / (dt * 1e6):5.1f}-{100 * us_high / (dt * 1e6):.1f} %"
             )
-    return 0
 
 
 if __name__ == "__main__":

@@ -60,9 +60,7 @@ __all__ = [
 ]
 
 
-# --------------------------------------------------------------------------------------------
-# Equation (1)
-# --------------------------------------------------------------------------------------------
+# ---- equation (1) --------------------------------------------------------------------------------
 
 
 @traces("eq1")
@@ -102,9 +100,7 @@ def eq1_gap_midpoint(p1: tuple[float, float], p2: tuple[float, float]) -> Point:
     return Point((x1 + x2) / 2.0, (y1 + y2) / 2.0)
 
 
-# --------------------------------------------------------------------------------------------
-# Equation (2)
-# --------------------------------------------------------------------------------------------
+# ---- equation (2) --------------------------------------------------------------------------------
 
 
 @traces("eq2")
@@ -264,6 +260,12 @@ def fgm_gap_centre_angle(d1: float, phi1: float, d2: float, phi2: float) -> floa
     >>> fgm_gap_centre_angle(3.0, 0.5, 1.0, -0.5)
     -0.5
     """
+    return math.acos(min(1.0, max(-1.0, _arccos_argument(d1, phi1, d2, phi2)))) - phi1
+
+
+def _arccos_argument(d1: float, phi1: float, d2: float, phi2: float) -> float:
+    """The argument of FGM's arccos (:func:`fgm_gap_centre_angle`): the cosine of the angle
+    from border 1 to the midpoint, after checking the borders."""
     for name, value in (("d1", d1), ("d2", d2)):
         if not (math.isfinite(value) and value > 0):
             raise ParameterError(f"`{name}` must be finite and > 0, got {value!r}")
@@ -280,13 +282,10 @@ def fgm_gap_centre_angle(d1: float, phi1: float, d2: float, phi2: float) -> floa
             f"the gap midpoint is at the robot (d1={d1!r}, d2={d2!r}, phi1 + phi2 = pi): "
             "its direction is undefined"
         )
-    ratio = (d1 + d2 * cos_width) / math.sqrt(squared)
-    return math.acos(min(1.0, max(-1.0, ratio))) - phi1
+    return (d1 + d2 * cos_width) / math.sqrt(squared)
 
 
-# --------------------------------------------------------------------------------------------
-# Equation (3)
-# --------------------------------------------------------------------------------------------
+# ---- equation (3) --------------------------------------------------------------------------------
 
 
 @traces("eq3")
@@ -389,9 +388,7 @@ def eq3_goal_angle(current: tuple[float, float], destination: tuple[float, float
     return math.atan2(y_d - y_c, x_d - x_c)
 
 
-# --------------------------------------------------------------------------------------------
-# Equation (4)
-# --------------------------------------------------------------------------------------------
+# ---- equation (4) --------------------------------------------------------------------------------
 
 
 def _check_weights(
@@ -409,9 +406,8 @@ def _check_weights(
         if value < 0:
             raise ParameterError(f"`{name}` must be >= 0, got {value!r}")
     if gap == 0 and goal == 0:
-        raise ParameterError(
-            f"`{gap_name}` and `{goal_name}` must not both be 0 (eq. (4) would be 0/0)"
-        )
+        both = f"`{gap_name}` and `{goal_name}` must not both be 0 (eq. (4) would be 0/0)"
+        raise ParameterError(both)
 
 
 def _check_angles(**angles: float) -> None:
@@ -486,21 +482,14 @@ def _robot_frame_mean(
     theta_g: float, theta_d: float, gap_weight: float, goal_weight: float, heading: float
 ) -> float:
     """Weighted mean of two directions, taken relative to ``heading``; wrapped to [-pi, pi)."""
-    relative_g = _wrap(theta_g - heading)
-    relative_d = _wrap(theta_d - heading)
+    relative_g, relative_d = _wrap(theta_g - heading), _wrap(theta_d - heading)
     mean = (gap_weight * relative_g + goal_weight * relative_d) / (gap_weight + goal_weight)
     return _wrap(heading + mean)
 
 
 @traces("eq4")
 def eq4_final_heading(
-    theta_g: float,
-    theta_d: float,
-    *,
-    w_g: float,
-    w_d: float,
-    d_th: float,
-    heading: float,
+    theta_g: float, theta_d: float, *, w_g: float, w_d: float, d_th: float, heading: float
 ) -> float:
     r"""Return the final heading ``theta_f`` of equation (4), averaged in the robot frame.
 
@@ -522,10 +511,8 @@ def eq4_final_heading(
     theta_g, theta_d : float
         Gap centre angle and destination angle, rad, in the frame of ``heading``: pass world
         angles with the world heading, or robot-frame angles with ``heading=0.0``.
-    w_g, w_d : float
-        Gap and goal weight coefficients, >= 0, not both 0.
-    d_th : float
-        The gap threshold, ft, > 0.
+    w_g, w_d, d_th : float
+        Gap and goal weight coefficients (>= 0, not both 0) and the gap threshold (ft, > 0).
     heading : float
         The robot heading in the frame of ``theta_g`` and ``theta_d``, rad.
 
@@ -563,13 +550,7 @@ def eq4_final_heading(
 
 @traces("fgm")
 def eq4_final_heading_fgm(
-    theta_g: float,
-    theta_d: float,
-    *,
-    alpha: float,
-    beta: float,
-    d_min: float,
-    heading: float,
+    theta_g: float, theta_d: float, *, alpha: float, beta: float, d_min: float, heading: float
 ) -> float:
     r"""Return FGM's final heading: eq. (4) with the gap weight divided by ``d_min``, not ``d_th``.
 

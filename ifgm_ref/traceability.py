@@ -37,7 +37,7 @@ from ifgm_ref.paper import ELEMENTS
 #: Modules not imported while gathering: they need pytest (and hold no marked code).
 SKIPPED_MODULES = frozenset({"ifgm_ref.oracle.pytest_plugin", "ifgm_ref.oracle.test_conformance"})
 #: Modules whose marked objects are listed as tests (the oracle's properties) or figures.
-TEST_MODULES = frozenset({"ifgm_ref.oracle.checks"})
+TEST_MODULES = frozenset({"ifgm_ref.oracle.checks", "ifgm_ref.oracle.equation_checks"})
 FIGURE_MODULES = frozenset({"ifgm_ref.figures"})
 COLUMNS = ("code", "proofs", "tests", "figures")
 

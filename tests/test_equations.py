@@ -5,9 +5,12 @@ Each test is named after the equation and the property it checks; the properties
 interpreted forms agree, the tests check that they agree (exactly, or within a stated rounding
 tolerance); where the proofs say they differ, the tests check the difference.
 
-Float ranges are bounded explicitly (no nan, inf or subnormals): coordinates within 1000 ft (a
+The equations' inputs are drawn from their domains, defined once in
+``ifgm_ref/oracle/domains.py`` and shared with the oracle's equation checks and the
+conformance vectors: bounded floats (no nan, inf or subnormals), coordinates within 1000 ft (a
 world a few times the paper's 197 ft scenario), sensor ranges 0.1-15 ft (``SensorParams``),
-weights in {0} or [1e-3, 1e3].
+weights in {0} or [1e-3, 1e3]. Transformations the properties apply (scale factors, turns,
+angles written with extra turns) have their own ranges here.
 """
 
 from __future__ import annotations
@@ -31,11 +34,13 @@ from ifgm_ref.equations import (
     fgm_gap_centre_angle,
 )
 from ifgm_ref.errors import ParameterError
+from ifgm_ref.oracle.domains import DOMAINS, HALF_FOV, floats
 from ifgm_ref.pose import wrap_angle
 
 EPS = sys.float_info.epsilon
-#: Half the paper's 135-degree field of view, rad (section 4).
-HALF_FOV = math.radians(67.5)
+#: The domains of the arguments drawn here.
+EQ4 = DOMAINS["eq4_final_heading"]
+FGM_GAP = DOMAINS["fgm_gap_centre_angle"]
 #: Angles from one atan/atan2/acos-free evaluation: a few ulps of pi (ulp(pi) = 4.4e-16).
 ANGLE_TOL = 1e-15
 #: Angles of points that were rotated or scaled first: the points' rounding (~1e-15 ft at
@@ -77,13 +82,18 @@ def signed_floats(*, smallest: float, largest: float) -> st.SearchStrategy[float
 
 
 def coordinates() -> st.SearchStrategy[float]:
-    """World coordinates in ft: 0 or 1e-6 to 1e3 ft in size."""
-    return signed_floats(smallest=1e-6, largest=1e3)
+    """Coordinates in ft: 0 or 1e-6 to 1e3 ft in size (the domain of eqs. (1) to (3))."""
+    return floats(DOMAINS["eq3_goal_angle"].argument("current").domain)
 
 
 def points() -> st.SearchStrategy[tuple[float, float]]:
     """World points in ft."""
     return st.tuples(coordinates(), coordinates())
+
+
+def sensor_ranges() -> st.SearchStrategy[float]:
+    """Distances the sensor returns, 0.1-15 ft (the domain of FGM's border distances)."""
+    return floats(FGM_GAP.argument("d1").domain)
 
 
 def visible_points(
@@ -93,23 +103,33 @@ def visible_points(
 ) -> st.SearchStrategy[tuple[float, float]]:
     """Robot-frame obstacle points the sensor sees: range 0.1-15 ft, |bearing| <= 67.5 deg."""
     if ranges is None:
-        ranges = finite_floats(min_value=0.1, max_value=15.0)
+        ranges = sensor_ranges()
     if bearings is None:
-        bearings = angles(bound=HALF_FOV)
+        bearings = border_angles()
     return st.builds(lambda r, a: (r * math.cos(a), r * math.sin(a)), ranges, bearings)
 
 
-def angles(*, bound: float = math.pi) -> st.SearchStrategy[float]:
+def border_angles() -> st.SearchStrategy[float]:
+    """Robot-frame angles inside the 135-degree field of view, rad (the domain of FGM's border
+    angles)."""
+    return floats(FGM_GAP.argument("phi2").domain)
+
+
+def angles(*, bound: float | None = None) -> st.SearchStrategy[float]:
     """Angles in ``[-bound, bound]``, rad: 0 or at least 1e-9 rad in size (the sensor resolves
-    1.8 degrees)."""
+    1.8 degrees); by default the domain of eq. (4)'s angles, ``[-pi, pi]``."""
+    if bound is None:
+        return floats(EQ4.argument("theta_g").domain)
     return signed_floats(smallest=1e-9, largest=bound)
 
 
-def weight_sets() -> st.SearchStrategy[tuple[float, float, float]]:
-    """``(w_g, w_d, d_th)`` of eq. (4): weights in {0} or [1e-3, 1e3], not both 0; d_th > 0."""
-    weight = st.one_of(st.just(0.0), finite_floats(min_value=1e-3, max_value=1e3))
-    threshold = finite_floats(min_value=1e-2, max_value=1e2)
-    return st.tuples(weight, weight, threshold).filter(lambda w: w[0] > 0 or w[1] > 0)
+def weight_sets(domain: str = "eq4_final_heading") -> st.SearchStrategy[tuple[float, float, float]]:
+    """``(w_g, w_d, d_th)`` of eq. (4) from its domain: weights in {0} or [1e-3, 1e3], not both
+    0; d_th in [1e-2, 1e2]. With ``domain="eq4_final_heading_fgm"``: ``(alpha, beta, d_min)``."""
+    gap, goal, divisor = DOMAINS[domain].arguments[2:5]
+    return st.tuples(floats(gap.domain), floats(goal.domain), floats(divisor.domain)).filter(
+        lambda w: w[0] > 0 or w[1] > 0
+    )
 
 
 def _angle_distance(a: float, b: float) -> float:
@@ -206,7 +226,7 @@ def test_eq2_literal_is_ratio_not_angle(data: st.DataObject) -> None:
     """
     theta = data.draw(finite_floats(min_value=1e-4, max_value=HALF_FOV), label="|theta_g|")
     side = data.draw(st.sampled_from([-1.0, 1.0]), label="side")
-    rho = data.draw(finite_floats(min_value=0.1, max_value=15.0), label="rho")
+    rho = data.draw(sensor_ranges(), label="rho")
     x_g, y_g = rho * math.cos(side * theta), rho * math.sin(side * theta)
     assert abs(eq2_gap_angle_literal(x_g, y_g)) > abs(eq2_gap_angle(x_g, y_g))
 
@@ -262,9 +282,9 @@ def test_eq2_rejects_midpoint_at_robot() -> None:
 def test_fgm_gap_centre_angle_is_midpoint_angle(data: st.DataObject) -> None:
     """FGM's cosine/Apollonius angle = atan2 of the eq. (1) midpoint
     (proofs.eq2:fgm_angle_is_midpoint_direction)."""
-    d1 = data.draw(finite_floats(min_value=0.1, max_value=15.0), label="d1")
-    d2 = data.draw(finite_floats(min_value=0.1, max_value=15.0), label="d2")
-    angle1 = data.draw(angles(bound=HALF_FOV), label="angle of border 1")
+    d1 = data.draw(sensor_ranges(), label="d1")
+    d2 = data.draw(sensor_ranges(), label="d2")
+    angle1 = data.draw(border_angles(), label="angle of border 1")
     angle2 = data.draw(
         finite_floats(min_value=angle1, max_value=HALF_FOV), label="angle of border 2"
     )
@@ -394,7 +414,7 @@ def test_eq4_interpreted_between_inputs_in_robot_frame(data: st.DataObject) -> N
     The gap is inside the field of view (|relative theta_g| <= 67.5 deg); the goal anywhere.
     """
     heading = data.draw(angles(), label="heading")
-    relative_g = data.draw(angles(bound=HALF_FOV), label="theta_g - heading")
+    relative_g = data.draw(border_angles(), label="theta_g - heading")
     relative_d = data.draw(angles(), label="theta_d - heading")
     w_g, w_d, d_th = data.draw(weight_sets(), label="(w_g, w_d, d_th)")
     assume(_clear_of_behind((relative_d, 0.0)))
@@ -519,7 +539,9 @@ def test_eq4_fgm_is_renamed_eq4(data: st.DataObject) -> None:
     theta_g = data.draw(angles(), label="theta_g")
     theta_d = data.draw(angles(), label="theta_d")
     heading = data.draw(angles(), label="heading")
-    alpha, beta, d_min = data.draw(weight_sets(), label="(alpha, beta, d_min)")
+    alpha, beta, d_min = data.draw(
+        weight_sets("eq4_final_heading_fgm"), label="(alpha, beta, d_min)"
+    )
     fgm = eq4_final_heading_fgm(
         theta_g, theta_d, alpha=alpha, beta=beta, d_min=d_min, heading=heading
     )
@@ -531,9 +553,9 @@ def test_eq4_fgm_is_renamed_eq4(data: st.DataObject) -> None:
 def test_eq4_fgm_gap_share_grows_as_obstacle_nears(data: st.DataObject) -> None:
     """A nearer obstacle (smaller d_min) steers closer to the gap
     (proofs.eq4:fgm_gap_share_falls_with_d_min)."""
-    relative_g = data.draw(angles(bound=HALF_FOV), label="theta_g (robot frame)")
+    relative_g = data.draw(border_angles(), label="theta_g (robot frame)")
     relative_d = data.draw(angles(bound=math.pi / 2), label="theta_d (robot frame)")
-    near = data.draw(finite_floats(min_value=0.1, max_value=15.0), label="d_min near")
+    near = data.draw(sensor_ranges(), label="d_min near")
     far = data.draw(finite_floats(min_value=near, max_value=15.0), label="d_min far")
     kwargs = {"alpha": 1.0, "beta": 1.0, "heading": 0.0}
     at_near = eq4_final_heading_fgm(relative_g, relative_d, d_min=near, **kwargs)

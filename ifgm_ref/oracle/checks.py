@@ -34,8 +34,9 @@ check                             property (applies to)
 ``deterministic``                 the same observations give the same commands, bit for bit
                                   (one run recorded, replayed into a fresh planner)
 ``eq1_gap_midpoint`` ...          the implementation's eqs. (1)-(4) agree with the reference
-                                  within :data:`EQUATION_TOL` (when it exposes them; the
-                                  ``*_literal`` forms when it exposes those)
+                                  within :data:`EQUATION_TOL` on inputs drawn from their
+                                  domains (when it exposes them; the ``*_literal`` forms when
+                                  it exposes those): :mod:`ifgm_ref.oracle.equation_checks`
 ================================  ==============================================================
 
 Every simulation check runs with the simulator's defaults (``dt`` 0.1 s, goal tolerance 0.5 ft)
@@ -46,22 +47,26 @@ raises, or answers an invalid command, fails the check it was running.
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Sequence
-from dataclasses import dataclass, field, replace
-from enum import StrEnum
-from typing import Any
+from collections.abc import Sequence
+from dataclasses import replace
 
 import numpy as np
 import shapely
 from hypothesis import note
 from hypothesis import strategies as st
 
-from ifgm_ref import equations as reference
-from ifgm_ref.errors import IfgmRefError, ImplementationError
+from ifgm_ref.errors import ImplementationError
 from ifgm_ref.oracle.bounds import time_bound
+from ifgm_ref.oracle.check_types import Check, CheckFailed, Evidence, Kind, Recorder
+from ifgm_ref.oracle.equation_checks import (
+    EQUATION_TOL,
+    NO_EQUATIONS,
+    NO_EQUATIONS_PROGRAM,
+    equation_checks,
+)
 from ifgm_ref.oracle.implementation import Implementation
 from ifgm_ref.oracle.metamorphic import is_power_of_two, scale_params, scale_sim, scale_world
-from ifgm_ref.oracle.recording import RecordingPlanner
+from ifgm_ref.oracle.recording import RecordingPlanner, replay
 from ifgm_ref.oracle.strategies import (
     SOLVABLE_CLASSES,
     any_solvable_worlds,
@@ -78,6 +83,26 @@ from ifgm_ref.protocol import Command, Planner
 from ifgm_ref.shapes import circle
 from ifgm_ref.simulator import Run, StopReason, TraceStep, simulate
 from ifgm_ref.world import Polygon, World
+
+__all__ = [
+    "CHECKS",
+    "EQUATION_TOL",
+    "EXACT_SCALES",
+    "FIRST_TURN",
+    "GENERIC_OFFSET",
+    "INVARIANCE_STEPS",
+    "NO_EQUATIONS",
+    "NO_EQUATIONS_PROGRAM",
+    "ROUNDED_SCALES",
+    "SCALE_PATH_TOL",
+    "Check",
+    "CheckFailed",
+    "Evidence",
+    "Kind",
+    "Recorder",
+    "episode",
+    "scale_test",
+]
 
 #: The moved run may lag or lead the original by this many steps. Rotating the problem rounds
 #: every coordinate differently (1e-16; 1e-7 in a float32 port), and a decision that sits on a
@@ -114,62 +139,6 @@ ROUNDED_SCALES = (0.3048, 0.22, 3.7)
 #: (APF), 2e-5 (Bug2, DistBug, IBA), 7e-14 (FGM). A length constant that does not scale
 #: changes the path by far more; the powers of two catch small ones exactly.
 SCALE_PATH_TOL = 0.01
-#: Why the equation checks do not apply to a Python implementation given without equations:
-#: how to give them, on the command line, under pytest and in Python.
-NO_EQUATIONS = (
-    "no equations given: --equations MODULE (ifgm-ref oracle), --ifgm-equations MODULE "
-    "(pytest), equations= (check_planner)"
-)
-#: ... and to a program: it has no Python functions to call.
-NO_EQUATIONS_PROGRAM = (
-    "a program exposes no Python functions: check its eqs. (1)-(4) against the vectors of "
-    "`ifgm-ref vectors` (docs/vectors-format.md)"
-)
-#: Equation outputs may differ from the reference by this much (ft, or rad modulo 2 pi).
-EQUATION_TOL = 1e-9
-
-
-class Kind(StrEnum):
-    """What a check exercises."""
-
-    SIMULATION = "simulation"
-    EQUATION = "equation"
-
-
-class CheckFailed(AssertionError):
-    """An implementation broke a property; the message says how."""
-
-
-@dataclass
-class Evidence:
-    """What the last failing example left behind, for the failure report."""
-
-    worlds: list[World] = field(default_factory=list)
-    runs: list[Run] = field(default_factory=list)
-    max_time: float | None = None
-    inputs: dict[str, Any] | None = None
-
-
-@dataclass
-class Recorder:
-    """Counts the examples a check ran and keeps the evidence of the last failure."""
-
-    examples: int = 0
-    worlds: set[World] = field(default_factory=set)
-    evidence: Evidence | None = None
-
-
-@dataclass(frozen=True)
-class Check:
-    """One property: its name, its sentence, its example strategy and its test."""
-
-    name: str
-    sentence: str
-    kind: Kind
-    strategy: Callable[[Implementation], st.SearchStrategy[Any]]
-    test: Callable[[Implementation, Any, Recorder], None]
-    applies: Callable[[Implementation], str | None]
-
 
 # -- simulation helpers ------------------------------------------------------------------------
 
@@ -467,13 +436,9 @@ def _show_polygon(polygon: Polygon) -> str:
 
 def _determinism_test(impl: Implementation, world: World, rec: Recorder) -> None:
     """Run once, recording; replay the same observations into a fresh planner."""
-    recording = RecordingPlanner(impl.factory())
-    episode(impl, world, rec, planner=recording)
-    assert recording.reset_args is not None
-    replay = impl.factory()
-    replay.reset(*recording.reset_args)
-    for k, (observation, command) in enumerate(recording.steps):
-        again = replay.step(observation)
+    recorder = RecordingPlanner(impl.factory())
+    episode(impl, world, rec, planner=recorder)
+    for k, (observation, command, again) in enumerate(replay(recorder.recording(), impl.factory())):
         if _command_fields(again) != _command_fields(command):
             raise CheckFailed(
                 f"replaying the same observations, step {k} (t={observation.t:.1f} s) answered "
@@ -484,115 +449,6 @@ def _determinism_test(impl: Implementation, world: World, rec: Recorder) -> None
 
 def _command_fields(command: Command) -> tuple[object, ...]:
     return (command.heading, command.speed, command.behaviour, command.branch, command.stop)
-
-
-# -- equation checks ---------------------------------------------------------------------------
-
-coordinates = st.floats(-20.0, 20.0)
-angles = st.floats(-math.pi, math.pi)
-points = st.tuples(coordinates, coordinates)
-weights = st.floats(0.1, 10.0)
-
-
-def _angle_gap(a: float, b: float) -> float:
-    return abs(math.remainder(a - b, 2.0 * math.pi))
-
-
-def _equation_check(
-    name: str, sentence: str, inputs: st.SearchStrategy[dict[str, Any]], *, angle: bool
-) -> Check:
-    """A check that ``impl.equations.<name>`` agrees with the reference on drawn inputs."""
-
-    def test(impl: Implementation, kwargs: dict[str, Any], rec: Recorder) -> None:
-        rec.examples += 1
-        rec.evidence = Evidence(inputs=kwargs)
-        try:
-            want = getattr(reference, name)(**kwargs)
-        except IfgmRefError:  # outside the equation's domain: nothing to compare
-            return
-        try:
-            got = getattr(impl.equations, name)(**kwargs)
-        except Exception as err:
-            raise CheckFailed(
-                f"{name}({_args(kwargs)}) raised {type(err).__name__}: {err}, but should be "
-                f"{want!r} [{impl.label}]"
-            ) from err
-        try:
-            if angle:
-                error = _angle_gap(float(got), want)
-            elif isinstance(want, tuple):
-                error = math.dist(tuple(got), want)
-            else:
-                error = abs(float(got) - want)
-        except (TypeError, ValueError) as err:
-            raise CheckFailed(
-                f"{name}({_args(kwargs)}) = {got!r}, but should be {want!r} [{impl.label}]"
-            ) from err
-        if not error <= EQUATION_TOL:
-            raise CheckFailed(
-                f"{name}({_args(kwargs)}) = {got!r}, but should be {want!r} within "
-                f"{EQUATION_TOL:g} [{impl.label}]"
-            )
-
-    def applies(impl: Implementation) -> str | None:
-        if impl.equations is None:
-            return NO_EQUATIONS_PROGRAM if impl.is_program else NO_EQUATIONS
-        if not callable(getattr(impl.equations, name, None)):
-            return f"the equations object has no {name}"
-        return None
-
-    return Check(name, sentence, Kind.EQUATION, lambda impl: inputs, test, applies)
-
-
-def _args(kwargs: dict[str, Any]) -> str:
-    return ", ".join(f"{k}={v!r}" for k, v in kwargs.items())
-
-
-@traces("eq1", "eq2", "eq3", "eq4")
-def _equation_checks() -> list[Check]:
-    gap_point = st.fixed_dictionaries({"x_g": coordinates, "y_g": coordinates})
-    positions = st.fixed_dictionaries({"current": points, "destination": points})
-    eq4_literal = {"theta_g": angles, "theta_d": angles, "w_g": weights, "w_d": weights}
-    eq4_literal["d_th"] = st.floats(2.0, 6.0)
-    eq4 = {**eq4_literal, "heading": angles}
-    return [
-        _equation_check(
-            "eq1_gap_midpoint",
-            "eq. (1): the gap midpoint is the mean of the two saved obstacle points",
-            st.fixed_dictionaries({"p1": points, "p2": points}),
-            angle=False,
-        ),
-        _equation_check(
-            "eq2_gap_angle", "eq. (2) as run: theta_g = atan2(y_g, x_g)", gap_point, angle=True
-        ),
-        _equation_check(
-            "eq2_gap_angle_literal", "eq. (2) as printed: y_g / x_g", gap_point, angle=False
-        ),
-        _equation_check(
-            "eq3_goal_angle",
-            "eq. (3) as run: the quadrant-aware bearing of the destination",
-            positions,
-            angle=True,
-        ),
-        _equation_check(
-            "eq3_goal_angle_literal",
-            "eq. (3) as printed: arctan((y_d - y_c) / (x_d - x_c))",
-            positions,
-            angle=False,
-        ),
-        _equation_check(
-            "eq4_final_heading",
-            "eq. (4) as run: the weighted mean of gap and goal directions, robot frame",
-            st.fixed_dictionaries(eq4),
-            angle=True,
-        ),
-        _equation_check(
-            "eq4_final_heading_literal",
-            "eq. (4) as printed: the weighted mean of the two angles as numbers",
-            st.fixed_dictionaries(eq4_literal),
-            angle=False,
-        ),
-    ]
 
 
 # -- the registry ------------------------------------------------------------------------------
@@ -694,6 +550,6 @@ CHECKS: dict[str, Check] = {
             _determinism_test,
             _always,
         ),
-        *_equation_checks(),
+        *equation_checks(),
     ]
 }
