@@ -85,9 +85,10 @@ def build(guards: dict[Branch, object] | None = None) -> Derivation:
 
 
 def _dead_end_claims(d: Derivation) -> None:
-    """The 45-degree rule (section 4, section 5.2) as the code runs it (``IFGMPlanner.dead_end``): step
-    ``k`` turns to ``theta_0 + s * k * DEAD_END_STEP``; while the way ahead is not free and
-    ``k < DEAD_END_MAX_STEPS`` it takes the next step, else it drives the way it faces."""
+    """The 45-degree rule (section 4, section 5.2) as the code runs it
+    (``IFGMPlanner.dead_end``): step ``k`` turns to ``theta_0 + s * k * DEAD_END_STEP``; while
+    the way ahead is not free and ``k < DEAD_END_MAX_STEPS`` it takes the next step, else it
+    drives the way it faces."""
     step = sp.nsimplify(DEAD_END_STEP / math.pi) * sp.pi  # the code's float, as a multiple of pi
     steps = sp.Integer(DEAD_END_MAX_STEPS)
     k, theta0 = sp.symbols("k theta_0", real=True)

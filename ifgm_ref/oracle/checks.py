@@ -54,6 +54,7 @@ import numpy as np
 import shapely
 from hypothesis import note
 from hypothesis import strategies as st
+from numpy.typing import NDArray
 
 from ifgm_ref.errors import ImplementationError
 from ifgm_ref.oracle.bounds import time_bound
@@ -228,7 +229,7 @@ def _promised_worlds(impl: Implementation) -> st.SearchStrategy[World]:
     return st.one_of([SOLVABLE_CLASSES[c]() for c in classes])
 
 
-def _poses(trace: Sequence[TraceStep]) -> np.ndarray:
+def _poses(trace: Sequence[TraceStep]) -> NDArray[np.float64]:
     return np.array([(s.x, s.y, s.theta) for s in trace])
 
 
@@ -415,6 +416,8 @@ def _gap_test(impl: Implementation, example: tuple[World, Polygon], rec: Recorde
         )
     centre = gap.geometry.centroid
     for step in run.trace[:-1]:
+        if step.heading_cmd is None:  # no command recorded at this sample
+            continue
         to_goal = math.atan2(world.goal.y - step.y, world.goal.x - step.x)
         turn = math.remainder(step.heading_cmd - to_goal, 2.0 * math.pi)
         if abs(turn) > FIRST_TURN:
