@@ -42,13 +42,13 @@ def _simulate(args: argparse.Namespace) -> int:
         raise ParameterError("give exactly one of --planner NAME and --cmd 'PROGRAM'")
     _check_outputs(args)  # before the run, not after it
     if args.cmd is not None:
-        from ifgm_ref.oracle.external import ExternalPlanner
+        from ifgm_ref.transport.external import ExternalPlanner
 
         params = _planner_params(None, args.param or [])
         with ExternalPlanner(args.cmd, timeout=args.timeout) as external:
             run = simulate(world, external, sim, params=params, progress=None)
     else:
-        from ifgm_ref.oracle.loading import load_planner
+        from ifgm_ref.transport.loading import load_planner
 
         params = _planner_params(args.planner, args.param or [])
         run = simulate(world, load_planner(args.planner), sim, params=params, progress=None)
@@ -163,8 +163,8 @@ def _figures(args: argparse.Namespace) -> int:
 
 
 def _serve(args: argparse.Namespace) -> int:
-    from ifgm_ref.oracle.loading import load_planner_factory
-    from ifgm_ref.serve import serve
+    from ifgm_ref.transport.loading import load_planner_factory
+    from ifgm_ref.transport.serve import serve
 
     factory = load_planner_factory(args.planner)
     return serve(factory, sys.stdin, sys.stdout, sys.stderr)
@@ -180,8 +180,7 @@ def _vectors(args: argparse.Namespace) -> int:
 
 
 def _oracle(args: argparse.Namespace) -> int:
-    from ifgm_ref.oracle.implementation import Implementation
-    from ifgm_ref.oracle.loading import load_equations
+    from ifgm_ref.oracle.implementation import Implementation, load_equations
     from ifgm_ref.oracle.runner import PROFILE_ALIASES, check_planner
 
     if (args.planner is None) == (args.cmd is None):
@@ -252,7 +251,7 @@ def _bench(args: argparse.Namespace) -> int:
         folder_specs,
         generated_specs,
     )
-    from ifgm_ref.oracle.loading import load_planner
+    from ifgm_ref.transport.loading import load_planner
 
     if args.barn is None:
         require_pathfinder()  # BARN worlds skip the shortest path (ifgm_ref/bench/tasks.py)

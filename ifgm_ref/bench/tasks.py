@@ -35,12 +35,12 @@ from ifgm_ref.bench import barn
 from ifgm_ref.bench.optimal import optimal_path
 from ifgm_ref.errors import WorldError
 from ifgm_ref.oracle.bounds import time_bound
-from ifgm_ref.oracle.loading import load_factory
 from ifgm_ref.oracle.strategies import GENERATORS, random_world
 from ifgm_ref.params import SimParams
 from ifgm_ref.protocol import Command, EpisodeParams, Observation, Planner
 from ifgm_ref.scenarios import BUILTIN_WORLDS
 from ifgm_ref.simulator import simulate, total_turning
+from ifgm_ref.transport.loading import load_factory
 from ifgm_ref.world import World
 from ifgm_ref.worldfile import load_world
 

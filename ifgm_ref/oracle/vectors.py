@@ -8,8 +8,9 @@ checks are written down as data: ``ifgm-ref vectors --out vectors.json`` writes
   cases for every errata row that touches an equation (``docs/errata.md``) and seeded random
   ones;
 * **reference traces**: short IFGM and IBA episodes in built-in worlds, each step's
-  observation exactly as the JSON-lines protocol sends it (:mod:`ifgm_ref.wire`) with the
-  command the reference planner answered, together covering every branch of Figure 3.
+  observation exactly as the JSON-lines protocol sends it (:mod:`ifgm_ref.transport.wire`)
+  with the command the reference planner answered, together covering every branch of
+  Figure 3.
 
 ``docs/vectors-format.md`` specifies the file. The same data checks Python implementations:
 :func:`check_vectors` runs any object with the equation functions' names against the vectors,
@@ -46,7 +47,7 @@ from ifgm_ref.pose import Pose
 from ifgm_ref.protocol import EpisodeParams, Planner
 from ifgm_ref.scenarios import resolve_world
 from ifgm_ref.simulator import simulate
-from ifgm_ref.wire import (
+from ifgm_ref.transport.wire import (
     command_message,
     observe_message,
     parse_observe,
