@@ -39,7 +39,7 @@ check                             property (applies to)
 ================================  ==============================================================
 
 Every simulation check runs with the simulator's defaults (``dt`` 0.1 s, goal tolerance 0.5 ft)
-and stops an episode at :func:`ifgm_ref.oracle.bounds.time_bound` of its world. A planner that
+and stops an episode at :func:`ifgm_ref.convergence.time_bound` of its world. A planner that
 raises, or answers an invalid command, fails the check it was running.
 """
 
@@ -57,19 +57,11 @@ from hypothesis import note
 from hypothesis import strategies as st
 
 from ifgm_ref import equations as reference
+from ifgm_ref.convergence import time_bound
 from ifgm_ref.errors import IfgmRefError, ImplementationError
-from ifgm_ref.oracle.bounds import time_bound
 from ifgm_ref.oracle.implementation import Implementation
 from ifgm_ref.oracle.metamorphic import is_power_of_two, scale_params, scale_sim, scale_world
 from ifgm_ref.oracle.recording import RecordingPlanner
-from ifgm_ref.oracle.strategies import (
-    SOLVABLE_CLASSES,
-    any_solvable_worlds,
-    enclosed_worlds,
-    gap_walls,
-    placed,
-    placements,
-)
 from ifgm_ref.paper import traces
 from ifgm_ref.params import SimParams
 from ifgm_ref.planners.tuning import ParamInfo
@@ -78,6 +70,14 @@ from ifgm_ref.protocol import Command, Planner
 from ifgm_ref.shapes import circle
 from ifgm_ref.simulator import Run, StopReason, TraceStep, simulate
 from ifgm_ref.world import Polygon, World
+from ifgm_ref.worldgen.classes import (
+    SOLVABLE_CLASSES,
+    any_solvable_worlds,
+    enclosed_worlds,
+    gap_walls,
+    placed,
+    placements,
+)
 
 #: The moved run may lag or lead the original by this many steps. Rotating the problem rounds
 #: every coordinate differently (1e-16; 1e-7 in a float32 port), and a decision that sits on a

@@ -1,6 +1,6 @@
 """The oracle's world classes, solvable by construction and checked: generators and strategies.
 
-Every class is one generator, a function of a :class:`~ifgm_ref.oracle.draws.Draw` (the
+Every class is one generator, a function of a :class:`~ifgm_ref.worldgen.draws.Draw` (the
 source of its random choices), wrapped twice: as a Hypothesis strategy (``*_worlds()``, for
 the property checks; failing worlds shrink) and as plain seeded sampling
 (:func:`random_world`, for the benchmark; the same seed gives the same world). Each draws one
@@ -53,10 +53,10 @@ import shapely
 from hypothesis import strategies as st
 
 from ifgm_ref.errors import WorldError
-from ifgm_ref.oracle.draws import Draw, RandomDraw, strategy
 from ifgm_ref.pose import Point, Pose, wrap_angle
 from ifgm_ref.shapes import circle, h_shape, rectangle, regular_polygon, u_shape
 from ifgm_ref.world import Circle, Obstacle, Polygon, World
+from ifgm_ref.worldgen.draws import Draw, RandomDraw, strategy
 
 #: Robot radius of every generated world, ft (the default :class:`RobotParams`).
 ROBOT_RADIUS = 1.0
