@@ -62,6 +62,13 @@ from ifgm_ref.errors import IfgmRefError, ImplementationError
 from ifgm_ref.oracle.implementation import Implementation
 from ifgm_ref.oracle.metamorphic import is_power_of_two, scale_params, scale_sim, scale_world
 from ifgm_ref.oracle.recording import RecordingPlanner
+from ifgm_ref.oracle.strategies import (
+    SOLVABLE_CLASSES,
+    any_solvable_worlds,
+    enclosed_worlds,
+    gap_walls,
+    placements,
+)
 from ifgm_ref.paper import traces
 from ifgm_ref.params import SimParams
 from ifgm_ref.planners.tuning import ParamInfo
@@ -70,14 +77,7 @@ from ifgm_ref.protocol import Command, Planner
 from ifgm_ref.shapes import circle
 from ifgm_ref.simulator import Run, StopReason, TraceStep, simulate
 from ifgm_ref.world import Polygon, World
-from ifgm_ref.worldgen.classes import (
-    SOLVABLE_CLASSES,
-    any_solvable_worlds,
-    enclosed_worlds,
-    gap_walls,
-    placed,
-    placements,
-)
+from ifgm_ref.worldgen.classes import placed
 
 #: The moved run may lag or lead the original by this many steps. Rotating the problem rounds
 #: every coordinate differently (1e-16; 1e-7 in a float32 port), and a decision that sits on a

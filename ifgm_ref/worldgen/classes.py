@@ -1,27 +1,28 @@
-"""The oracle's world classes, solvable by construction and checked: generators and strategies.
+"""The world classes, solvable by construction and checked: one generator per class.
 
 Every class is one generator, a function of a :class:`~ifgm_ref.worldgen.draws.Draw` (the
-source of its random choices), wrapped twice: as a Hypothesis strategy (``*_worlds()``, for
-the property checks; failing worlds shrink) and as plain seeded sampling
-(:func:`random_world`, for the benchmark; the same seed gives the same world). Each draws one
-navigation problem of a class the paper talks about (section 5:
-"obstacles of simple but different shapes", "critical shaped" U and H obstacles, Figure 7's
-symmetric obstacles) and returns a :class:`~ifgm_ref.world.World`:
+source of its random choices), used twice: as a Hypothesis strategy
+(:mod:`ifgm_ref.oracle.strategies`, ``*_worlds()``, for the property checks; failing worlds
+shrink) and as plain seeded sampling (:func:`random_world`, for the benchmark; the same seed
+gives the same world). Each draws one navigation problem of a class the paper talks about
+(section 5: "obstacles of simple but different shapes", "critical shaped" U and H obstacles,
+Figure 7's symmetric obstacles) and returns a :class:`~ifgm_ref.world.World`:
 
 =======================  ==========================================================================
-strategy                 class
+generator                class
 =======================  ==========================================================================
-:func:`open_worlds`      1-4 simple convex obstacles (discs, rectangles, regular polygons) near the
+:func:`open_world`       1-4 simple convex obstacles (discs, rectangles, regular polygons) near the
                          start-goal line, every passage between them wider than the robot
-:func:`u_worlds`         a U across the line, opening towards the start (Figure 8); half of them
+:func:`u_world`          a U across the line, opening towards the start (Figure 8); half of them
                          the paper's trap, met head-on (section 5.2, Table 1)
-:func:`h_worlds`         an H across the line, one cavity facing the start (Figure 8); half of
+:func:`h_world`          an H across the line, one cavity facing the start (Figure 8); half of
                          them the paper's trap
-:func:`symmetric_worlds` three equal discs or squares across the line, symmetric about it
+:func:`symmetric_world`  three equal discs or squares across the line, symmetric about it
                          (Figure 7), their gaps either wider than the IFGM gap threshold or
                          narrower than the robot
-:func:`mixed_worlds`     two or three of the above in a row, 30 ft apart
-:func:`enclosed_worlds`  the goal inside a closed box: unsolvable, for planners that report it
+:func:`mixed_world`      two or three of the above in a row, 30 ft apart
+:func:`enclosed_world`   the goal inside a closed box: unsolvable, for planners that report it
+:func:`gap_wall`         a wall across the line pierced by one gap, and the gap
 =======================  ==========================================================================
 
 Solvability. The plane is unbounded (``bounds=None``), obstacles of one feature keep at least
@@ -30,7 +31,7 @@ cavities are wider than the robot, and start and goal keep :data:`START_GOAL_CLE
 from every obstacle. Then the obstacles inflated by the robot radius are disjoint, simply
 connected sets, whose complement is connected: a path exists. :func:`solvable` checks it
 independently with shapely (free space = a box minus the inflated obstacles; start and goal in
-one connected part), and every strategy asserts it.
+one connected part), and every generator asserts it.
 
 Shrinking. A candidate obstacle that would come too close to another or to the start or goal
 is dropped, not rejected, so draws are never wasted; lists shrink to fewer obstacles, kinds
@@ -50,13 +51,12 @@ from collections.abc import Callable, Sequence
 
 import numpy as np
 import shapely
-from hypothesis import strategies as st
 
 from ifgm_ref.errors import WorldError
 from ifgm_ref.pose import Point, Pose, wrap_angle
 from ifgm_ref.shapes import circle, h_shape, rectangle, regular_polygon, u_shape
 from ifgm_ref.world import Circle, Obstacle, Polygon, World
-from ifgm_ref.worldgen.draws import Draw, RandomDraw, strategy
+from ifgm_ref.worldgen.draws import Draw, RandomDraw
 
 #: Robot radius of every generated world, ft (the default :class:`RobotParams`).
 ROBOT_RADIUS = 1.0
@@ -71,8 +71,6 @@ START_GOAL_CLEARANCE = ROBOT_RADIUS + 2.0
 #: (the robot fits, barely) are not drawn: from afar they look wider than they are (Figure 7
 #: notes in :mod:`ifgm_ref.scenarios`), which no planner of the paper is built to judge.
 SYMMETRIC_GAP_MARGIN = 0.5
-
-WorldClass = Callable[[], st.SearchStrategy[World]]
 
 
 def _clear_of(candidate: Obstacle, others: Sequence[Obstacle], gap: float) -> bool:
@@ -439,65 +437,7 @@ def gap_wall(d: Draw) -> tuple[World, Polygon]:
     return world, placed_obstacle(gap, angle, shift)
 
 
-# Hypothesis strategies of the same classes (failing examples shrink).
-
-
-def open_worlds(*, max_obstacles: int = 4) -> st.SearchStrategy[World]:
-    """Strategy of :func:`open_world`."""
-    return strategy(functools.partial(open_world, max_obstacles=max_obstacles))
-
-
-def u_worlds(*, max_clutter: int = 0) -> st.SearchStrategy[World]:
-    """Strategy of :func:`u_world`."""
-    return strategy(functools.partial(u_world, max_clutter=max_clutter))
-
-
-def h_worlds(*, max_clutter: int = 0) -> st.SearchStrategy[World]:
-    """Strategy of :func:`h_world`."""
-    return strategy(functools.partial(h_world, max_clutter=max_clutter))
-
-
-def symmetric_worlds() -> st.SearchStrategy[World]:
-    """Strategy of :func:`symmetric_world`."""
-    return strategy(symmetric_world)
-
-
-def mixed_worlds() -> st.SearchStrategy[World]:
-    """Strategy of :func:`mixed_world`."""
-    return strategy(mixed_world)
-
-
-def enclosed_worlds() -> st.SearchStrategy[World]:
-    """Strategy of :func:`enclosed_world`."""
-    return strategy(enclosed_world)
-
-
-def gap_walls() -> st.SearchStrategy[tuple[World, Polygon]]:
-    """Strategy of :func:`gap_wall`."""
-    return strategy(gap_wall)
-
-
-def placements() -> st.SearchStrategy[tuple[float, tuple[float, float]]]:
-    """Strategy of :func:`placement`."""
-    return strategy(placement)
-
-
-#: The solvable classes (their strategies) by the names checks and reports use.
-SOLVABLE_CLASSES: dict[str, WorldClass] = {
-    "open": open_worlds,
-    "u": u_worlds,
-    "h": h_worlds,
-    "symmetric": symmetric_worlds,
-    "mixed": mixed_worlds,
-}
-
-
-def any_solvable_worlds() -> st.SearchStrategy[World]:
-    """A world of any solvable class (open first, so failures shrink towards it)."""
-    return st.one_of([make() for make in SOLVABLE_CLASSES.values()])
-
-
-#: The solvable classes' generators, by the same names (for seeded plain sampling).
+#: The solvable classes' generators by the names checks, reports and the benchmark use.
 GENERATORS: dict[str, Callable[[Draw], World]] = {
     "open": open_world,
     "u": u_world,

@@ -1,0 +1,103 @@
+"""The oracle's world classes as Hypothesis strategies: failing worlds shrink.
+
+Each strategy draws the worlds of one generator of :mod:`ifgm_ref.worldgen.classes` through
+Hypothesis (:func:`~ifgm_ref.worldgen.draws.strategy`), so that every choice is labelled
+and a failing world shrinks towards one simple obstacle straight on the start-goal line. The
+benchmark samples the same generators from a seed instead
+(:func:`ifgm_ref.worldgen.classes.random_world`).
+
+=========================  ============================================================
+strategy                   worlds of (:mod:`ifgm_ref.worldgen.classes`)
+=========================  ============================================================
+:func:`open_worlds`        ``open_world``: 1-4 simple convex obstacles
+:func:`u_worlds`           ``u_world``: a U across the line, half of them the paper's trap
+:func:`h_worlds`           ``h_world``: an H across the line, half of them the paper's trap
+:func:`symmetric_worlds`   ``symmetric_world``: three equal obstacles (Figure 7)
+:func:`mixed_worlds`       ``mixed_world``: two or three features in a row
+:func:`enclosed_worlds`    ``enclosed_world``: the goal in a closed box (unsolvable)
+:func:`gap_walls`          ``gap_wall``: a wall pierced by one gap, and the gap
+:func:`placements`         ``placement``: a rigid motion (rotation and shift)
+=========================  ============================================================
+
+>>> from hypothesis import find
+>>> find(open_worlds(), lambda world: len(world.obstacles) >= 2).name
+'open'
+"""
+
+from __future__ import annotations
+
+import functools
+from collections.abc import Callable
+
+from hypothesis import strategies as st
+
+from ifgm_ref.world import Polygon, World
+from ifgm_ref.worldgen.classes import (
+    enclosed_world,
+    gap_wall,
+    h_world,
+    mixed_world,
+    open_world,
+    placement,
+    symmetric_world,
+    u_world,
+)
+from ifgm_ref.worldgen.draws import strategy
+
+WorldClass = Callable[[], st.SearchStrategy[World]]
+
+
+def open_worlds(*, max_obstacles: int = 4) -> st.SearchStrategy[World]:
+    """Strategy of :func:`~ifgm_ref.worldgen.classes.open_world`."""
+    return strategy(functools.partial(open_world, max_obstacles=max_obstacles))
+
+
+def u_worlds(*, max_clutter: int = 0) -> st.SearchStrategy[World]:
+    """Strategy of :func:`~ifgm_ref.worldgen.classes.u_world`."""
+    return strategy(functools.partial(u_world, max_clutter=max_clutter))
+
+
+def h_worlds(*, max_clutter: int = 0) -> st.SearchStrategy[World]:
+    """Strategy of :func:`~ifgm_ref.worldgen.classes.h_world`."""
+    return strategy(functools.partial(h_world, max_clutter=max_clutter))
+
+
+def symmetric_worlds() -> st.SearchStrategy[World]:
+    """Strategy of :func:`~ifgm_ref.worldgen.classes.symmetric_world`."""
+    return strategy(symmetric_world)
+
+
+def mixed_worlds() -> st.SearchStrategy[World]:
+    """Strategy of :func:`~ifgm_ref.worldgen.classes.mixed_world`."""
+    return strategy(mixed_world)
+
+
+def enclosed_worlds() -> st.SearchStrategy[World]:
+    """Strategy of :func:`~ifgm_ref.worldgen.classes.enclosed_world`."""
+    return strategy(enclosed_world)
+
+
+def gap_walls() -> st.SearchStrategy[tuple[World, Polygon]]:
+    """Strategy of :func:`~ifgm_ref.worldgen.classes.gap_wall`."""
+    return strategy(gap_wall)
+
+
+def placements() -> st.SearchStrategy[tuple[float, tuple[float, float]]]:
+    """Strategy of :func:`~ifgm_ref.worldgen.classes.placement`."""
+    return strategy(placement)
+
+
+#: The solvable classes (their strategies) by the names checks and reports use, those of
+#: :data:`ifgm_ref.worldgen.classes.GENERATORS`.
+SOLVABLE_CLASSES: dict[str, WorldClass] = {
+    "open": open_worlds,
+    "u": u_worlds,
+    "h": h_worlds,
+    "symmetric": symmetric_worlds,
+    "mixed": mixed_worlds,
+}
+
+
+def any_solvable_worlds() -> st.SearchStrategy[World]:
+    """A world of any solvable class (open first, so failures shrink towards it)."""
+    return st.one_of([make() for make in SOLVABLE_CLASSES.values()])
