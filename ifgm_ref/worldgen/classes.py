@@ -140,7 +140,9 @@ def solvable(world: World) -> bool:
     start, goal = shapely.Point(world.start.position), shapely.Point(world.goal)
     if not world.obstacles:
         return True
-    inflated = shapely.union_all([ob.geometry.buffer(r, quad_segs=64) for ob in world.obstacles])
+    inflated = shapely.union_all(
+        [shapely.buffer(ob.geometry, r, quad_segs=64) for ob in world.obstacles]
+    )
     if inflated.intersects(start) or inflated.intersects(goal):
         return False
     box = shapely.box(*inflated.union(start).union(goal).bounds).buffer(10.0)
@@ -191,7 +193,11 @@ def placement(d: Draw) -> tuple[float, tuple[float, float]]:
 
 
 def _canonical(
-    d: Draw, name: str, length: float, features: list[Obstacle], clutter: list[Obstacle]
+    d: Draw,
+    name: str,
+    length: float,
+    features: Sequence[Obstacle],
+    clutter: Sequence[Obstacle],
 ) -> World:
     """A world from the origin to ``(length, 0)``, dropping conflicting clutter."""
     heading = d.floats(-math.pi / 4, math.pi / 4, "start heading")
@@ -205,7 +211,11 @@ def _canonical(
 
 
 def _world(
-    d: Draw, name: str, length: float, features: list[Obstacle], clutter: list[Obstacle]
+    d: Draw,
+    name: str,
+    length: float,
+    features: Sequence[Obstacle],
+    clutter: Sequence[Obstacle],
 ) -> World:
     """Assemble a canonical-frame world, place it, check it."""
     angle, shift = placement(d)
@@ -434,7 +444,9 @@ def gap_wall(d: Draw) -> tuple[World, Polygon]:
     angle, shift = placement(d)
     world = placed(_canonical(d, "gap_wall", length, wall, []), angle, shift)
     assert solvable(world), f"world class gap_wall built {world}"
-    return world, placed_obstacle(gap, angle, shift)
+    moved = placed_obstacle(gap, angle, shift)
+    assert isinstance(moved, Polygon)  # a polygon moves as a polygon
+    return world, moved
 
 
 #: The solvable classes' generators by the names checks, reports and the benchmark use.
