@@ -104,6 +104,10 @@ SEPARATE = [
     ("ifgm_ref.worldgen", "ifgm_ref.bench", "the benchmark samples the generators"),
     ("ifgm_ref.convergence", "ifgm_ref.oracle", "the oracle and the benchmark use the bound"),
     ("ifgm_ref.convergence", "ifgm_ref.bench", "the oracle and the benchmark use the bound"),
+    ("ifgm_ref.cli.simulate", "ifgm_ref.oracle", "a run, in process or through --cmd"),
+    ("ifgm_ref.cli.bench", "ifgm_ref.oracle", "the benchmark does without the oracle"),
+    ("ifgm_ref.cli.serve", "ifgm_ref.oracle", "a planner served needs no oracle"),
+    ("ifgm_ref.cli.common", "ifgm_ref.oracle", "what every subcommand shares"),
 ]
 
 
