@@ -2,7 +2,7 @@
 
 Run from the project root: ``python benchmarks/bench_bound_margin.py`` (``--help`` for
 options). The oracle fails a planner that has not reached the goal within
-:func:`ifgm_ref.oracle.bounds.time_bound` of the world; a bound the reference only just meets
+:func:`ifgm_ref.convergence.time_bound` of the world; a bound the reference only just meets
 rejects every faithful port that is a little slower (rounding, a wobble of the heading).
 
 Target (issue "the oracle a stranger can trust"): where a reference planner that promises
@@ -22,8 +22,8 @@ from collections import defaultdict
 from ifgm_ref.bench.report import machine
 from ifgm_ref.bench.runner import run_bench
 from ifgm_ref.bench.tasks import generated_specs
-from ifgm_ref.oracle.bounds import time_bound
-from ifgm_ref.oracle.strategies import GENERATORS
+from ifgm_ref.convergence import time_bound
+from ifgm_ref.worldgen.classes import GENERATORS
 
 #: The reference planners that promise convergence in every solvable class.
 CONVERGENT = ("bug1", "bug2", "distbug", "iba", "ifgm")

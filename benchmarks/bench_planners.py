@@ -28,7 +28,7 @@ from collections.abc import Sequence
 from ifgm_ref.bench.report import machine, summarize
 from ifgm_ref.bench.runner import run_bench
 from ifgm_ref.bench.tasks import Row, WorldSpec, generated_specs
-from ifgm_ref.cli import DEFAULT_BENCH_CLASSES, DEFAULT_BENCH_PLANNERS
+from ifgm_ref.cli.bench import DEFAULT_BENCH_CLASSES, DEFAULT_BENCH_PLANNERS
 
 CLASSES = list(DEFAULT_BENCH_CLASSES)
 PLANNERS = list(DEFAULT_BENCH_PLANNERS)

@@ -29,14 +29,11 @@ from ifgm_ref.bench.report import (
 from ifgm_ref.bench.runner import run_bench
 from ifgm_ref.bench.tasks import ERROR, Row, WorldSpec, generated_specs, run_world
 from ifgm_ref.errors import ParameterError, WorldError
-from ifgm_ref.oracle.strategies import (
-    SOLVABLE_CLASSES,
-    enclosed_worlds,
-    random_world,
-)
+from ifgm_ref.oracle.strategies import SOLVABLE_CLASSES, enclosed_worlds
 from ifgm_ref.pose import distance
 from ifgm_ref.shapes import rectangle
 from ifgm_ref.world import Polygon, World
+from ifgm_ref.worldgen.classes import random_world
 
 #: Chord error of the inflated curves at the default 8 chords per quarter, per ft of radius.
 CHORD = 1.0 - math.cos(math.pi / 32)

@@ -203,7 +203,7 @@ def test_an_argument_error_is_one_line() -> None:
 def test_a_factory_module_is_found_in_the_working_folder(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    from ifgm_ref.oracle.loading import load_planner
+    from ifgm_ref.transport.loading import load_planner
 
     (tmp_path / "my_cwd_planner_module.py").write_text(
         "from ifgm_ref.planners.iba import IBAPlanner\n\ndef make():\n    return IBAPlanner()\n"

@@ -21,15 +21,15 @@ import pytest
 from ifgm_ref.cli import main
 from ifgm_ref.errors import ImplementationError, ParameterError
 from ifgm_ref.laserscan import LaserScan
-from ifgm_ref.oracle.external import ExternalPlanner
 from ifgm_ref.planners.ifgm import IFGMPlanner
 from ifgm_ref.planners.straight import StraightPlanner
 from ifgm_ref.pose import Point, Pose
 from ifgm_ref.protocol import Command, EpisodeParams, Observation, Planner
 from ifgm_ref.scenarios import resolve_world
-from ifgm_ref.serve import serve
 from ifgm_ref.simulator import Run, simulate
-from ifgm_ref.wire import bye_message, encode, observe_message, reset_message
+from ifgm_ref.transport.external import ExternalPlanner
+from ifgm_ref.transport.serve import serve
+from ifgm_ref.transport.wire import bye_message, encode, observe_message, reset_message
 
 ROOT = Path(__file__).resolve().parent.parent
 GOAL_SEEKER = ROOT / "examples" / "goal_seeker.py"

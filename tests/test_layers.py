@@ -4,6 +4,11 @@ Section 3: "No priori information or map of the environment is required since th
 are based on current percepts." Planners (and the equations, percepts and flowchart layers
 below them) must not import, directly or through other modules of ours, the world, the
 sensor, the simulator or anything above them.
+
+The same import graph keeps the layers above apart: the transport (the JSON-lines protocol,
+planners found by name) serves the oracle, the command line and the benchmark alike and
+imports none of them; the world classes and the time bound serve the oracle and the
+benchmark, which import each other not at all.
 """
 
 from __future__ import annotations
@@ -26,7 +31,10 @@ MAP_AWARE = {
     "ifgm_ref.simulator",
     "ifgm_ref.plotting",
     "ifgm_ref.cli",
+    "ifgm_ref.convergence",
 }
+#: Packages that know the map or sit above the planners, every module in them.
+MAP_AWARE_PACKAGES = ("ifgm_ref.cli.", "ifgm_ref.worldgen", "ifgm_ref.oracle", "ifgm_ref.bench")
 #: The map-free layers: their whole import closure must avoid MAP_AWARE.
 MAP_FREE_PREFIXES = (
     "ifgm_ref.planners",
@@ -35,10 +43,9 @@ MAP_FREE_PREFIXES = (
     "ifgm_ref.flowchart",
     "ifgm_ref.protocol",
     "ifgm_ref.laserscan",
-    # the protocol over JSON lines: both of its ends see what a planner sees, nothing more
-    "ifgm_ref.wire",
-    "ifgm_ref.serve",
-    "ifgm_ref.oracle.external",
+    # the protocol over JSON lines: both of its ends see what a planner sees, nothing more;
+    # and planners found by name
+    "ifgm_ref.transport",
 )
 
 
@@ -78,18 +85,56 @@ def _closure(start: str) -> dict[str, str]:
 MAP_FREE = sorted(m for m in MODULES if m.startswith(MAP_FREE_PREFIXES))
 
 
+def _map_aware(module: str) -> bool:
+    return module in MAP_AWARE or module.startswith(MAP_AWARE_PACKAGES)
+
+
+def _within(module: str, prefix: str) -> bool:
+    return module == prefix or module.startswith(prefix + ".")
+
+
+#: (layer, what it must never reach, why): each layer's whole import closure avoids the other.
+SEPARATE = [
+    ("ifgm_ref.transport", "ifgm_ref.oracle", "the oracle uses the transport, not the reverse"),
+    ("ifgm_ref.transport", "ifgm_ref.bench", "the benchmark uses the transport"),
+    ("ifgm_ref.transport", "ifgm_ref.cli", "the command line uses the transport"),
+    ("ifgm_ref.bench", "ifgm_ref.oracle", "both take worlds and bounds from worldgen, convergence"),
+    ("ifgm_ref.oracle", "ifgm_ref.bench", "both take worlds and bounds from worldgen, convergence"),
+    ("ifgm_ref.worldgen", "ifgm_ref.oracle", "the oracle's strategies wrap the generators"),
+    ("ifgm_ref.worldgen", "ifgm_ref.bench", "the benchmark samples the generators"),
+    ("ifgm_ref.convergence", "ifgm_ref.oracle", "the oracle and the benchmark use the bound"),
+    ("ifgm_ref.convergence", "ifgm_ref.bench", "the oracle and the benchmark use the bound"),
+    ("ifgm_ref.cli.simulate", "ifgm_ref.oracle", "a run, in process or through --cmd"),
+    ("ifgm_ref.cli.bench", "ifgm_ref.oracle", "the benchmark does without the oracle"),
+    ("ifgm_ref.cli.serve", "ifgm_ref.oracle", "a planner served needs no oracle"),
+    ("ifgm_ref.cli.common", "ifgm_ref.oracle", "what every subcommand shares"),
+]
+
+
 def test_map_free_layers_exist() -> None:
     assert "ifgm_ref.planners" in MAP_FREE
     assert "ifgm_ref.planners.straight" in MAP_FREE
-    assert "ifgm_ref.wire" in MAP_FREE
+    assert "ifgm_ref.transport.wire" in MAP_FREE
+    assert "ifgm_ref.transport.loading" in MAP_FREE
+    for layer, other, _ in SEPARATE:
+        assert any(_within(m, layer) for m in MODULES), layer
+        assert any(_within(m, other) for m in MODULES), other
 
 
 @pytest.mark.paper("s3.no_map")
 @pytest.mark.parametrize("module", MAP_FREE)
 def test_planner_layers_never_import_the_map(module: str) -> None:
     reached = _closure(module)
-    leaks = {dep: via for dep, via in reached.items() if dep in MAP_AWARE}
+    leaks = {dep: via for dep, via in reached.items() if _map_aware(dep)}
     assert not leaks, f"{module} reaches map-aware modules (module <- imported by): {leaks}"
+
+
+@pytest.mark.parametrize(("layer", "other", "why"), SEPARATE)
+def test_layers_stay_apart(layer: str, other: str, why: str) -> None:
+    for module in (m for m in MODULES if _within(m, layer)):
+        reached = _closure(module)
+        leaks = {dep: via for dep, via in reached.items() if _within(dep, other)}
+        assert not leaks, f"{module} reaches {other} ({why}; module <- imported by): {leaks}"
 
 
 def test_the_check_has_teeth() -> None:
@@ -98,3 +143,12 @@ def test_the_check_has_teeth() -> None:
         assert "ifgm_ref.sensor" in _closure("ifgm_ref.planners")
     finally:
         GRAPH["ifgm_ref.planners.straight"].discard("ifgm_ref.sensor")
+
+
+def test_the_separation_has_teeth() -> None:
+    GRAPH["ifgm_ref.transport.wire"].add("ifgm_ref.oracle.checks")
+    try:
+        with pytest.raises(AssertionError, match=r"ifgm_ref\.oracle\.checks"):
+            test_layers_stay_apart("ifgm_ref.transport", "ifgm_ref.oracle", "test")
+    finally:
+        GRAPH["ifgm_ref.transport.wire"].discard("ifgm_ref.oracle.checks")

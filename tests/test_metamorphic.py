@@ -26,11 +26,11 @@ from ifgm_ref.oracle.metamorphic import (
 )
 from ifgm_ref.oracle.mutants import AbsoluteStandoff
 from ifgm_ref.oracle.runner import Profile, Status, check_planner, run_check
-from ifgm_ref.oracle.strategies import random_world
 from ifgm_ref.params import RobotParams, SensorParams, SimParams
 from ifgm_ref.planners import PLANNERS
 from ifgm_ref.planners.tuning import Unit
 from ifgm_ref.world import Circle, Polygon, World
+from ifgm_ref.worldgen.classes import random_world
 
 #: A few examples per planner keep CI cheap (the CLI's quick profile runs 50).
 FEW = Profile("few", 20)

@@ -21,24 +21,19 @@ from hypothesis import find, given, settings
 from hypothesis import strategies as st
 
 import ifgm_ref.equations as reference
-from ifgm_ref.oracle.bounds import time_bound
+from ifgm_ref.convergence import time_bound
 from ifgm_ref.oracle.checks import CHECKS, Check, Kind
 from ifgm_ref.oracle.implementation import Implementation, promises_of
 from ifgm_ref.oracle.mutants import MUTANTS
 from ifgm_ref.oracle.runner import Profile, Status, check_planner, run_check
-from ifgm_ref.oracle.strategies import (
-    PASSAGE,
-    SOLVABLE_CLASSES,
-    enclosed_worlds,
-    open_worlds,
-    solvable,
-)
+from ifgm_ref.oracle.strategies import SOLVABLE_CLASSES, enclosed_worlds, open_worlds
 from ifgm_ref.oracle.variants import VARIANTS
 from ifgm_ref.params import SimParams
 from ifgm_ref.planners import make_planner
 from ifgm_ref.simulator import simulate
 from ifgm_ref.world import Circle
 from ifgm_ref.worldfile import load_world
+from ifgm_ref.worldgen.classes import PASSAGE, solvable
 
 WORLDS = Path(__file__).parent / "worlds"
 SIMULATION = [name for name, check in CHECKS.items() if check.kind is Kind.SIMULATION]

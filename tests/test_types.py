@@ -4,11 +4,6 @@
 ``pyproject.toml``: strict, Python 3.11, ``files = ["ifgm_ref"]``) and fails on any error,
 printing them all.
 
-Until the modules being rewritten are typed, their errors are not counted: mypy still checks
-them (the rest of the package imports them), and the test drops the errors reported in the
-files of :data:`NOT_YET_TYPED`. To hold the whole package to strict mypy, delete that
-constant's entries (leave it empty); nothing else changes.
-
 ``test_planner_protocol`` checks, with the same configuration, that a class with a
 ``name: ClassVar[str]``, ``reset`` and ``step`` is a :class:`~ifgm_ref.protocol.Planner` to
 mypy and that one without ``step`` is not.
@@ -26,18 +21,6 @@ import mypy.api
 import pytest
 
 ROOT = Path(__file__).resolve().parent.parent
-
-#: Files and folders (relative to the project root; a folder ends with ``/``) whose mypy
-#: errors are not counted yet: they are being rewritten, and will be typed once merged.
-NOT_YET_TYPED: tuple[str, ...] = (
-    "ifgm_ref/oracle/external.py",
-    "ifgm_ref/oracle/loading.py",
-    "ifgm_ref/oracle/strategies.py",
-    "ifgm_ref/oracle/bounds.py",
-    "ifgm_ref/wire.py",
-    "ifgm_ref/serve.py",
-    "ifgm_ref/cli.py",
-)
 
 #: A message line of mypy: ``path:line: error|note: text``.
 MESSAGE = re.compile(r"^(?P<path>[^:]+):(?P<line>\d+): (?P<kind>error|note): ")
@@ -62,23 +45,13 @@ def in_root(monkeypatch: pytest.MonkeyPatch) -> None:
     monkeypatch.chdir(ROOT)
 
 
-def test_not_yet_typed_exist() -> None:
-    """Every entry of NOT_YET_TYPED names a file or folder (a typo would silence nothing)."""
-    missing = [entry for entry in NOT_YET_TYPED if not (ROOT / entry).exists()]
-    assert not missing, f"NOT_YET_TYPED={missing}, but should name existing files and folders"
-
-
 @pytest.mark.usefixtures("in_root")
 def test_mypy_strict() -> None:
-    """``mypy`` with the project's configuration finds no error outside NOT_YET_TYPED."""
+    """``mypy`` with the project's configuration finds no error in the package."""
     messages, report = _mypy()
     assert "Success" in report or "Found" in report, f"mypy said neither:\n{report}"
-    counted = [m for m in messages if not m["path"].startswith(NOT_YET_TYPED)]
-    errors = [m.string for m in counted if m["kind"] == "error"]
-    assert not errors, (
-        f"mypy --strict errors={len(errors)}, but should be 0 (not counting NOT_YET_TYPED):\n"
-        + "\n".join(m.string for m in counted)
-    )
+    errors = [m.string for m in messages if m["kind"] == "error"]
+    assert not errors, f"mypy --strict errors={len(errors)}, but should be 0:\n{report}"
 
 
 PROTOCOL_CHECK = """\

@@ -45,7 +45,7 @@ from ifgm_ref.percepts.clusters import Gap
 from ifgm_ref.planners import IBAPlanner, IFGMPlanner
 from ifgm_ref.pose import Pose
 from ifgm_ref.protocol import Command, Observation
-from ifgm_ref.wire import observe_message, parse_observe
+from ifgm_ref.transport.wire import observe_message, parse_observe
 
 #: Errata rows (docs/errata.md) that touch equations (1)-(4) and FGM's gap centre angle.
 EQUATION_ERRATA = frozenset({1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 13})

@@ -1,4 +1,4 @@
-"""The JSON-lines codec (``ifgm_ref.wire``): exact round trips and clear rejections."""
+"""The JSON-lines codec (``ifgm_ref.transport.wire``): exact round trips and clear rejections."""
 
 from __future__ import annotations
 
@@ -17,7 +17,7 @@ from ifgm_ref.laserscan import LaserScan
 from ifgm_ref.params import RobotParams, SensorParams
 from ifgm_ref.pose import Point, Pose
 from ifgm_ref.protocol import Behaviour, Command, EpisodeParams, Observation
-from ifgm_ref.wire import (
+from ifgm_ref.transport.wire import (
     QUOTE_LIMIT,
     MessageType,
     Reset,

@@ -33,16 +33,16 @@ import numpy as np
 
 from ifgm_ref.bench import barn
 from ifgm_ref.bench.optimal import optimal_path
+from ifgm_ref.convergence import time_bound
 from ifgm_ref.errors import WorldError
-from ifgm_ref.oracle.bounds import time_bound
-from ifgm_ref.oracle.loading import load_factory
-from ifgm_ref.oracle.strategies import GENERATORS, random_world
 from ifgm_ref.params import SimParams
 from ifgm_ref.protocol import Command, EpisodeParams, Observation, Planner
 from ifgm_ref.scenarios import BUILTIN_WORLDS
 from ifgm_ref.simulator import simulate, total_turning
+from ifgm_ref.transport.loading import load_factory
 from ifgm_ref.world import World
 from ifgm_ref.worldfile import load_world
+from ifgm_ref.worldgen.classes import GENERATORS, random_world
 
 #: The generated world classes, in the order that fixes their seeds' ``class_id``.
 CLASS_IDS: dict[str, int] = {name: k for k, name in enumerate(GENERATORS)}
@@ -206,7 +206,7 @@ def run_world(
     """Build ``spec``'s world, find its shortest path, run each planner there: one row each.
 
     The time limit is ``max_time`` s or, by default, the oracle's convergence budget for the
-    world (:func:`ifgm_ref.oracle.bounds.time_bound`: Bug1's path bound driven slowly); for a
+    world (:func:`ifgm_ref.convergence.time_bound`: Bug1's path bound driven slowly); for a
     BARN world, BARN's 100 s (and its time step and success radius, :data:`barn.SIM`).
     """
     world = spec.build()

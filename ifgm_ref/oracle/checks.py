@@ -40,7 +40,7 @@ check                             property (applies to)
 ================================  ==============================================================
 
 Every simulation check runs with the simulator's defaults (``dt`` 0.1 s, goal tolerance 0.5 ft)
-and stops an episode at :func:`ifgm_ref.oracle.bounds.time_bound` of its world. A planner that
+and stops an episode at :func:`ifgm_ref.convergence.time_bound` of its world. A planner that
 raises, or answers an invalid command, fails the check it was running.
 """
 
@@ -56,8 +56,8 @@ from hypothesis import note
 from hypothesis import strategies as st
 from numpy.typing import NDArray
 
+from ifgm_ref.convergence import time_bound
 from ifgm_ref.errors import ImplementationError
-from ifgm_ref.oracle.bounds import time_bound
 from ifgm_ref.oracle.check_types import Check, CheckFailed, Evidence, Kind, Recorder
 from ifgm_ref.oracle.equation_checks import (
     EQUATION_TOL,
@@ -73,7 +73,6 @@ from ifgm_ref.oracle.strategies import (
     any_solvable_worlds,
     enclosed_worlds,
     gap_walls,
-    placed,
     placements,
 )
 from ifgm_ref.paper import traces
@@ -84,6 +83,7 @@ from ifgm_ref.protocol import Command, Planner
 from ifgm_ref.shapes import circle
 from ifgm_ref.simulator import Run, StopReason, TraceStep, simulate
 from ifgm_ref.world import Polygon, World
+from ifgm_ref.worldgen.classes import placed
 
 __all__ = [
     "CHECKS",

@@ -15,8 +15,8 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 
 from ifgm_ref.errors import ImplementationError
-from ifgm_ref.oracle.loading import load_planner_factory
 from ifgm_ref.protocol import Planner
+from ifgm_ref.transport.loading import load_planner_factory, resolve
 
 #: Every solvable world class of :mod:`ifgm_ref.oracle.strategies`.
 ALL_CLASSES = frozenset({"open", "u", "h", "symmetric", "mixed"})
@@ -133,7 +133,7 @@ class Implementation:
     @property
     def is_program(self) -> bool:
         """Whether it is a program run through the JSON-lines protocol (``from_command``)."""
-        from ifgm_ref.oracle.external import ExternalFactory
+        from ifgm_ref.transport.external import ExternalFactory
 
         return isinstance(self.factory, ExternalFactory)
 
@@ -154,10 +154,36 @@ class Implementation:
     ) -> Implementation:
         """A program speaking the JSON-lines protocol, started once (per process) and kept
         for every episode; labelled ``cmd: COMMAND``. ``promises`` defaults to IFGM's."""
-        from ifgm_ref.oracle.external import ExternalFactory
+        from ifgm_ref.transport.external import ExternalFactory
 
         if not isinstance(promises, Promises):
             promises = promises_of(promises or "ifgm")
         factory = ExternalFactory(command, timeout=timeout)
         text = command if isinstance(command, str) else shlex.join(command)
         return cls(factory, f"cmd: {text}", promises, equations)
+
+
+def load_equations(spec: str) -> object:
+    """The equations under test: the module ``spec`` names, or ``module:attribute``.
+
+    It must expose at least one of the functions the oracle's equation checks compare with
+    :mod:`ifgm_ref.equations` (``eq1_gap_midpoint`` ... ``eq4_final_heading_literal``, the
+    names of the checks), with the reference's signatures.
+
+    >>> load_equations("ifgm_ref.equations").__name__
+    'ifgm_ref.equations'
+    >>> load_equations("math")  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    ifgm_ref.errors.ImplementationError: 'math' has none of the equation functions eq1_gap_...
+    """
+    from ifgm_ref.oracle.checks import CHECKS, Kind  # the checks import this module
+
+    target = resolve(spec)
+    names = [name for name, check in CHECKS.items() if check.kind is Kind.EQUATION]
+    if not any(callable(getattr(target, name, None)) for name in names):
+        raise ImplementationError(
+            f"{spec!r} has none of the equation functions {', '.join(names)} "
+            "(see ifgm_ref.equations)"
+        )
+    return target

@@ -23,8 +23,7 @@ import pytest
 
 from ifgm_ref.errors import IfgmRefError
 from ifgm_ref.oracle.checks import CHECKS
-from ifgm_ref.oracle.implementation import PROMISES, Implementation
-from ifgm_ref.oracle.loading import load_equations
+from ifgm_ref.oracle.implementation import PROMISES, Implementation, load_equations
 from ifgm_ref.oracle.runner import (
     PROFILE_ALIASES,
     PROFILES,

@@ -443,7 +443,7 @@ def check_planner(
         Run the simulation checks in this many worker processes (each check is drawn from
         its own derandomized seed, so the verdicts do not depend on ``jobs``). The planner
         factory must then be picklable (a class, a module-level function,
-        :class:`~ifgm_ref.oracle.external.ExternalFactory`); a program under test is started
+        :class:`~ifgm_ref.transport.external.ExternalFactory`); a program under test is started
         once per worker.
 
     Returns

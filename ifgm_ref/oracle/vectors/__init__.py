@@ -8,7 +8,7 @@ checks are written down as data: ``ifgm-ref vectors --out vectors.json`` writes
   cases for every errata row that touches an equation (``docs/errata.md``) and seeded random
   ones;
 * **reference traces**: short IFGM and IBA episodes in built-in worlds, each step's
-  observation exactly as the JSON-lines protocol sends it (:mod:`ifgm_ref.wire`) with the
+  observation exactly as the JSON-lines protocol sends it (:mod:`ifgm_ref.transport.wire`) with the
   command the reference planner answered, together covering every branch of Figure 3.
 
 ``docs/vectors-format.md`` specifies the file. The same data checks Python implementations:

@@ -24,9 +24,9 @@ from typing import Any
 import numpy as np
 
 from ifgm_ref.oracle.domains import DOMAINS, EQ3_MIN_DISTANCE, FGM_MIN_WIDTH, HALF_FOV, Argument
-from ifgm_ref.oracle.draws import Draw, RandomDraw
 from ifgm_ref.oracle.vectors.schema import Form, Value
 from ifgm_ref.pose import Pose
+from ifgm_ref.worldgen.draws import Draw, RandomDraw
 
 __all__ = ["GROUPS", "RANDOM_CASES", "TRACES", "Case", "EquationGroup", "TraceSpec"]
 

@@ -16,10 +16,10 @@ the whole document          :class:`VectorsDocument`
 ==========================  =====================================================
 
 A trace's ``reset``, ``observe`` and ``command`` objects are the JSON-lines protocol's
-messages, built and read by :mod:`ifgm_ref.wire`. Floats are written with ``repr`` and read
-back bit for bit, so ``from_json(x).to_json() == x``. A reader ignores keys it does not know
-(adding keys keeps the format version); a missing key or a value of the wrong type raises
-:class:`~ifgm_ref.errors.ParameterError` naming where it is.
+messages, built and read by :mod:`ifgm_ref.transport.wire`. Floats are written with ``repr``
+and read back bit for bit, so ``from_json(x).to_json() == x``. A reader ignores keys it does
+not know (adding keys keeps the format version); a missing key or a value of the wrong type
+raises :class:`~ifgm_ref.errors.ParameterError` naming where it is.
 
 Examples
 --------
@@ -42,7 +42,7 @@ from typing import Any
 
 from ifgm_ref.errors import ParameterError, ProtocolError
 from ifgm_ref.oracle.recording import Recording
-from ifgm_ref.wire import (
+from ifgm_ref.transport.wire import (
     command_message,
     observe_message,
     parse_command,
@@ -354,7 +354,7 @@ class TraceRecord:
 
     @classmethod
     def from_json(cls, data: object, where: str) -> TraceRecord:
-        """Read a ``traces`` entry (its messages through :mod:`ifgm_ref.wire`)."""
+        """Read a ``traces`` entry (its messages through :mod:`ifgm_ref.transport.wire`)."""
         branches = _array(_get(data, "branches", where), f"{where}.branches")
         return cls(
             id=_text(_get(data, "id", where), f"{where}.id"),

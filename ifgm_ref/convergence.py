@@ -27,6 +27,8 @@ from __future__ import annotations
 
 import math
 
+import shapely
+
 from ifgm_ref.pose import distance
 from ifgm_ref.world import World
 
@@ -39,7 +41,10 @@ TURN_ALLOWANCE = 10
 def followed_perimeters(world: World) -> float:
     """Sum of the perimeters of the obstacles inflated by twice the robot radius."""
     inflate = 2.0 * world.robot.radius
-    return sum(ob.geometry.buffer(inflate).exterior.length for ob in world.obstacles)
+    # 16 chords per quarter circle: what ``Geometry.buffer`` has always used here
+    return sum(
+        shapely.buffer(ob.geometry, inflate, quad_segs=16).exterior.length for ob in world.obstacles
+    )
 
 
 def time_bound(world: World) -> float:
@@ -56,4 +61,4 @@ def time_bound(world: World) -> float:
 
 def path_bound(world: World) -> float:
     """Bug1's path bound on the inflated obstacles, ``D + 1.5 * sum(p_i)``."""
-    return distance(world.start, world.goal) + 1.5 * followed_perimeters(world)
+    return distance(world.start.position, world.goal) + 1.5 * followed_perimeters(world)

@@ -22,7 +22,7 @@ from typing import Any, TextIO
 
 from ifgm_ref.errors import IfgmRefError, ProtocolError
 from ifgm_ref.protocol import Command, Planner
-from ifgm_ref.wire import (
+from ifgm_ref.transport.wire import (
     MessageType,
     command_message,
     decode,
@@ -59,7 +59,7 @@ def serve(
     ----------
     planner_factory : callable
         Called with no argument at every ``reset`` for a new :class:`Planner` (a class is
-        such a callable; see :func:`ifgm_ref.oracle.loading.load_factory`).
+        such a callable; see :func:`ifgm_ref.transport.loading.load_factory`).
     stdin, stdout, stderr : text streams
         The oracle's messages, the replies (one JSON object a line, flushed after each), and
         the log: the planner's own output and the one-line error report.
@@ -75,7 +75,7 @@ def serve(
     >>> from ifgm_ref.planners import StraightPlanner
     >>> from ifgm_ref.protocol import EpisodeParams
     >>> from ifgm_ref.pose import Point, Pose
-    >>> from ifgm_ref.wire import bye_message, encode, reset_message
+    >>> from ifgm_ref.transport.wire import bye_message, encode, reset_message
     >>> reset = reset_message(Pose(0.0, 0.0, 0.0), Point(0.0, 5.0), EpisodeParams())
     >>> stdin = io.StringIO(encode(reset) + "\\n" + encode(bye_message()) + "\\n")
     >>> stdout, stderr = io.StringIO(), io.StringIO()
@@ -87,47 +87,71 @@ def serve(
     >>> serve(StraightPlanner, io.StringIO("hello\\n"), stdout, stderr), stderr.getvalue()
     (2, "ifgm-ref serve: error: line 1 is not JSON: 'hello' (Expecting value at column 1)\\n")
     """
-    planner: Planner | None = None
-    number = 0
+    session = _Session(planner_factory, stdout, stderr)
     try:
-        while True:
-            line = stdin.readline()
-            number += 1
-            if not line:
-                raise ProtocolError(f"end of input after {number - 1} line(s), before bye")
-            if not line.strip():
-                continue  # a blank line carries nothing; the oracle never sends one
-            message = decode(line, what=f"line {number}")
-            kind = message_type(message, where=f"line {number}")
-            try:
-                if kind is MessageType.RESET:
-                    reset = parse_reset(message)
-                    planner = _call(stderr, planner_factory)
-                    _call(stderr, planner.reset, reset.start, reset.goal, reset.params)
-                    _send(stdout, encode(ready_message()))
-                elif kind is MessageType.OBSERVE:
-                    if planner is None:
-                        raise ProtocolError("observe before the first reset")
-                    command = _call(stderr, planner.step, parse_observe(message))
-                    _send(stdout, _command_line(command))
-                elif kind is MessageType.BYE:
-                    parse_bye(message)
-                    return EXIT_OK
-                else:
-                    raise ProtocolError(
-                        f"type {kind.value!r}, but should be 'reset', 'observe' or 'bye' "
-                        "(the program sends ready and command, the oracle does not)"
-                    )
-            except IfgmRefError as err:
-                raise type(err)(f"line {number} ({kind.value}): {err}") from None
+        session.run(stdin)
     except IfgmRefError as err:
         _report(stderr, str(err))
         return EXIT_BAD_INPUT
     except _PlannerCrashed as crash:
         if crash.__cause__ is not None:
             traceback.print_exception(crash.__cause__, file=stderr)
-        _report(stderr, f"line {number}: {crash}")
+        _report(stderr, f"line {session.number}: {crash}")
         return EXIT_PLANNER_CRASHED
+    return EXIT_OK
+
+
+class _Session:
+    """One session of :func:`serve`: the planner of the current episode, the line number."""
+
+    def __init__(
+        self, planner_factory: Callable[[], Planner], stdout: TextIO, stderr: TextIO
+    ) -> None:
+        self.planner_factory = planner_factory
+        self.stdout = stdout
+        self.stderr = stderr
+        self.planner: Planner | None = None
+        #: The number of the line read last (1 for the first).
+        self.number = 0
+
+    def run(self, stdin: TextIO) -> None:
+        """Answer every line up to ``bye``; raise at bad input or a planner crash."""
+        while True:
+            line = stdin.readline()
+            self.number += 1
+            if not line:
+                raise ProtocolError(f"end of input after {self.number - 1} line(s), before bye")
+            if not line.strip():
+                continue  # a blank line carries nothing; the oracle never sends one
+            message = decode(line, what=f"line {self.number}")
+            kind = message_type(message, where=f"line {self.number}")
+            try:
+                if self.answer(kind, message):
+                    return
+            except IfgmRefError as err:
+                raise type(err)(f"line {self.number} ({kind.value}): {err}") from None
+
+    def answer(self, kind: MessageType, message: dict[str, Any]) -> bool:
+        """Answer one message of type ``kind``; return whether it was ``bye``."""
+        if kind is MessageType.RESET:
+            reset = parse_reset(message)
+            self.planner = _call(self.stderr, self.planner_factory)
+            _call(self.stderr, self.planner.reset, reset.start, reset.goal, reset.params)
+            _send(self.stdout, encode(ready_message()))
+        elif kind is MessageType.OBSERVE:
+            if self.planner is None:
+                raise ProtocolError("observe before the first reset")
+            command = _call(self.stderr, self.planner.step, parse_observe(message))
+            _send(self.stdout, _command_line(command))
+        elif kind is MessageType.BYE:
+            parse_bye(message)
+            return True
+        else:
+            raise ProtocolError(
+                f"type {kind.value!r}, but should be 'reset', 'observe' or 'bye' "
+                "(the program sends ready and command, the oracle does not)"
+            )
+        return False
 
 
 def _call(stderr: TextIO, function: Callable[..., Any], *args: Any) -> Any:

@@ -35,7 +35,7 @@ from typing import IO, Any, NoReturn, TextIO
 from ifgm_ref.errors import ImplementationError, ParameterError, ProtocolError
 from ifgm_ref.pose import Point, Pose
 from ifgm_ref.protocol import Command, EpisodeParams, Observation
-from ifgm_ref.wire import (
+from ifgm_ref.transport.wire import (
     bye_message,
     decode,
     encode,
@@ -120,7 +120,7 @@ class ExternalPlanner:
         self._stderr_tail: collections.deque[str] = collections.deque(maxlen=STDERR_TAIL)
         self._threads: tuple[threading.Thread, ...] = ()
         self._failure: ImplementationError | None = None
-        self._finalizer: weakref.finalize | None = None
+        self._finalizer: weakref.finalize[..., ExternalPlanner] | None = None
 
     # --- Planner ---------------------------------------------------------------------------
 

@@ -1,11 +1,12 @@
-"""Find the implementation under test: a built-in planner name or ``module:attribute``.
+"""Find a Python planner by name: a built-in planner name or ``module:attribute``.
 
-The oracle, ``ifgm-ref serve`` and the pytest plugin all name a Python planner the same way:
-either a built-in name (``ifgm``, see ``ifgm-ref planners``) or an import path to a factory,
-``package.module:make_planner``, i.e. any callable that takes no argument and returns a new
-object with ``name``, ``reset`` and ``step`` (:class:`ifgm_ref.protocol.Planner`). A class is
-such a callable. The equations under test are named the same way, by a module or
-``module:attribute`` (:func:`load_equations`).
+``ifgm-ref simulate``, ``ifgm-ref bench``, ``ifgm-ref serve``, the oracle and its pytest
+plugin all name a Python planner the same way: either a built-in name (``ifgm``, see
+``ifgm-ref planners``) or an import path to a factory, ``package.module:make_planner``, i.e.
+any callable that takes no argument and returns a new object with ``name``, ``reset`` and
+``step`` (:class:`ifgm_ref.protocol.Planner`). A class is such a callable. The oracle names
+the equations under test the same way (:func:`resolve`;
+:func:`ifgm_ref.oracle.implementation.load_equations`).
 """
 
 from __future__ import annotations
@@ -46,14 +47,29 @@ def load_factory(spec: str) -> Callable[[], Planner]:
         raise ImplementationError(
             f"{spec!r} is neither a built-in planner ({known}) nor module:attribute"
         )
-    target = _resolve(spec)
+    target = resolve(spec)
     if not callable(target):
         raise ImplementationError(f"{spec!r} is not callable, got {type(target).__name__}")
-    return target  # type: ignore[return-value]
+    return target
 
 
-def _resolve(spec: str) -> object:
-    """The module ``spec`` names, or the attribute of ``module:attribute`` (dots go deeper)."""
+def resolve(spec: str) -> object:
+    """The module ``spec`` names, or the attribute of ``module:attribute`` (dots go deeper).
+
+    The current directory joins the import path if missing, as with ``python -m``. Any
+    failure is an :class:`ImplementationError` naming ``spec``.
+
+    Examples
+    --------
+    >>> resolve("ifgm_ref.planners.iba:IBAPlanner").__name__
+    'IBAPlanner'
+    >>> resolve("math:pi.real")
+    3.141592653589793
+    >>> resolve("math:tau_xyz")  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    ifgm_ref.errors.ImplementationError: module 'math' has no attribute 'tau_xyz' (from ...)
+    """
     module_name, _, attribute = spec.partition(":")
     if os.getcwd() not in sys.path and "" not in sys.path:
         sys.path.insert(0, os.getcwd())  # as ``python -m`` does: modules beside the user
@@ -102,29 +118,3 @@ def load_planner_factory(spec: str) -> Callable[[], Planner]:
     """
     load_planner(spec)
     return load_factory(spec)
-
-
-def load_equations(spec: str) -> object:
-    """The equations under test: the module ``spec`` names, or ``module:attribute``.
-
-    It must expose at least one of the functions the oracle's equation checks compare with
-    :mod:`ifgm_ref.equations` (``eq1_gap_midpoint`` ... ``eq4_final_heading_literal``, the
-    names of the checks), with the reference's signatures.
-
-    >>> load_equations("ifgm_ref.equations").__name__
-    'ifgm_ref.equations'
-    >>> load_equations("math")  # doctest: +ELLIPSIS
-    Traceback (most recent call last):
-    ...
-    ifgm_ref.errors.ImplementationError: 'math' has none of the equation functions eq1_gap_...
-    """
-    from ifgm_ref.oracle.checks import CHECKS, Kind  # the checks import this module
-
-    target = _resolve(spec)
-    names = [name for name, check in CHECKS.items() if check.kind is Kind.EQUATION]
-    if not any(callable(getattr(target, name, None)) for name in names):
-        raise ImplementationError(
-            f"{spec!r} has none of the equation functions {', '.join(names)} "
-            "(see ifgm_ref.equations)"
-        )
-    return target

@@ -1,6 +1,6 @@
 """Two sources of random choices for one world generator: Hypothesis, or a seeded numpy RNG.
 
-The oracle's world classes (:mod:`ifgm_ref.oracle.strategies`) are written once, against the
+The oracle's world classes (:mod:`ifgm_ref.worldgen.classes`) are written once, against the
 small :class:`Draw` interface. :class:`HypothesisDraw` turns every choice into a Hypothesis
 draw, so the property tests shrink failing worlds; :class:`RandomDraw` takes every choice
 from a ``numpy.random.Generator``, so the benchmark gets the same classes as plain uniform

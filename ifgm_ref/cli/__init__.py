@@ -1,0 +1,70 @@
+"""The ``ifgm-ref`` command line.
+
+Every error that bad input can cause is reported as one line on stderr
+(``ifgm-ref: error: ...``) with exit status 2, never as a traceback.
+
+One module per subcommand or group of them, each adding its parser (``add_NAME``) and
+running it (``run_NAME``): :mod:`.simulate`; :mod:`.listings` (``worlds``, ``planners``);
+:mod:`.artefacts` (``figures``, ``vectors``, ``trace-matrix``); :mod:`.oracle`;
+:mod:`.bench`; :mod:`.serve`. What they share is in :mod:`.common`.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from collections.abc import Sequence
+
+from ifgm_ref.cli.artefacts import add_figures, add_trace_matrix, add_vectors
+from ifgm_ref.cli.bench import add_bench
+from ifgm_ref.cli.common import EXIT_USAGE, Parser
+from ifgm_ref.cli.listings import add_planners, add_worlds
+from ifgm_ref.cli.oracle import add_oracle
+from ifgm_ref.cli.serve import add_serve
+from ifgm_ref.cli.simulate import add_simulate
+from ifgm_ref.errors import IfgmRefError
+
+__all__ = ["build_parser", "main"]
+
+#: The subcommands in the order ``ifgm-ref --help`` lists them.
+SUBCOMMANDS = (
+    add_simulate,
+    add_worlds,
+    add_figures,
+    add_planners,
+    add_vectors,
+    add_oracle,
+    add_bench,
+    add_trace_matrix,
+    add_serve,
+)
+
+
+def build_parser() -> argparse.ArgumentParser:
+    """The argument parser of ``ifgm-ref`` (all subcommands)."""
+    parser = Parser(
+        prog="ifgm-ref",
+        description="Reference implementation of IFGM and IBA (obstacle avoidance for "
+        "mobile robots with U and H shaped obstacles).",
+    )
+    sub = parser.add_subparsers(
+        dest="command", required=True, metavar="COMMAND", parser_class=Parser
+    )
+    for add in SUBCOMMANDS:
+        add(sub)
+    return parser
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Run the command line; return the exit status."""
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    args.argv = list(sys.argv[1:] if argv is None else argv)
+    try:
+        return int(args.func(args))
+    except IfgmRefError as err:
+        print(f"ifgm-ref: error: {err}", file=sys.stderr)
+        return EXIT_USAGE
+    except OSError as err:
+        print(f"ifgm-ref: error: {err}", file=sys.stderr)
+        return EXIT_USAGE

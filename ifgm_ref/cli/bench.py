@@ -1,0 +1,207 @@
+"""``ifgm-ref bench``: run planners on many worlds against the shortest path."""
+
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+from ifgm_ref.cli.common import names, positive_float
+from ifgm_ref.errors import ParameterError
+
+if TYPE_CHECKING:
+    from ifgm_ref.bench.tasks import WorldSpec
+    from ifgm_ref.cli.common import Subcommands
+
+#: What ``ifgm-ref bench`` runs by default: the paper's seven planners on four classes.
+DEFAULT_BENCH_PLANNERS = ("bug1", "bug2", "distbug", "iba", "fgm", "ifgm", "apf")
+DEFAULT_BENCH_CLASSES = ("open", "u", "h", "symmetric")
+#: Exit status when the run is interrupted (Ctrl-C): 128 + SIGINT, as a shell reports it.
+EXIT_INTERRUPTED = 130
+
+
+def add_bench(sub: Subcommands) -> None:
+    """Add ``bench`` to the subcommands."""
+    bench = sub.add_parser(
+        "bench",
+        help="run planners on many worlds against the shortest path (docs/benchmark.md)",
+        description="Run planners on generated worlds (default), the built-in worlds or a "
+        "folder of world files; write one row per (planner, world) to OUT/results.csv, "
+        "summaries per planner and class (OUT/summary.csv, OUT/summary.md) and plots. Path "
+        "lengths are divided by the shortest collision-free path of the robot disc.",
+    )
+    bench.add_argument(
+        "--planners",
+        type=names,
+        default=list(DEFAULT_BENCH_PLANNERS),
+        metavar="A,B,...",
+        help=f"planners to run (default {','.join(DEFAULT_BENCH_PLANNERS)}); built-in names "
+        "or module:attribute factories",
+    )
+    source = bench.add_mutually_exclusive_group()
+    source.add_argument(
+        "--classes",
+        type=names,
+        default=list(DEFAULT_BENCH_CLASSES),
+        metavar="A,B,...",
+        help=f"generated world classes (default {','.join(DEFAULT_BENCH_CLASSES)}; also: mixed)",
+    )
+    source.add_argument("--builtin", action="store_true", help="use the built-in worlds instead")
+    source.add_argument("--world-dir", metavar="DIR", help="use the world files DIR/*.json instead")
+    source.add_argument(
+        "--barn",
+        metavar="DIR",
+        help="use BARN's worlds instead: DIR holds world_N.world and path_N.npy, or is a clone "
+        "of BARN's repository (jackal_helper/worlds/BARN); adds BARN's reference_length and "
+        "barn_score to the results (docs/benchmark.md)",
+    )
+    _add_run_options(bench)
+    bench.set_defaults(func=run_bench)
+
+
+def _add_run_options(bench: argparse.ArgumentParser) -> None:
+    """BARN's options, the generated worlds' number and seed, where to run, where to write."""
+    bench.add_argument(
+        "--barn-worlds",
+        metavar="SEL",
+        help="with --barn: only these world indices, e.g. 0-49,60 (default: every world found)",
+    )
+    bench.add_argument(
+        "--sensor",
+        choices=("jackal_lidar", "paper_ir"),
+        help="with --barn: the sensor preset (default jackal_lidar: BARN's 270-degree LiDAR; "
+        "paper_ir: the paper's IR sensor scaled to the 0.22 m robot)",
+    )
+    bench.add_argument(
+        "--per-class", type=int, default=50, metavar="N", help="worlds per class (default 50)"
+    )
+    bench.add_argument("--seed", type=int, default=0, help="seed of the generated worlds (0)")
+    bench.add_argument(
+        "--jobs",
+        type=int,
+        default=os.cpu_count() or 1,
+        metavar="N",
+        help="local worker processes (default: the number of CPUs; 1 runs in this process)",
+    )
+    bench.add_argument(
+        "--scheduler",
+        metavar="ADDRESS",
+        help="run on a Dask cluster instead, e.g. tcp://host:8786 (pip install "
+        "'ifgm-ref[dask]'; the workers need ifgm-ref installed)",
+    )
+    bench.add_argument(
+        "--max-time",
+        type=positive_float,
+        help="episode time limit, s (default: each world's convergence budget, docs/oracle.md; "
+        "BARN's 100 s for BARN worlds)",
+    )
+    bench.add_argument(
+        "--out", default="bench-results", metavar="DIR", help="output folder (bench-results)"
+    )
+
+
+def run_bench(args: argparse.Namespace) -> int:
+    """Run the benchmark and write its report; return the exit status."""
+    import time
+
+    from ifgm_ref.bench.report import PARTIAL, write_csv, write_report
+    from ifgm_ref.bench.runner import run_bench as run_tasks
+    from ifgm_ref.bench.tasks import Row
+
+    _check_args(args)
+    specs, source = _specs(args)
+    where = f"Dask scheduler {args.scheduler}" if args.scheduler else f"{args.jobs} process(es)"
+    print(
+        f"bench: {len(args.planners)} planners x {len(specs)} worlds ({source}) on {where}",
+        file=sys.stderr,
+    )
+    partial = Path(args.out) / PARTIAL
+    partial.parent.mkdir(parents=True, exist_ok=True)
+    partial.unlink(missing_ok=True)
+    begin = time.perf_counter()
+    try:
+        rows = run_tasks(
+            specs,
+            args.planners,
+            jobs=args.jobs,
+            scheduler=args.scheduler,
+            max_time=args.max_time,
+            progress=None,
+            on_rows=lambda done: write_csv(partial, Row.columns(), done, append=True),
+        )
+    except KeyboardInterrupt:
+        print(f"interrupted: the rows so far are in {partial}", file=sys.stderr)
+        return EXIT_INTERRUPTED
+    wall = time.perf_counter() - begin
+    header = _header(args, source, where, wall, len(rows))
+    written = write_report(rows, specs, args.out, header)
+    partial.unlink()
+    print(
+        f"wrote {', '.join(p.name for p in written)} to {args.out} ({wall:.1f} s)",
+        file=sys.stderr,
+    )
+    return 0
+
+
+def _check_args(args: argparse.Namespace) -> None:
+    """Refuse what cannot run, before anything runs: one error, not one per episode."""
+    from ifgm_ref.bench.optimal import require_pathfinder
+    from ifgm_ref.transport.loading import load_planner
+
+    if args.barn is None:
+        require_pathfinder()  # BARN worlds skip the shortest path (ifgm_ref/bench/tasks.py)
+        for option in ("barn_worlds", "sensor"):
+            if getattr(args, option) is not None:
+                flag = "--" + option.replace("_", "-")
+                raise ParameterError(f"{flag} applies to BARN worlds only: give --barn DIR")
+    for planner in args.planners:
+        load_planner(planner)  # a bad name or factory is one error now, not one per episode
+
+
+def _specs(args: argparse.Namespace) -> tuple[list[WorldSpec], str]:
+    """The worlds to run, and a phrase saying where they come from."""
+    from ifgm_ref.bench.tasks import barn_specs, builtin_specs, folder_specs, generated_specs
+
+    if args.barn is not None:
+        from ifgm_ref.bench.barn import DEFAULT_SENSOR, parse_selection
+
+        sensor = args.sensor or DEFAULT_SENSOR
+        chosen = None if args.barn_worlds is None else parse_selection(args.barn_worlds)
+        specs = barn_specs(args.barn, sensor, chosen)
+        return specs, f"{len(specs)} BARN worlds in {args.barn}, sensor {sensor}"
+    if args.builtin:
+        return builtin_specs(), "the built-in worlds"
+    if args.world_dir is not None:
+        return folder_specs(args.world_dir), f"the world files in {args.world_dir}"
+    if args.per_class < 1:
+        raise ParameterError(f"--per-class must be at least 1, got {args.per_class}")
+    specs = generated_specs(args.classes, args.per_class, args.seed)
+    return specs, (
+        f"{args.per_class} generated worlds per class ({', '.join(args.classes)}), seed {args.seed}"
+    )
+
+
+def _header(args: argparse.Namespace, source: str, where: str, wall: float, episodes: int) -> str:
+    """The report's header: the command, the worlds, the planners, the limit, the machine."""
+    import shlex
+
+    from ifgm_ref.bench.report import machine
+
+    limit = f"{args.max_time:g} s" if args.max_time else "each world's convergence budget"
+    if args.barn is not None and not args.max_time:
+        limit = "BARN's 100 s"
+    return "\n".join(
+        [
+            "# Benchmark against the shortest collision-free path",
+            "",
+            f"Generated by `ifgm-ref {shlex.join(args.argv)}`; do not edit.",
+            "",
+            f"- worlds: {source}",
+            f"- planners: {', '.join(args.planners)}",
+            f"- episode time limit: {limit}",
+            f"- ran on: {where}; {machine()}",
+            f"- wall time: {wall:.1f} s for {episodes} episodes",
+        ]
+    )

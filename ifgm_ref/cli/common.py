@@ -1,0 +1,52 @@
+"""What every subcommand of ``ifgm-ref`` shares: the parser class, argument types, exit code."""
+
+from __future__ import annotations
+
+import argparse
+from typing import TYPE_CHECKING, NoReturn
+
+#: Exit status of a usage error or of bad input, reported as one line on stderr.
+EXIT_USAGE = 2
+
+
+class Parser(argparse.ArgumentParser):
+    """An argument parser whose usage errors are one line, as the README promises."""
+
+    def error(self, message: str) -> NoReturn:
+        self.exit(EXIT_USAGE, f"{self.prog}: error: {message} (see {self.prog} --help)\n")
+
+
+if TYPE_CHECKING:
+    #: What ``add_subparsers`` returns: each subcommand module adds its parser to it.
+    Subcommands = argparse._SubParsersAction[Parser]
+
+
+def positive_float(text: str) -> float:
+    """Argument type: a finite number > 0.
+
+    >>> positive_float("0.5")
+    0.5
+    >>> positive_float("inf")
+    Traceback (most recent call last):
+    ...
+    argparse.ArgumentTypeError: must be a finite number > 0, got 'inf'
+    """
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"must be a number, got {text!r}") from None
+    if not value > 0 or value == float("inf"):
+        raise argparse.ArgumentTypeError(f"must be a finite number > 0, got {text!r}")
+    return value
+
+
+def names(text: str) -> list[str]:
+    """Argument type: comma-separated names, at least one.
+
+    >>> names("ifgm, iba,")
+    ['ifgm', 'iba']
+    """
+    found = [name.strip() for name in text.split(",") if name.strip()]
+    if not found:
+        raise argparse.ArgumentTypeError(f"expected comma-separated names, got {text!r}")
+    return found

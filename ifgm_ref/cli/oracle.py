@@ -1,0 +1,141 @@
+"""``ifgm-ref oracle``: check a planner, Python or a program, against the oracle's properties."""
+
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+from typing import TYPE_CHECKING, TextIO
+
+from ifgm_ref.cli.common import positive_float
+from ifgm_ref.errors import ParameterError
+
+if TYPE_CHECKING:
+    from ifgm_ref.cli.common import Subcommands
+
+
+def add_oracle(sub: Subcommands) -> None:
+    """Add ``oracle`` to the subcommands."""
+    oracle = sub.add_parser(
+        "oracle",
+        help="check a planner against the oracle's properties (docs/oracle.md)",
+        description="Run the oracle's property checks against a built-in or Python planner "
+        "(--planner) or a program speaking the JSON-lines protocol (--cmd). Prints each "
+        "check's line on stderr as it finishes, then the report on stdout: every check's line "
+        "and a summary (only the summary when stdout is the terminal that showed the lines). "
+        "Exit status 0 when every check passed (or failed as expected), 1 otherwise. "
+        "Counterexamples go to --artifacts.",
+    )
+    oracle.add_argument("--planner", metavar="NAME", help="built-in name or module:attribute")
+    oracle.add_argument("--cmd", metavar="PROGRAM", help="a JSON-lines protocol program")
+    oracle.add_argument(
+        "--profile",
+        default="quick",
+        choices=("quick", "standard", "thorough", "default"),
+        help="examples per check: quick 50 (the default), standard 200, thorough 1000 "
+        "('default' is the old name of standard)",
+    )
+    oracle.add_argument(
+        "--equations",
+        metavar="MODULE",
+        help="check the eqs. (1)-(4) of this module (or module:attribute), which exposes "
+        "eq1_gap_midpoint ... as ifgm_ref.equations does (a --cmd program's own equations are "
+        "checked with the vectors of `ifgm-ref vectors` instead)",
+    )
+    oracle.add_argument(
+        "--promises",
+        metavar="PLANNER",
+        help="check what this built-in planner promises (default: its own, or ifgm's)",
+    )
+    _add_run_options(oracle)
+    oracle.set_defaults(func=run_oracle)
+
+
+def _add_run_options(oracle: argparse.ArgumentParser) -> None:
+    """Which checks run, how, and where their counterexamples go."""
+    oracle.add_argument(
+        "--check", action="append", metavar="NAME", help="run only this check (repeatable)"
+    )
+    oracle.add_argument(
+        "--expect-failure",
+        action="append",
+        metavar="CHECK=REASON",
+        help="a check known to fail, reported as an expected failure (repeatable)",
+    )
+    oracle.add_argument(
+        "--artifacts",
+        default="oracle-failures",
+        metavar="DIR",
+        help="where counterexamples are written (default oracle-failures)",
+    )
+    oracle.add_argument(
+        "--timeout", type=positive_float, default=10.0, help="per-reply timeout for --cmd, s"
+    )
+    oracle.add_argument(
+        "--stop-on-failure", action="store_true", help="stop at the first failing check"
+    )
+    oracle.add_argument(
+        "--jobs",
+        type=int,
+        default=os.cpu_count() or 1,
+        metavar="N",
+        help="run the simulation checks in N processes (default: the number of CPUs; a "
+        "--cmd program is started once per process)",
+    )
+
+
+def run_oracle(args: argparse.Namespace) -> int:
+    """Run the checks; print the report; return 0 when every check passed (or as expected)."""
+    from ifgm_ref.oracle.implementation import Implementation, load_equations
+    from ifgm_ref.oracle.runner import PROFILE_ALIASES, check_planner
+
+    if (args.planner is None) == (args.cmd is None):
+        raise ParameterError("give exactly one of --planner NAME and --cmd 'PROGRAM'")
+    if args.profile in PROFILE_ALIASES:
+        new = PROFILE_ALIASES[args.profile]
+        print(f"ifgm-ref: note: profile {args.profile!r} is now called {new!r}", file=sys.stderr)
+    expected = {}
+    for item in args.expect_failure or []:
+        name, _, reason = item.partition("=")
+        expected[name] = reason or "expected"
+    equations = None if args.equations is None else load_equations(args.equations)
+    if args.cmd is not None:
+        impl = Implementation.from_command(
+            args.cmd, timeout=args.timeout, promises=args.promises, equations=equations
+        )
+    else:
+        impl = Implementation.from_spec(args.planner, promises=args.promises, equations=equations)
+    try:
+        report = check_planner(
+            impl,
+            profile=args.profile,
+            checks=args.check,
+            expected_failed_checks=expected,
+            artifacts=args.artifacts,
+            progress=True,
+            stop_on_failure=args.stop_on_failure,
+            jobs=args.jobs,
+        )
+    finally:
+        impl.close()
+    # Each check's line went to stderr as it finished; a terminal that shows stderr as stdout
+    # has them already and gets the summary only. Redirected stdout gets the whole report.
+    print(report.summary() if same_terminal(sys.stdout, sys.stderr) else report.text())
+    return 0 if report.ok else 1
+
+
+def same_terminal(out: TextIO, err: TextIO) -> bool:
+    """Whether ``out`` and ``err`` are the same terminal (what one sees, the other shows).
+
+    >>> import io
+    >>> same_terminal(io.StringIO(), io.StringIO())
+    False
+    """
+    try:
+        return (
+            out.isatty()
+            and err.isatty()
+            and os.path.samestat(os.fstat(out.fileno()), os.fstat(err.fileno()))
+        )
+    except (AttributeError, OSError, ValueError):  # a stream without a file: not a terminal
+        return False

@@ -1,0 +1,185 @@
+"""``ifgm-ref simulate``: run one planner (built-in, a factory or a program) in one world."""
+
+from __future__ import annotations
+
+import argparse
+import json
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+from ifgm_ref.cli.common import positive_float
+from ifgm_ref.errors import ParameterError
+from ifgm_ref.params import SimParams
+from ifgm_ref.planners import PLANNERS
+from ifgm_ref.scenarios import resolve_world
+from ifgm_ref.simulator import Run, simulate
+from ifgm_ref.world import World
+
+if TYPE_CHECKING:
+    from ifgm_ref.cli.common import Subcommands
+
+#: The file types ``--plot`` and ``--animate`` can write.
+PLOT_SUFFIXES = (".png", ".svg", ".pdf", ".jpg", ".jpeg")
+ANIMATION_SUFFIXES = (".gif",)
+
+
+def add_simulate(sub: Subcommands) -> None:
+    """Add ``simulate`` to the subcommands."""
+    sim = sub.add_parser("simulate", help="run one planner in one world")
+    sim.add_argument("world", metavar="WORLD", help="a world file (JSON) or a built-in world name")
+    sim.add_argument(
+        "--planner",
+        metavar="NAME",
+        help=f"planner to run: {', '.join(sorted(PLANNERS))}, or module:attribute (a factory)",
+    )
+    sim.add_argument(
+        "--cmd",
+        metavar="PROGRAM",
+        help="run a program speaking the JSON-lines protocol instead (docs/oracle-protocol.md)",
+    )
+    sim.add_argument(
+        "--timeout",
+        type=positive_float,
+        default=10.0,
+        help="per-reply timeout for --cmd, s (default 10)",
+    )
+    sim.add_argument(
+        "--param",
+        action="append",
+        metavar="NAME=VALUE",
+        help="set a planner parameter (repeatable; see `ifgm-ref planners`)",
+    )
+    sim.add_argument("--json", action="store_true", help="print the result as one JSON object")
+    sim.add_argument(
+        "--require-goal",
+        action="store_true",
+        help="exit with status 1 unless the goal is reached (a collision, a time-out or a "
+        "planner's stop fails): for CI scripts",
+    )
+    _add_output_options(sim)
+    sim.set_defaults(func=run_simulate)
+
+
+def _add_output_options(sim: argparse.ArgumentParser) -> None:
+    """The trace, plot and animation files, then the simulation parameters."""
+    sim.add_argument("--trace", metavar="FILE", help="write the trace (.json for JSON, else CSV)")
+    sim.add_argument("--plot", metavar="FILE", help="write a plot of the run (e.g. run.png)")
+    sim.add_argument(
+        "--colour-by",
+        choices=("behaviour", "branch"),
+        default="behaviour",
+        help="colour the plotted path by behaviour (default) or flowchart branch",
+    )
+    sim.add_argument("--animate", metavar="FILE.gif", help="write an animation of the run")
+    sim.add_argument("--dt", type=positive_float, help=f"time step in s (default {SimParams.dt})")
+    sim.add_argument(
+        "--max-time", type=positive_float, help=f"time limit in s (default {SimParams.max_time})"
+    )
+    sim.add_argument(
+        "--goal-tolerance",
+        type=positive_float,
+        help=f"goal radius, in the world's length unit (default {SimParams.goal_tolerance})",
+    )
+
+
+def run_simulate(args: argparse.Namespace) -> int:
+    """Run ``ifgm-ref simulate``; return the exit status."""
+    world = resolve_world(args.world)
+    defaults = SimParams()
+    sim = SimParams(
+        dt=defaults.dt if args.dt is None else args.dt,
+        max_time=defaults.max_time if args.max_time is None else args.max_time,
+        goal_tolerance=defaults.goal_tolerance
+        if args.goal_tolerance is None
+        else args.goal_tolerance,
+    )
+    if (args.planner is None) == (args.cmd is None):
+        raise ParameterError("give exactly one of --planner NAME and --cmd 'PROGRAM'")
+    check_outputs(args)  # before the run, not after it
+    if args.cmd is not None:
+        from ifgm_ref.transport.external import ExternalPlanner
+
+        params = planner_params(None, args.param or [])
+        with ExternalPlanner(args.cmd, timeout=args.timeout) as external:
+            run = simulate(world, external, sim, params=params, progress=None)
+    else:
+        from ifgm_ref.transport.loading import load_planner
+
+        params = planner_params(args.planner, args.param or [])
+        run = simulate(world, load_planner(args.planner), sim, params=params, progress=None)
+    _write_outputs(args, world, run)
+    _print_result(args, run)
+    return 1 if args.require_goal and not run.result.reached else 0
+
+
+def _write_outputs(args: argparse.Namespace, world: World, run: Run) -> None:
+    """Write the trace, the plot and the animation that were asked for."""
+    result = run.result
+    if args.trace:
+        path = Path(args.trace)
+        path.write_text(run.trace_json() if path.suffix == ".json" else run.trace_csv())
+    if args.plot or args.animate:
+        from ifgm_ref.plotting import animate_run, plot_run, save_figure
+
+        if args.plot:
+            save_figure(plot_run(world, run.trace, result, colour_by=args.colour_by), args.plot)
+        if args.animate:
+            animate_run(world, run.trace, result, args.animate)
+
+
+def _print_result(args: argparse.Namespace, run: Run) -> None:
+    """Print the result: one JSON object (``--json``) or a sentence."""
+    result = run.result
+    if args.json:
+        print(json.dumps(result.to_json_dict()))
+        return
+    clearance = "n/a" if result.min_clearance == float("inf") else f"{result.min_clearance:.3f} ft"
+    print(
+        f"{result.planner} in {result.world or args.world}: {result.stop_reason} "
+        f"(reached={result.reached}, collided={result.collided}) after {result.time_s:.1f} s, "
+        f"{result.steps} steps, path {result.path_length:.2f} ft, min clearance {clearance}"
+    )
+    if result.detail:
+        print(f"detail: {result.detail}")
+
+
+def check_outputs(args: argparse.Namespace) -> None:
+    """Refuse an output file type the run could not write, before the run."""
+    for option, name, allowed in (
+        ("--plot", args.plot, PLOT_SUFFIXES),
+        ("--animate", args.animate, ANIMATION_SUFFIXES),
+    ):
+        if name and Path(name).suffix.lower() not in allowed:
+            raise ParameterError(
+                f"{option} {name}: cannot write {Path(name).suffix or 'a file without suffix'}; "
+                f"use one of {', '.join(allowed)}"
+            )
+
+
+def planner_params(planner: str | None, pairs: list[str]) -> dict[str, float]:
+    """Parse ``NAME=VALUE`` planner parameters, checking names against a built-in planner's
+    list (any name goes for other implementations).
+
+    >>> planner_params("ifgm", ["d_th=3.5"])
+    {'d_th': 3.5}
+    >>> planner_params("ifgm", ["d_th"])
+    Traceback (most recent call last):
+    ...
+    ifgm_ref.errors.ParameterError: --param 'd_th': expected NAME=VALUE
+    """
+    allowed = PLANNERS[planner].parameters if planner in PLANNERS else None
+    params: dict[str, float] = {}
+    for pair in pairs:
+        name, sep, text = pair.partition("=")
+        if not sep:
+            raise ParameterError(f"--param {pair!r}: expected NAME=VALUE")
+        if allowed is not None and name not in allowed:
+            known = ", ".join(allowed) or "none"
+            raise ParameterError(
+                f"--param {name!r}: {planner} has no such parameter; it has: {known}"
+            )
+        try:
+            params[name] = float(text)
+        except ValueError:
+            raise ParameterError(f"--param {name}: must be a number, got {text!r}") from None
+    return params
