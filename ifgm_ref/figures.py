@@ -25,6 +25,7 @@ from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass
 from functools import cache
 from pathlib import Path
+from typing import NamedTuple
 
 import matplotlib.pyplot as plt
 import shapely
@@ -252,16 +253,38 @@ def _time_row(planner: str) -> Row:
 )
 def reproduction_rows() -> list[Row]:
     """Every number and qualitative claim of section 5, the paper's against ours."""
-    s1 = resolve_world("scenario1")
-    free = run("free", "ifgm").result
+    s1 = _scenario1()
+    return [
+        *_free_run_rows(),
+        *(_time_row(p) for p in ("distbug", "iba", "ifgm")),
+        *_iba_rows(s1),
+        *_fgm_ifgm_rows(s1),
+        _bug_row(s1),
+        *_figure7_rows(),
+        *_scenario2_rows(),
+    ]
+
+
+class _Scenario1(NamedTuple):
+    """What the rows compare in Scenario 1, by planner."""
+
+    times: dict[str, float]  # s, Dist-Bug, IBA and IFGM
+    lengths: dict[str, float]  # ft, every planner
+    turning: dict[str, float]  # rad, every planner
+
+
+def _scenario1() -> _Scenario1:
+    """Times, path lengths and total turning of the planners' runs in Scenario 1."""
     times = {p: run("scenario1", p).result.time_s for p in ("distbug", "iba", "ifgm")}
     lengths = {p: run("scenario1", p).result.path_length for p in LABELS if p != "straight"}
     turning = {p: total_turning(run("scenario1", p).trace) for p in lengths}
-    fgm_ifgm = trajectory_gap(run("scenario1", "fgm").trace, run("scenario1", "ifgm").trace)
-    s2_fgm, s2_ifgm = run("scenario2", "fgm").result, run("scenario2", "ifgm").result
-    fig7 = {w: _branches(run(w, "ifgm").trace) for w in ("fig7a", "fig7b", "fig7c", "fig7d")}
-    shortest = min(lengths, key=lengths.__getitem__)
-    smoothest = min(turning, key=turning.__getitem__)
+    return _Scenario1(times, lengths, turning)
+
+
+def _free_run_rows() -> list[Row]:
+    """The distance from source to destination, and the time with no obstacle."""
+    s1 = resolve_world("scenario1")
+    free = run("free", "ifgm").result
     return [
         Row(
             "Minimum distance from source to destination",
@@ -277,9 +300,13 @@ def reproduction_rows() -> list[Row]:
             _verdict(abs(free.time_s / PAPER_FREE_TIME_S - 1) <= 0.05),
             "the default speed is 197/149 ft/s; the run stops 0.5 ft short (goal tolerance)",
         ),
-        _time_row("distbug"),
-        _time_row("iba"),
-        _time_row("ifgm"),
+    ]
+
+
+def _iba_rows(s1: _Scenario1) -> list[Row]:
+    """The ordering of the times in Scenario 1, and IBA against Dist-Bug."""
+    times, lengths, turning = s1
+    return [
         Row(
             "Ordering of times: IFGM < IBA < Dist-Bug",
             "180 < 184 < 205 s",
@@ -301,6 +328,16 @@ def reproduction_rows() -> list[Row]:
             _verdict(turning["iba"] < turning["distbug"]),
             "smoothness: total absolute heading change along the path",
         ),
+    ]
+
+
+def _fgm_ifgm_rows(s1: _Scenario1) -> list[Row]:
+    """FGM's and IFGM's trajectories in Scenario 1: the same, the shortest, the smoothest."""
+    times, lengths, turning = s1
+    fgm_ifgm = trajectory_gap(run("scenario1", "fgm").trace, run("scenario1", "ifgm").trace)
+    shortest = min(lengths, key=lengths.__getitem__)
+    smoothest = min(turning, key=turning.__getitem__)
+    return [
         Row(
             "FGM and IFGM give the same trajectory in Scenario 1",
             "same (Figure 5c, 5d)",
@@ -326,17 +363,28 @@ def reproduction_rows() -> list[Row]:
             _verdict(smoothest in ("fgm", "ifgm")),
             "",
         ),
-        Row(
-            "Bug-1 and Bug-2 take longer than IBA and IFGM",
-            "yes (Figures 4, 6)",
-            f"Bug-1 {run('scenario1', 'bug1').result.time_s:.1f} s, Bug-2 "
-            f"{run('scenario1', 'bug2').result.time_s:.1f} s",
-            _verdict(
-                min(run("scenario1", p).result.time_s for p in ("bug1", "bug2"))
-                > max(times["iba"], times["ifgm"])
-            ),
-            "",
+    ]
+
+
+def _bug_row(s1: _Scenario1) -> Row:
+    """Bug-1 and Bug-2 against IBA and IFGM in Scenario 1."""
+    return Row(
+        "Bug-1 and Bug-2 take longer than IBA and IFGM",
+        "yes (Figures 4, 6)",
+        f"Bug-1 {run('scenario1', 'bug1').result.time_s:.1f} s, Bug-2 "
+        f"{run('scenario1', 'bug2').result.time_s:.1f} s",
+        _verdict(
+            min(run("scenario1", p).result.time_s for p in ("bug1", "bug2"))
+            > max(s1.times["iba"], s1.times["ifgm"])
         ),
+        "",
+    )
+
+
+def _figure7_rows() -> list[Row]:
+    """IFGM among symmetric obstacles: through the gap when far apart, round when near."""
+    fig7 = {w: _branches(run(w, "ifgm").trace) for w in ("fig7a", "fig7b", "fig7c", "fig7d")}
+    return [
         Row(
             "Symmetric obstacles far apart: IFGM goes through the gap (Case-1)",
             "yes (Figure 7a, 7c)",
@@ -351,6 +399,13 @@ def reproduction_rows() -> list[Row]:
             _verdict(fig7["fig7b"] == 0 and fig7["fig7d"] == 0),
             "",
         ),
+    ]
+
+
+def _scenario2_rows() -> list[Row]:
+    """FGM trapped in the U, IFGM through U and H."""
+    s2_fgm, s2_ifgm = run("scenario2", "fgm").result, run("scenario2", "ifgm").result
+    return [
         Row(
             "FGM never reaches the destination in Scenario 2",
             "trapped in the U (Figure 8a)",

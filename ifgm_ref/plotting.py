@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import math
 from collections import Counter
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import TypedDict
 
@@ -234,6 +234,30 @@ def animate_run(
     always, ``False`` never. Returns the number of frames written (at most ``max_frames``).
     """
     frames = np.unique(np.linspace(0, len(trace) - 1, min(len(trace), max_frames)).astype(int))
+    fig, show = _animation(world, trace, result)
+    disable = None if progress is None else not progress
+    with tqdm(  # every frame shown: each takes some 0.15 s to render
+        total=len(frames),
+        unit="frame",
+        desc="GIF",
+        disable=disable,
+        leave=False,
+        mininterval=0.0,
+        miniters=1,
+    ) as bar:
+        FuncAnimation(fig, show, frames=frames).save(
+            path, writer=PillowWriter(fps=fps), progress_callback=lambda i, n: bar.update()
+        )
+    plt.close(fig)
+    return len(frames)
+
+
+def _animation(
+    world: World, trace: Sequence[TraceStep], result: Result
+) -> tuple[Figure, Callable[[int], None]]:
+    """Draw what stays in every frame of :func:`animate_run`'s GIF; return the figure and the
+    function that shows sample ``k`` of ``trace`` in it: the path so far, the robot, its scan
+    rays and a title with the time and the branch (or behaviour)."""
     sensor = IRSensor(world)
     fig, ax = plt.subplots(figsize=(7, 4.5), layout="constrained")
     draw_world(ax, world)
@@ -264,18 +288,4 @@ def animate_run(
             f"{s.branch or s.behaviour or ''}"
         )
 
-    disable = None if progress is None else not progress
-    with tqdm(  # every frame shown: each takes some 0.15 s to render
-        total=len(frames),
-        unit="frame",
-        desc="GIF",
-        disable=disable,
-        leave=False,
-        mininterval=0.0,
-        miniters=1,
-    ) as bar:
-        FuncAnimation(fig, show, frames=frames).save(
-            path, writer=PillowWriter(fps=fps), progress_callback=lambda i, n: bar.update()
-        )
-    plt.close(fig)
-    return len(frames)
+    return fig, show

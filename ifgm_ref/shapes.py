@@ -203,8 +203,13 @@ def u_shape(
     _below("thickness", thickness, "`width` / 2", width / 2.0)
     _below("thickness", thickness, "`depth`", depth)
     _require("opening", opening)
+    return _place(c, _u_outline(width, depth, thickness), opening)
+
+
+def _u_outline(width: float, depth: float, thickness: float) -> tuple[tuple[float, float], ...]:
+    """The vertices of an unrotated U centred on the origin (see :func:`u_shape`)."""
     w2, d2, t = width / 2.0, depth / 2.0, thickness
-    local = (
+    return (
         (-d2, -w2),  # outer corners of the base and the right-hand (-y) side wall
         (d2, -w2),
         (d2, -w2 + t),  # inner face of the -y side wall, back to the base
@@ -214,7 +219,6 @@ def u_shape(
         (d2, w2),
         (-d2, w2),
     )
-    return _place(c, local, opening)
 
 
 def h_shape(
@@ -273,8 +277,16 @@ def h_shape(
     _below("thickness", thickness, "`width` / 2", width / 2.0)
     _below("thickness" if bar_thickness is None else "bar_thickness", bar, "`height`", height)
     _require("orientation", orientation)
+    return _place(c, _h_outline(width, height, thickness, bar), orientation)
+
+
+def _h_outline(
+    width: float, height: float, thickness: float, bar: float
+) -> tuple[tuple[float, float], ...]:
+    """The vertices of an unrotated H centred on the origin, its crossbar ``bar`` thick (see
+    :func:`h_shape`)."""
     w2, h2, t, b2 = width / 2.0, height / 2.0, thickness, bar / 2.0
-    local = (
+    return (
         (-w2, -h2),  # foot of the left wall
         (-w2 + t, -h2),
         (-w2 + t, -b2),  # underside of the crossbar
@@ -288,4 +300,3 @@ def h_shape(
         (-w2 + t, h2),  # head of the left wall
         (-w2, h2),
     )
-    return _place(c, local, orientation)

@@ -203,68 +203,88 @@ def simulate(
     checker = ClearanceChecker(world, robot.radius)
     episode = EpisodeParams(robot, world.sensor, sim.dt, dict(params or {}), sim.goal_tolerance)
     planner.reset(world.start, world.goal, episode)
-
-    max_steps = math.ceil(sim.max_time / sim.dt - 1e-9)
     stall = stall_steps(sim, episode)
     pose = Pose(*world.start)
     recent = deque([pose], maxlen=(stall or 0) + 1)  # the last stall + 1 positions
-    trace: list[TraceStep] = []
-    path_length = 0.0
-    min_clearance = checker.pose_clearance(pose)
-    stop: str = StopReason.TIME_LIMIT
-    detail: str | None = None
-    k = 0
-    disable = None if progress is None else not progress
-    with tqdm(total=max_steps, unit="step", desc=planner.name, disable=disable, leave=False) as bar:
-        while True:
-            t = round(k * sim.dt, 12)
-            if distance(pose, world.goal) <= sim.goal_tolerance:
-                stop = StopReason.GOAL_REACHED
-                break
-            if k >= max_steps:
-                stop = StopReason.TIME_LIMIT
-                break
-            if stall is not None and _stalled(recent, robot.radius):
-                stop = StopReason.STALLED
-                break
-            command = planner.step(Observation(t, pose, world.goal, sensor.scan(pose)))
-            detail = _problem(command)
-            if detail is not None:
-                stop = StopReason.INVALID_COMMAND
-                break
-            if command.stop is not None:
-                stop = command.stop
-                break
-            new_pose = advance(pose, command, robot, sim.dt)
-            clearance = checker.segment_clearance(pose, new_pose)
-            trace.append(_sample(t, pose, command, clearance))
-            min_clearance = min(min_clearance, clearance)
-            path_length += distance(pose, new_pose)
-            pose = new_pose
-            recent.append(pose)
-            k += 1
-            if k % 100 == 0:
-                bar.update(100)
-            if clearance < 0.0:
-                stop = StopReason.COLLISION
-                break
-            if world.bounds is not None and not world.bounds.contains(pose):
-                stop = StopReason.OUT_OF_BOUNDS
-                break
-    trace.append(_sample(round(k * sim.dt, 12), pose, None, checker.pose_clearance(pose)))
+    state = _Episode(pose, recent, min_clearance=checker.pose_clearance(pose))
+    stop, detail = _drive(state, world, planner, sim, sensor, checker, stall, progress)
+    end = round(state.steps * sim.dt, 12)
+    state.trace.append(_sample(end, state.pose, None, checker.pose_clearance(state.pose)))
     result = Result(
         planner=planner.name,
         world=world.name,
         reached=stop == StopReason.GOAL_REACHED,
         collided=stop == StopReason.COLLISION,
         stop_reason=str(stop),
-        time_s=round(k * sim.dt, 12),
-        path_length=path_length,
-        min_clearance=min_clearance,
-        steps=k,
+        time_s=end,
+        path_length=state.path_length,
+        min_clearance=state.min_clearance,
+        steps=state.steps,
         detail=detail,
     )
-    return Run(result, trace)
+    return Run(result, state.trace)
+
+
+@dataclass
+class _Episode:
+    """An episode in progress: the robot's pose, the last few positions (for the stall rule),
+    the trace so far, the path length, the least clearance and the steps taken."""
+
+    pose: Pose
+    recent: deque[Pose]
+    min_clearance: float
+    trace: list[TraceStep] = field(default_factory=list)
+    path_length: float = 0.0
+    steps: int = 0
+
+    def move(self, t: float, command: Command, new_pose: Pose, clearance: float) -> None:
+        """Record the step taken at time ``t`` from :attr:`pose` to ``new_pose``."""
+        self.trace.append(_sample(t, self.pose, command, clearance))
+        self.min_clearance = min(self.min_clearance, clearance)
+        self.path_length += distance(self.pose, new_pose)
+        self.pose = new_pose
+        self.recent.append(new_pose)
+        self.steps += 1
+
+
+def _drive(
+    state: _Episode,
+    world: World,
+    planner: Planner,
+    sim: SimParams,
+    sensor: IRSensor,
+    checker: ClearanceChecker,
+    stall: int | None,
+    progress: bool | None,
+) -> tuple[str, str | None]:
+    """Sense, decide and move from ``state`` until the episode ends (see :func:`simulate`);
+    return the stop reason and, for an invalid command, what is wrong with it."""
+    max_steps = math.ceil(sim.max_time / sim.dt - 1e-9)
+    disable = None if progress is None else not progress
+    with tqdm(total=max_steps, unit="step", desc=planner.name, disable=disable, leave=False) as bar:
+        while True:
+            t = round(state.steps * sim.dt, 12)
+            if distance(state.pose, world.goal) <= sim.goal_tolerance:
+                return StopReason.GOAL_REACHED, None
+            if state.steps >= max_steps:
+                return StopReason.TIME_LIMIT, None
+            if stall is not None and _stalled(state.recent, world.robot.radius):
+                return StopReason.STALLED, None
+            command = planner.step(Observation(t, state.pose, world.goal, sensor.scan(state.pose)))
+            detail = _problem(command)
+            if detail is not None:
+                return StopReason.INVALID_COMMAND, detail
+            if command.stop is not None:
+                return command.stop, None
+            new_pose = advance(state.pose, command, world.robot, sim.dt)
+            clearance = checker.segment_clearance(state.pose, new_pose)
+            state.move(t, command, new_pose, clearance)
+            if state.steps % 100 == 0:
+                bar.update(100)
+            if clearance < 0.0:
+                return StopReason.COLLISION, None
+            if world.bounds is not None and not world.bounds.contains(state.pose):
+                return StopReason.OUT_OF_BOUNDS, None
 
 
 def stall_steps(sim: SimParams, episode: EpisodeParams) -> int | None:

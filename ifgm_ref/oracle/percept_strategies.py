@@ -214,44 +214,85 @@ def scans(
         raise ValueError(f"layouts={layouts!r}, but should be a non-empty subset of {LAYOUTS}")
     layout = draw(st.sampled_from(layouts), label="layout")
     if layout == "one side":
-        # Obstacles wholly on one side of the heading (Case-2's "only in one side").
-        left = draw(st.booleans(), label="on the left")
-        first, last = (n // 2, n - 1) if left else (0, n // 2 - 1)
-        for _ in range(draw(st.integers(1, 2), label="obstacles")):
-            a = draw(st.integers(first, last), label="run first ray")
-            b = draw(st.integers(a, last), label="run last ray")
-            ranges[a : b + 1] = draw(run_profiles(b + 1 - a, ranges=band))
+        _draw_one_side(draw, ranges, band)
     elif layout == "sides":
-        # One obstacle wholly right of the heading, one wholly left, maybe one between.
-        mid = n // 2
-        a = draw(st.integers(0, mid - 2), label="right obstacle first ray")
-        b = draw(st.integers(a, mid - 1), label="right obstacle last ray")
-        c = draw(st.integers(mid, n - 1), label="left obstacle first ray")
-        d = draw(st.integers(c, n - 1), label="left obstacle last ray")
-        ranges[a : b + 1] = draw(run_profiles(b + 1 - a, ranges=band))
-        ranges[c : d + 1] = draw(run_profiles(d + 1 - c, ranges=band))
-        if c - b > 3 and draw(st.booleans(), label="obstacle between"):
-            e = draw(st.integers(b + 2, c - 2), label="middle obstacle first ray")
-            f = draw(st.integers(e, c - 2), label="middle obstacle last ray")
-            ranges[e : f + 1] = draw(run_profiles(f + 1 - e, ranges=band))
+        _draw_sides(draw, ranges, band)
     elif layout == "enclosed":
-        cuts = draw(
-            st.lists(st.integers(1, n - 1), unique=True, max_size=max(0, max_obstacles - 1)),
-            label="enclosed cuts",
-        )
-        for a, b in pairwise([0, *sorted(cuts), n]):
-            ranges[a:b] = draw(run_profiles(b - a, ranges=band))
+        _draw_enclosed(draw, ranges, band, max_obstacles)
     else:
-        count = draw(st.integers(0, max_obstacles), label="obstacles")
-        i = 0
-        for _ in range(count):
-            a = i + draw(st.integers(0, n // 2), label="free rays before")
-            if a >= n:
-                break
-            b = min(n, a + draw(st.integers(1, n), label="run length"))
-            ranges[a:b] = draw(run_profiles(b - a, ranges=band))
-            i = b
+        _draw_open(draw, ranges, band, max_obstacles)
     return scan_from_ranges(ranges, sensor=sensor)
+
+
+def _draw_one_side(
+    draw: st.DrawFn, ranges: NDArray[np.float64], band: st.SearchStrategy[float]
+) -> None:
+    """Draw the ``one side`` layout of :func:`scans` into ``ranges`` (all ``inf``): one or two
+    runs, all wholly on one side of the heading (Case-2's "only in one side")."""
+    n = len(ranges)
+    left = draw(st.booleans(), label="on the left")
+    first, last = (n // 2, n - 1) if left else (0, n // 2 - 1)
+    for _ in range(draw(st.integers(1, 2), label="obstacles")):
+        a = draw(st.integers(first, last), label="run first ray")
+        b = draw(st.integers(a, last), label="run last ray")
+        ranges[a : b + 1] = draw(run_profiles(b + 1 - a, ranges=band))
+
+
+def _draw_sides(
+    draw: st.DrawFn, ranges: NDArray[np.float64], band: st.SearchStrategy[float]
+) -> None:
+    """Draw the ``sides`` layout of :func:`scans` into ``ranges`` (all ``inf``): one obstacle
+    wholly right of the heading, one wholly left, maybe one between."""
+    n = len(ranges)
+    mid = n // 2
+    a = draw(st.integers(0, mid - 2), label="right obstacle first ray")
+    b = draw(st.integers(a, mid - 1), label="right obstacle last ray")
+    c = draw(st.integers(mid, n - 1), label="left obstacle first ray")
+    d = draw(st.integers(c, n - 1), label="left obstacle last ray")
+    ranges[a : b + 1] = draw(run_profiles(b + 1 - a, ranges=band))
+    ranges[c : d + 1] = draw(run_profiles(d + 1 - c, ranges=band))
+    if c - b > 3 and draw(st.booleans(), label="obstacle between"):
+        e = draw(st.integers(b + 2, c - 2), label="middle obstacle first ray")
+        f = draw(st.integers(e, c - 2), label="middle obstacle last ray")
+        ranges[e : f + 1] = draw(run_profiles(f + 1 - e, ranges=band))
+
+
+def _draw_enclosed(
+    draw: st.DrawFn,
+    ranges: NDArray[np.float64],
+    band: st.SearchStrategy[float],
+    max_obstacles: int,
+) -> None:
+    """Draw the ``enclosed`` layout of :func:`scans` into ``ranges``: up to ``max_obstacles``
+    runs covering every ray."""
+    n = len(ranges)
+    cuts = draw(
+        st.lists(st.integers(1, n - 1), unique=True, max_size=max(0, max_obstacles - 1)),
+        label="enclosed cuts",
+    )
+    for a, b in pairwise([0, *sorted(cuts), n]):
+        ranges[a:b] = draw(run_profiles(b - a, ranges=band))
+
+
+def _draw_open(
+    draw: st.DrawFn,
+    ranges: NDArray[np.float64],
+    band: st.SearchStrategy[float],
+    max_obstacles: int,
+) -> None:
+    """Draw the ``open`` layout of :func:`scans` into ``ranges`` (all ``inf``): up to
+    ``max_obstacles`` runs from right to left, each after some rays without a return (none:
+    touching runs)."""
+    n = len(ranges)
+    count = draw(st.integers(0, max_obstacles), label="obstacles")
+    i = 0
+    for _ in range(count):
+        a = i + draw(st.integers(0, n // 2), label="free rays before")
+        if a >= n:
+            break
+        b = min(n, a + draw(st.integers(1, n), label="run length"))
+        ranges[a:b] = draw(run_profiles(b - a, ranges=band))
+        i = b
 
 
 @st.composite

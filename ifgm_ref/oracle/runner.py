@@ -419,8 +419,7 @@ def check_planner(
         A factory returning a new planner (a class will do), an :class:`Implementation`, or a
         spec: a built-in name or ``module:attribute``.
     profile : {"quick", "standard", "thorough"} or Profile, default "quick"
-        Examples per check: 50, 200 or 1000 (``"default"``, the old name of ``"standard"``,
-        still works).
+        Examples per check: 50, 200 or 1000; ``"default"`` is the old name of ``"standard"``.
     promises : Promises or str, optional
         What the planner promises, or the name of the built-in planner whose promises it
         shares; default: IFGM's (or the built-in planner's own, for a built-in spec).
@@ -453,6 +452,18 @@ def check_planner(
     """
     impl = _implementation(planner, promises, equations)
     expected = dict(expected_failed_checks or {})
+    names, profile = _arguments(checks, expected, profile, jobs)
+    done = _run_checks(names, impl, profile, artifacts, expected, jobs, progress, stop_on_failure)
+    report = Report(impl.label, profile.name, done)
+    _act_on(report, on_fail)
+    return report
+
+
+def _arguments(
+    checks: Iterable[str] | None, expected: Mapping[str, str], profile: Profile | str, jobs: int
+) -> tuple[list[str], Profile]:
+    """Validate :func:`check_planner`'s arguments; return the names of the checks to run and
+    the profile."""
     names = list(CHECKS) if checks is None else list(checks)
     unknown = [n for n in [*names, *expected] if n not in CHECKS]
     if unknown:
@@ -460,6 +471,22 @@ def check_planner(
     profile = profile_named(profile) if isinstance(profile, str) else profile
     if isinstance(jobs, bool) or not isinstance(jobs, int) or jobs < 1:
         raise ImplementationError(f"`jobs` must be an integer >= 1, got {jobs!r}")
+    return names, profile
+
+
+def _run_checks(
+    names: list[str],
+    impl: Implementation,
+    profile: Profile,
+    artifacts: str | Path | None,
+    expected: Mapping[str, str],
+    jobs: int,
+    progress: bool,
+    stop_on_failure: bool,
+) -> tuple[CheckResult, ...]:
+    """Run the checks ``names`` on ``impl``: the simulation checks in ``jobs`` worker processes
+    when ``jobs > 1``, the others (all, when ``jobs == 1``) here, in order; return the results
+    in the order of ``names`` (see :func:`check_planner`)."""
 
     def finished(result: CheckResult) -> CheckResult:
         if progress:
@@ -487,15 +514,18 @@ def check_planner(
         done.update(
             _run_pooled(pooled, impl, profile, artifacts, expected, jobs, finished, stop_on_failure)
         )
-    results = [done[n] for n in names if n in done]
-    report = Report(impl.label, profile.name, tuple(results))
+    return tuple(done[n] for n in names if n in done)
+
+
+def _act_on(report: Report, on_fail: str | None) -> None:
+    """Raise :class:`AssertionError` (``on_fail="raise"``) or warn (``"warn"``, pointing at
+    :func:`check_planner`'s caller) when ``report`` is not ok."""
     if not report.ok and on_fail is not None:
         if on_fail == "raise":
             raise AssertionError(report.text())
         import warnings
 
-        warnings.warn(report.text(), stacklevel=2)
-    return report
+        warnings.warn(report.text(), stacklevel=3)
 
 
 __all__ = [
