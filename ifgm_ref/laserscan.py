@@ -71,6 +71,18 @@ def _ray_angles(angle_min: float, angle_increment: float, rays: int) -> NDArray[
     return angles
 
 
+@functools.lru_cache(maxsize=32)
+def _ray_directions(
+    angle_min: float, angle_increment: float, rays: int
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """The cosine and sine of every ray angle of a sensor, computed once per sensor."""
+    angles = _ray_angles(angle_min, angle_increment, rays)
+    cos, sin = np.cos(angles), np.sin(angles)
+    cos.setflags(write=False)
+    sin.setflags(write=False)
+    return cos, sin
+
+
 @functools.lru_cache(maxsize=96)
 def _beam_mask(
     angle_min: float, angle_increment: float, rays: int, beam: Beam
@@ -87,6 +99,24 @@ def _beam_mask(
         mask = np.abs(angles) <= border
     mask.setflags(write=False)
     return mask
+
+
+@functools.lru_cache(maxsize=32)
+def _window_rays(
+    angle_min: float, angle_increment: float, rays: int, half_width: float
+) -> tuple[int, int] | None:
+    """The first and last ray of a sensor within ``half_width`` of straight ahead (``None``
+    if every ray is), computed once per sensor; ``ValueError`` if fewer than two are."""
+    angles = _ray_angles(angle_min, angle_increment, rays)
+    inside = np.flatnonzero(np.abs(angles) <= half_width + BORDER_TOLERANCE)
+    if len(inside) == rays:
+        return None
+    if len(inside) < 2:
+        raise ValueError(
+            f"{len(inside)} ray(s) within +-{half_width!r} rad, but a scan needs 2 "
+            f"(angle_increment={angle_increment!r})"
+        )
+    return int(inside[0]), int(inside[-1])
 
 
 @dataclass(frozen=True, eq=False)
@@ -142,6 +172,12 @@ class LaserScan:
         return _ray_angles(self.angle_min, self.angle_increment, len(self.ranges))
 
     @property
+    def directions(self) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """The cosine and the sine of every ray's angle (read-only, shared like
+        :attr:`angles`)."""
+        return _ray_directions(self.angle_min, self.angle_increment, len(self.ranges))
+
+    @property
     def beams(self) -> tuple[Beam | None, ...]:
         """The paper's beam name of every ray (``None`` beyond the paper's view)."""
         return tuple(beam_of(float(a)) for a in self.angles)
@@ -191,16 +227,11 @@ class LaserScan:
         >>> cut.window() is cut
         True
         """
-        angles = self.angles
-        inside = np.flatnonzero(np.abs(angles) <= half_width + BORDER_TOLERANCE)
-        if len(inside) == len(angles):
+        rays = _window_rays(self.angle_min, self.angle_increment, len(self.ranges), half_width)
+        if rays is None:
             return self
-        if len(inside) < 2:
-            raise ValueError(
-                f"{len(inside)} ray(s) within +-{half_width!r} rad, but a scan needs 2 "
-                f"(angle_increment={self.angle_increment!r})"
-            )
-        first, last = int(inside[0]), int(inside[-1])
+        first, last = rays
+        angles = self.angles
         return LaserScan(
             float(angles[first]),
             float(angles[last]),

@@ -20,6 +20,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from enum import StrEnum
+from functools import cached_property
 from itertools import pairwise
 
 import numpy as np
@@ -55,7 +56,7 @@ class Cluster:
         x, y = self.xy.mean(axis=0)
         return Point(float(x), float(y))
 
-    @property
+    @cached_property
     def nearest(self) -> float:
         """Distance from the robot to the obstacle's nearest return, ft."""
         return float(self.ranges.min())
@@ -70,7 +71,7 @@ class Cluster:
         """The return of the obstacle's leftmost ray (highest angle)."""
         return Point(float(self.xy[-1, 0]), float(self.xy[-1, 1]))
 
-    @property
+    @cached_property
     def side(self) -> Side:
         """Whether every return is right of the heading, left of it, or some of each."""
         if self.angles[-1] < 0.0:
@@ -122,12 +123,13 @@ def cluster_points(pts: ScanPoints, jump: float) -> tuple[Cluster, ...]:
         return ()
     steps = np.hypot(*np.diff(pts.xy, axis=0).T)
     breaks = (np.diff(pts.indices) > 1) | (steps > jump)
-    starts = np.concatenate([[0], np.flatnonzero(breaks) + 1])
-    ends = np.concatenate([starts[1:], [len(pts)]])
+    starts = [0, *(np.flatnonzero(breaks) + 1).tolist()]
+    ends = [*starts[1:], len(pts)]
+    indices = pts.indices.tolist()
     return tuple(
         Cluster(
-            first=int(pts.indices[a]),
-            last=int(pts.indices[b - 1]),
+            first=indices[a],
+            last=indices[b - 1],
             angles=pts.angles[a:b],
             ranges=pts.ranges[a:b],
             xy=pts.xy[a:b],

@@ -41,10 +41,12 @@ def scan_points(scan: LaserScan) -> ScanPoints:
     ranges = np.where(scan.ranges == -np.inf, scan.range_min, scan.ranges)
     keep = np.isfinite(ranges)
     indices = np.flatnonzero(keep)
-    angles = scan.angles[keep]
-    r = ranges[keep]
-    xy = np.column_stack([r * np.cos(angles), r * np.sin(angles)])
-    return ScanPoints(indices, angles, r, xy)
+    r = ranges[indices]
+    cos, sin = scan.directions
+    xy = np.empty((len(r), 2))
+    xy[:, 0] = r * cos[indices]
+    xy[:, 1] = r * sin[indices]
+    return ScanPoints(indices, scan.angles[indices], r, xy)
 
 
 def to_world(xy: NDArray[np.float64], pose: Pose) -> NDArray[np.float64]:
@@ -55,7 +57,10 @@ def to_world(xy: NDArray[np.float64], pose: Pose) -> NDArray[np.float64]:
     """
     c, s = math.cos(pose.theta), math.sin(pose.theta)
     x, y = xy[:, 0], xy[:, 1]
-    return np.column_stack([pose.x + c * x - s * y, pose.y + s * x + c * y])
+    world = np.empty((len(xy), 2))
+    world[:, 0] = pose.x + c * x - s * y
+    world[:, 1] = pose.y + s * x + c * y
+    return world
 
 
 def to_robot(xy: NDArray[np.float64], pose: Pose) -> NDArray[np.float64]:
