@@ -19,6 +19,7 @@ percept. :func:`decide` checks that at every call.
 from __future__ import annotations
 
 import functools
+import operator
 from collections.abc import Callable
 from dataclasses import dataclass, fields
 from enum import StrEnum
@@ -142,10 +143,11 @@ def decide(atoms: Atoms) -> Branch:
     >>> decide(Atoms(**{**base, "blocked": True, "wide": True, "close": True}))
     <Branch.TOO_CLOSE: 'too_close'>
     """
-    return branch_of(tuple(bool(getattr(atoms, name)) for name in _NAMES))
+    return branch_of(tuple(map(bool, _atom_values(atoms))))
 
 
-_NAMES = Atoms.names()
+#: The atoms' values, in :meth:`Atoms.names` order.
+_atom_values = operator.attrgetter(*Atoms.names())
 
 
 @functools.cache
