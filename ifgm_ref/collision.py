@@ -183,6 +183,9 @@ class ClearanceChecker:
         distance measured so far (by more than ``_SLACK`` times the coordinates' magnitude,
         which bounds the rounding of ``k``, ``rho`` and the measured distances), that obstacle
         and every later one are farther than the minimum: skipping them leaves the same float.
+        An edge before that point is also skipped, alone, when its distance from the path's
+        midpoint exceeds the minimum by more than the path's half-length (and the slack): the
+        same bound from a nearer point, at a quarter of the cost of the exact distance.
         """
         px, py, qx, qy = start.x, start.y, end.x, end.y
         x0, y0 = self._origin
@@ -201,9 +204,14 @@ class ClearanceChecker:
             d = _offset_distance(cx - px, cy - py, rx, ry, length2) - r
             if d < best:
                 best = d
+        mx, my = 0.5 * (px + qx), 0.5 * (py + qy)
+        near = 0.5 * math.sqrt(length2) + self._slack  # every point of the path within this of m
         for key, edge in self._edge_order:
             if key > best + limit:
                 break
+            ax, ay, _, _, ex, ey, edge2 = edge
+            if _offset_distance(mx - ax, my - ay, ex, ey, edge2) > best + near:
+                continue  # this edge only: farther than the minimum, as seen from m
             d = _edge_distance(px, py, qx, qy, rx, ry, length2, edge)
             if d < best:
                 best = d
