@@ -308,10 +308,12 @@ def stall_steps(sim: SimParams, episode: EpisodeParams) -> int | None:
 
 def _stalled(recent: deque[Pose], radius: float) -> bool:
     """Whether ``recent`` is full and every position in it lies within ``radius`` of the first
-    (newest first: a robot on the move fails at once)."""
+    (newest first: a robot on the move fails at once, before any generator is made)."""
     if len(recent) != recent.maxlen:
         return False
     first = recent[0]
+    if distance(first, recent[-1]) > radius:
+        return False
     return all(distance(first, p) <= radius for p in reversed(recent))
 
 

@@ -8,7 +8,7 @@ import shapely
 from hypothesis import assume, example, given
 from hypothesis import strategies as st
 
-from ifgm_ref.collision import ClearanceChecker, segment_distance
+from ifgm_ref.collision import ClearanceChecker, point_segment_distance, segment_distance
 from ifgm_ref.pose import Point, Pose
 from ifgm_ref.world import Circle, Polygon, World
 
@@ -83,3 +83,39 @@ def test_crossing_segments_have_zero_distance() -> None:
 def test_world_without_obstacles_has_infinite_clearance() -> None:
     checker = ClearanceChecker(_world(), 1.0)
     assert checker.pose_clearance(Pose(0.0, 0.0, 0.0)) == math.inf
+
+
+def _every_obstacle_minimum(world: World, radius: float, start: Pose, end: Pose) -> float:
+    """The clearance by its definition: every edge and every circle measured, no pruning."""
+    p, q = (start.x, start.y), (end.x, end.y)
+    edges = [segment_distance(p, q, a, b) for a, b in world.segments.tolist()]
+    circles = [
+        point_segment_distance(cx, cy, *p, *q) - r
+        for (cx, cy), r in zip(
+            world.circle_centers.tolist(), world.circle_radii.tolist(), strict=True
+        )
+    ]
+    return min(edges + circles, default=math.inf) - radius
+
+
+@given(
+    x=coords,
+    y=coords,
+    steps=st.lists(st.tuples(st.floats(-1.0, 1.0), st.floats(-1.0, 1.0)), max_size=30),
+    radius=st.floats(0.1, 3.0),
+)
+def test_clearance_is_the_unpruned_minimum_bit_for_bit(
+    x: float, y: float, steps: list[tuple[float, float]], radius: float
+) -> None:
+    # A walk of short and long steps, so the checker's cache is both reused and rebuilt.
+    world = _world(SQUARE, DISC, Polygon(((5.0, 5.0), (7.0, 5.0), (6.0, 8.0))), Circle((-5, 3), 1))
+    checker = ClearanceChecker(world, radius)
+    here = Pose(x, y, 0.0)
+    for dx, dy in [(0.0, 0.0), *steps]:
+        there = Pose(here.x + dx, here.y + dy, 0.0)
+        got = checker.segment_clearance(here, there)
+        expected = _every_obstacle_minimum(world, radius, here, there)
+        assert got == expected, (
+            f"clearance={got!r}, but should be {expected!r} [segment_clearance({here}, {there})]"
+        )
+        here = there

@@ -333,6 +333,38 @@ def test_cast_fan_matches_cast_at_the_summed_angles(data: st.DataObject) -> None
     )
 
 
+@given(data=st.data())
+def test_a_cast_does_not_depend_on_the_casts_before_it(data: st.DataObject) -> None:
+    # The caster keeps the edges culled for a nearby origin; the ranges must be those of a
+    # fresh caster bit for bit, whether the earlier origins were near (cache reused) or far.
+    scene = data.draw(scenes(), label="scene")
+    angles = data.draw(ray_angles(scene=scene), label="angles")
+    max_range = data.draw(max_ranges, label="max_range")
+    shifts = st.tuples(st.floats(-0.2, 0.2), st.floats(-0.2, 0.2)).map(
+        lambda s: (s[0] * max_range, s[1] * max_range)
+    )
+    walk = data.draw(st.lists(shifts, min_size=1, max_size=5), label="earlier origins")
+    caster = scene.caster(max_range)
+    for dx, dy in walk:
+        caster.cast((scene.origin[0] + dx, scene.origin[1] + dy), angles)
+    got = caster.cast(scene.origin, angles)
+    expected = scene.caster(max_range).cast(scene.origin, angles)
+    assert got.tobytes() == expected.tobytes(), (
+        f"ranges={got.tolist()!r} after casts from {walk!r}, but should be "
+        f"{expected.tolist()!r} [cast({scene.origin!r}, ...)]"
+    )
+    # cast_fan keeps the turned rays of the last heading: a new fan at that heading, and the
+    # heading -0.0 after 0.0, must not reuse them.
+    fans = [RayFan.of(angles), RayFan.of(angles[::-1])]
+    for heading, fan in [(0.0, fans[0]), (0.0, fans[1]), (-0.0, fans[1]), (-0.0, fans[1])]:
+        got = caster.cast_fan(scene.origin, heading, fan)
+        expected = scene.caster(max_range).cast_fan(scene.origin, heading, fan)
+        assert got.tobytes() == expected.tobytes(), (
+            f"ranges={got.tolist()!r}, but should be {expected.tolist()!r} "
+            f"[cast_fan({scene.origin!r}, {heading!r}, ...) after other casts]"
+        )
+
+
 # Exact cases: (segments, circles, origin, angles, max_range, expected ranges).
 SQUARE = [((5, -1), (5, 1)), ((5, 1), (7, 1)), ((7, 1), (7, -1)), ((7, -1), (5, -1))]
 HALF_PI = math.pi / 2
