@@ -20,7 +20,6 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from enum import StrEnum
-from functools import cached_property
 from itertools import pairwise
 
 import numpy as np
@@ -42,24 +41,35 @@ class Side(StrEnum):
 
 @dataclass(frozen=True, eq=False)
 class Cluster:
-    """One obstacle: the robot-frame returns of consecutive rays ``first`` to ``last``."""
+    """One obstacle: the robot-frame returns of consecutive rays ``first`` to ``last``.
+
+    Attributes
+    ----------
+    first, last : int
+        The first and last ray.
+    angles, ranges : (k,) arrays
+        Each return's robot-frame angle (rad) and range.
+    xy : (k, 2) array
+        Each return as a robot-frame point.
+    nearest : float
+        Distance from the robot to the obstacle's nearest return, ft.
+    side : Side
+        Whether every return is right of the heading, left of it, or some of each.
+    """
 
     first: int
     last: int
     angles: NDArray[np.float64]
     ranges: NDArray[np.float64]
     xy: NDArray[np.float64]
+    nearest: float
+    side: Side
 
     @property
     def mean(self) -> Point:
         """The "average clustered value": the obstacle position of section 4."""
         x, y = self.xy.mean(axis=0)
         return Point(float(x), float(y))
-
-    @cached_property
-    def nearest(self) -> float:
-        """Distance from the robot to the obstacle's nearest return, ft."""
-        return float(self.ranges.min())
 
     @property
     def right_border(self) -> Point:
@@ -70,15 +80,6 @@ class Cluster:
     def left_border(self) -> Point:
         """The return of the obstacle's leftmost ray (highest angle)."""
         return Point(float(self.xy[-1, 0]), float(self.xy[-1, 1]))
-
-    @cached_property
-    def side(self) -> Side:
-        """Whether every return is right of the heading, left of it, or some of each."""
-        if self.angles[-1] < 0.0:
-            return Side.RIGHT
-        if self.angles[0] > 0.0:
-            return Side.LEFT
-        return Side.BOTH
 
 
 @dataclass(frozen=True)
@@ -126,6 +127,8 @@ def cluster_points(pts: ScanPoints, jump: float) -> tuple[Cluster, ...]:
     starts = [0, *(np.flatnonzero(breaks) + 1).tolist()]
     ends = [*starts[1:], len(pts)]
     indices = pts.indices.tolist()
+    angles = pts.angles.tolist()
+    nearest = np.minimum.reduceat(pts.ranges, starts).tolist()
     return tuple(
         Cluster(
             first=indices[a],
@@ -133,9 +136,20 @@ def cluster_points(pts: ScanPoints, jump: float) -> tuple[Cluster, ...]:
             angles=pts.angles[a:b],
             ranges=pts.ranges[a:b],
             xy=pts.xy[a:b],
+            nearest=near,
+            side=_side(angles[a], angles[b - 1]),
         )
-        for a, b in zip(starts, ends, strict=True)
+        for a, b, near in zip(starts, ends, nearest, strict=True)
     )
+
+
+def _side(first: float, last: float) -> Side:
+    """The side of an obstacle whose returns run from angle ``first`` to ``last``."""
+    if last < 0.0:
+        return Side.RIGHT
+    if first > 0.0:
+        return Side.LEFT
+    return Side.BOTH
 
 
 class GapReading(StrEnum):

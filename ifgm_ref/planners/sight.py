@@ -12,7 +12,6 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from functools import cached_property
 
 import numpy as np
 from numpy.typing import NDArray
@@ -135,7 +134,9 @@ class Body:
 
 
 class Sight:
-    """One step's sight of the goal from ``pose``: each question asked once, then remembered.
+    """One step's sight of the goal from ``pose``: each question asked once, then remembered
+    (plain attributes, not ``functools.cached_property``, which takes a lock at every first
+    access on Python 3.11).
 
     Parameters
     ----------
@@ -163,23 +164,29 @@ class Sight:
         self.body = body
         self.points = points
         self.bearing = bearing
+        #: The distance to the goal.
+        self.goal_distance = distance(pose, body.goal)
+        self._free_length: float | None = None
+        self._distances: NDArray[np.float64] | None = None
 
-    @cached_property
-    def goal_distance(self) -> float:
-        """The distance to the goal."""
-        return distance(self.pose, self.body.goal)
-
-    @cached_property
+    @property
     def goal_free_length(self) -> float:
-        """How far the robot-wide corridor towards the goal is free of remembered points."""
-        pose = self.pose
-        return free_length(self.points, (pose.x, pose.y), self.bearing, self.body.half_width)
+        """How far the robot-wide corridor towards the goal is free of remembered points
+        (worked out at the first question)."""
+        if self._free_length is None:
+            pose = self.pose
+            origin = (pose.x, pose.y)
+            self._free_length = free_length(self.points, origin, self.bearing, self.body.half_width)
+        return self._free_length
 
-    @cached_property
+    @property
     def point_distances(self) -> NDArray[np.float64]:
-        """The distance from the robot to each remembered point."""
-        pose, pts = self.pose, self.points
-        return np.hypot(pts[:, 0] - pose.x, pts[:, 1] - pose.y)
+        """The distance from the robot to each remembered point (worked out at the first
+        question)."""
+        if self._distances is None:
+            pose, pts = self.pose, self.points
+            self._distances = np.hypot(pts[:, 0] - pose.x, pts[:, 1] - pose.y)
+        return self._distances
 
     def goal_blocked(self) -> bool:
         """Whether an obstacle stands in the corridor towards the goal, nearer than both the
