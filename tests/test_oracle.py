@@ -219,21 +219,36 @@ def test_a_seeded_profile_draws_repeatable_random_examples() -> None:
 
 @pytest.mark.parametrize(
     "variant",
-    # Two to three minutes each through serve: the default run keeps the wobble (the port the
+    # Half a minute each in process: the default run keeps the wobble (the port the oracle
     # issue saw rejected); `pytest -m slow` runs the other two.
     [v if v == "heading_wobble" else pytest.param(v, marks=pytest.mark.slow) for v in VARIANTS],
 )
-def test_faithful_variants_pass_the_quick_profile_through_serve(variant: str) -> None:
+def test_faithful_variants_pass_the_quick_profile(variant: str) -> None:
     """A port may wobble its heading by a degree, compute in float32 or break exact ties the
     other way (ifgm_ref/oracle/variants.py): no check of the quick profile fails it."""
+    impl = Implementation.from_spec(f"ifgm_ref.oracle.variants:{VARIANTS[variant].__name__}")
+    _passes_the_quick_profile(impl)
+
+
+def _passes_the_quick_profile(impl: Implementation) -> None:
+    __tracebackhide__ = True
+    report = check_planner(impl, profile="quick", checks=SIMULATION, artifacts=None, jobs=2)
+    assert report.ok, report.text()
+    assert {r.status for r in report.results} <= {Status.PASSED, Status.NOT_APPLICABLE}
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("variant", VARIANTS)
+def test_faithful_variants_pass_the_quick_profile_through_serve(variant: str) -> None:
+    """The same, each variant a program speaking the JSON-lines protocol (``ifgm-ref serve``;
+    two to three minutes each, so under ``-m slow``: the default run checks that serve gives
+    the in-process verdicts, in the next test)."""
     spec = f"ifgm_ref.oracle.variants:{VARIANTS[variant].__name__}"
     impl = Implementation.from_command(_serve(spec), timeout=30.0)
     try:
-        report = check_planner(impl, profile="quick", checks=SIMULATION, artifacts=None, jobs=2)
+        _passes_the_quick_profile(impl)
     finally:
         impl.close()
-    assert report.ok, report.text()
-    assert {r.status for r in report.results} <= {Status.PASSED, Status.NOT_APPLICABLE}
 
 
 def test_serve_gives_the_in_process_verdicts_for_the_reference() -> None:
