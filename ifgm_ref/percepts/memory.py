@@ -60,19 +60,19 @@ class PerceptMemory:
         more than ``horizon`` seconds before it."""
         n = len(points)
         if self._end + n > len(self._buffer):
-            self._make_room(n)
+            self._make_room(points)
         self._buffer[self._end : self._end + n] = points
         self._end += n
         self._scans.append((t, n))
         while self._scans and self._scans[0][0] < t - self.horizon:
             self._start += self._scans.popleft()[1]
 
-    def _make_room(self, n: int) -> None:
-        """A new buffer with the remembered points at its start and room for twice as many
-        again as they and ``n`` more take (earlier :attr:`points` stay valid: the old buffer
-        is left as it was)."""
+    def _make_room(self, points: NDArray[np.float64]) -> None:
+        """A new buffer (an array like ``points``) with the remembered points at its start
+        and room for twice as many again as they and ``points`` take (earlier :attr:`points`
+        stay valid: the old buffer is left as it was)."""
         live = self._buffer[self._start : self._end]
-        buffer = np.empty((max(64, 2 * (len(live) + n)), 2))
+        buffer = np.empty_like(points, shape=(max(64, 2 * (len(live) + len(points))), 2))
         buffer[: len(live)] = live
         self._buffer, self._start, self._end = buffer, 0, len(live)
 

@@ -43,7 +43,7 @@ def scan_points(scan: LaserScan) -> ScanPoints:
     indices = np.flatnonzero(keep)
     r = ranges[indices]
     cos, sin = scan.directions
-    xy = np.empty((len(r), 2))
+    xy = np.empty_like(r, shape=(len(r), 2))  # like r: an ndarray subclass survives
     xy[:, 0] = r * cos[indices]
     xy[:, 1] = r * sin[indices]
     return ScanPoints(indices, scan.angles[indices], r, xy)
@@ -57,7 +57,7 @@ def to_world(xy: NDArray[np.float64], pose: Pose) -> NDArray[np.float64]:
     """
     c, s = math.cos(pose.theta), math.sin(pose.theta)
     x, y = xy[:, 0], xy[:, 1]
-    world = np.empty((len(xy), 2))
+    world = np.empty_like(xy)
     world[:, 0] = pose.x + c * x - s * y
     world[:, 1] = pose.y + s * x + c * y
     return world
