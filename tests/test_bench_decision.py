@@ -141,3 +141,19 @@ def test_the_microcontroller_model_adds_up(bench: ModuleType) -> None:
     assert mcu.cycles(ops) == (100 * 2 + 40 * 2 + 12 * 30, 100 * 8 + 40 * 6 + 12 * 150)
     low, high = mcu.microseconds(ops)
     assert low == pytest.approx(640 / 200) and high == pytest.approx(2840 / 100)
+
+
+def test_the_element_count_covers_the_remembered_points(bench: ModuleType) -> None:
+    """Every decision of IFGM and DistBug tests the corridor towards the goal against every
+    remembered point, so its element count is at least the number of remembered points: the
+    counting arrays must survive from the scan into the memory (a percept built with a plain
+    ``np.empty`` lost them, and the counts fell by a factor of 30 unnoticed)."""
+    for name in ("ifgm", "distbug"):
+        episodes = [bench.record(name, "u_trap", 20.0)]
+        counts = bench.count_operations(name, episodes, every=1)
+        short = [c for c in counts if c.elements < c.remembered]
+        assert not short, (
+            f"{name}: {len(short)} decisions counted fewer elements than remembered points, "
+            f"e.g. {short[0]}"
+        )
+        assert max(c.remembered for c in counts) > 0
