@@ -111,7 +111,7 @@ BODY = Body.of(Point(20.0, 0.0), EpisodeParams(), BoundaryParams.for_episode(Epi
 
 def _guarded(points: list[tuple[float, float]], command: Command, pose: Pose) -> Command:
     """``command`` through the guard, with one scan's worth of ``points`` remembered."""
-    return guard(command, pose, BODY, np.array(points, dtype=float))
+    return guard(command, Sight(pose, BODY, np.array(points, dtype=float), 0.0))
 
 
 def test_the_guard_turns_the_robot_off_an_obstacle_it_would_hit() -> None:

@@ -122,9 +122,10 @@ def cluster_points(pts: ScanPoints, jump: float) -> tuple[Cluster, ...]:
     ordered right to left: :func:`cluster_scan` for returns already resolved."""
     if len(pts) == 0:
         return ()
-    steps = np.hypot(*np.diff(pts.xy, axis=0).T)
-    breaks = (np.diff(pts.indices) > 1) | (steps > jump)
-    starts = [0, *(np.flatnonzero(breaks) + 1).tolist()]
+    xy, indices = pts.xy, pts.indices
+    steps = np.hypot(xy[1:, 0] - xy[:-1, 0], xy[1:, 1] - xy[:-1, 1])
+    breaks = (indices[1:] - indices[:-1] > 1) | (steps > jump)
+    starts = [0, *(breaks.nonzero()[0] + 1).tolist()]
     ends = [*starts[1:], len(pts)]
     indices = pts.indices.tolist()
     angles = pts.angles.tolist()

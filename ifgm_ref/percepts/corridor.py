@@ -13,15 +13,26 @@ import math
 import numpy as np
 from numpy.typing import NDArray
 
+#: Each point's offset from an origin: the arrays ``x - x0`` and ``y - y0``.
+Offsets = tuple[NDArray[np.float64], NDArray[np.float64]]
+
+
+def offsets(points: NDArray[np.float64], origin: tuple[float, float]) -> Offsets:
+    """Each point's offset from ``origin``: ``(x - x0, y - y0)``, two arrays.
+
+    >>> offsets(np.array([[3.0, 4.0]]), (1.0, 1.0))
+    (array([2.]), array([3.]))
+    """
+    return points[:, 0] - origin[0], points[:, 1] - origin[1]
+
 
 def _along_across(
-    points: NDArray[np.float64], origin: tuple[float, float], direction: float
+    relative: Offsets, direction: float
 ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """Each point's coordinates in the frame at ``origin`` facing ``direction``: how far
+    """Each point's coordinates in the frame at its origin facing ``direction``: how far
     along that direction, and how far to its left."""
     c, s = math.cos(direction), math.sin(direction)
-    dx = points[:, 0] - origin[0]
-    dy = points[:, 1] - origin[1]
+    dx, dy = relative
     return c * dx + s * dy, -s * dx + c * dy
 
 
@@ -30,6 +41,8 @@ def free_length(
     origin: tuple[float, float],
     direction: float,
     half_width: float,
+    *,
+    relative: Offsets | None = None,
 ) -> float:
     """How far the corridor of ``half_width`` from ``origin`` along ``direction`` is free.
 
@@ -47,6 +60,9 @@ def free_length(
         Its direction, radians.
     half_width : float
         Half its width, ft (the robot radius plus a margin).
+    relative : Offsets, optional
+        ``offsets(points, origin)``, when the caller has them already (several corridors
+        from one origin share them).
 
     Examples
     --------
@@ -58,7 +74,7 @@ def free_length(
     """
     if len(points) == 0:
         return math.inf
-    along, across = _along_across(points, origin, direction)
+    along, across = _along_across(relative or offsets(points, origin), direction)
     inside = (along >= 0.0) & (np.abs(across) < half_width)
     return float(along[inside].min()) if inside.any() else math.inf
 
@@ -68,12 +84,15 @@ def disc_travel(
     origin: tuple[float, float],
     direction: float,
     radius: float,
+    *,
+    relative: Offsets | None = None,
 ) -> float:
     """How far a disc of ``radius`` centred at ``origin`` can move along ``direction`` before
     it touches one of ``points`` (``inf`` if never; 0 if one is inside it already).
 
     A point at ``along`` ahead and ``across`` to the side, ``|across| < radius``, is touched
     after ``along - sqrt(radius**2 - across**2)``; points behind the centre only recede.
+    ``relative`` is ``offsets(points, origin)``, when the caller has them already.
 
     >>> pts = np.array([[5.0, 0.6], [3.0, 4.0], [-2.0, 0.0]])
     >>> disc_travel(pts, (0.0, 0.0), 0.0, 1.0)
@@ -83,7 +102,7 @@ def disc_travel(
     """
     if len(points) == 0:
         return math.inf
-    along, across = _along_across(points, origin, direction)
+    along, across = _along_across(relative or offsets(points, origin), direction)
     ahead = (along >= 0.0) & (np.abs(across) < radius)
     if not ahead.any():
         return math.inf

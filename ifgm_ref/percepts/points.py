@@ -40,7 +40,7 @@ def scan_points(scan: LaserScan) -> ScanPoints:
     """
     ranges = np.where(scan.ranges == -np.inf, scan.range_min, scan.ranges)
     keep = np.isfinite(ranges)
-    indices = np.flatnonzero(keep)
+    indices = keep.nonzero()[0]
     r = ranges[indices]
     cos, sin = scan.directions
     xy = np.empty_like(r, shape=(len(r), 2))  # like r: an ndarray subclass survives

@@ -26,9 +26,6 @@ from collections.abc import Callable
 from dataclasses import replace
 from typing import ClassVar
 
-import numpy as np
-from numpy.typing import NDArray
-
 from ifgm_ref.laserscan import LaserScan
 from ifgm_ref.paper import traces
 from ifgm_ref.percepts.corridor import disc_travel
@@ -170,9 +167,9 @@ class LeaveRule:
         return "follow_edge"
 
 
-def guard(command: Command, pose: Pose, body: Body, points: NDArray[np.float64]) -> Command:
+def guard(command: Command, sight: Sight) -> Command:
     """``command``, or the nearest heading to it that does not bring the robot's disc nearer a
-    remembered obstacle point than the corridor margin during this step.
+    remembered obstacle point (``sight.points``) than the corridor margin during this step.
 
     The robot turns by at most ``max_turn_rate * dt`` and then drives
     (:mod:`ifgm_ref.robot`), so the disc of the corridor's half-width is swept along the
@@ -185,13 +182,17 @@ def guard(command: Command, pose: Pose, body: Body, points: NDArray[np.float64])
     """
     if command.speed <= 0.0 or command.stop is not None:
         return command
+    pose, body, origin = sight.pose, sight.body, (sight.pose.x, sight.pose.y)
     for k in range(GUARD_STEPS + 1):
         for sign in (1, -1) if k else (1,):
             heading = wrap_angle(command.heading + sign * k * GUARD_STEP)
             error = wrap_angle(heading - pose.theta)
             speed = min(command.speed, turn_speed(error, body.speed) if k else body.speed)
             turn = max(-body.turn_limit, min(body.turn_limit, error))
-            free = disc_travel(points, (pose.x, pose.y), pose.theta + turn, body.half_width)
+            direction = pose.theta + turn
+            free = disc_travel(
+                sight.points, origin, direction, body.half_width, relative=sight.offsets
+            )
             if free >= speed * body.dt:
                 return command if k == 0 else replace(command, heading=heading, speed=speed)
     return replace(command, speed=0.0)
@@ -253,23 +254,23 @@ class BoundaryPlanner:
         self.rule.reset(start, goal, params)
 
     def step(self, observation: Observation) -> Command:
-        """Decide (:meth:`act`), then never drive into a remembered obstacle (:func:`guard`);
+        """Decide (:meth:`decide`), then never drive into a remembered obstacle (:func:`guard`);
         stop if the rule found the goal unreachable."""
-        pose = observation.pose
-        command = guard(self.act(observation), pose, self.body, self.memory.points)
+        sight = self.observe(observation)
+        command = guard(self.decide(observation, sight), sight)
         if self.rule.stop is None:
             return command
         return Command(
-            pose.theta,
+            sight.pose.theta,
             0.0,
             behaviour=Behaviour.OBSTACLE_AVOIDANCE,
             branch=self.rule.stop,
             stop=GOAL_UNREACHABLE,
         )
 
-    def act(self, observation: Observation) -> Command:
-        """Remember the scan, then move to goal or follow the edge (see the module docstring)."""
-        sight = self.observe(observation)
+    def decide(self, observation: Observation, sight: Sight) -> Command:
+        """Move to goal or follow the edge (see the module docstring), given this step's
+        ``sight`` (:meth:`observe`)."""
         follower, rule = self.follower, self.rule
         here = observation.pose.position
         if not follower.following:

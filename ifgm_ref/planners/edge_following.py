@@ -71,7 +71,7 @@ def follow_heading(
     dx = points[:, 0] - position[0]
     dy = points[:, 1] - position[1]
     d2 = dx * dx + dy * dy
-    i = int(np.argmin(d2))
+    i = int(d2.argmin())
     to_edge = math.atan2(dy[i], dx[i])
     correction = max(-MAX_CORRECTION, min(MAX_CORRECTION, gain * (math.sqrt(d2[i]) - standoff)))
     # Edge on the right: the tangent is the direction to the edge turned left by 90 degrees.

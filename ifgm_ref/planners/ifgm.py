@@ -75,12 +75,15 @@ def nearest_remembered(sight: Sight, near: Point | None, jump: float) -> Point |
     """The remembered point nearest the robot; with ``near``, among those within ``jump`` of
     it (the same obstacle's edge, tracked as the robot moves along it)."""
     pts, d = sight.points, sight.point_distances
-    if near is not None:
-        keep = np.hypot(pts[:, 0] - near.x, pts[:, 1] - near.y) <= jump
-        pts, d = pts[keep], d[keep]
-    if len(pts) == 0:
-        return None
-    i = int(np.argmin(d))
+    if near is None:
+        if len(d) == 0:
+            return None
+        i = int(d.argmin())
+    else:
+        (kept,) = (np.hypot(pts[:, 0] - near.x, pts[:, 1] - near.y) <= jump).nonzero()
+        if len(kept) == 0:
+            return None
+        i = int(kept[d[kept].argmin()])
     return Point(float(pts[i, 0]), float(pts[i, 1]))
 
 
@@ -211,9 +214,15 @@ class IFGMPlanner:
         self.last_gap = None
 
     def step(self, observation: Observation) -> Command:
-        """Decide (:meth:`act`), then never drive into a remembered obstacle (the guard)."""
-        command = self.act(observation)
-        return guard(command, observation.pose, self.body, self.memory.points)
+        """Perceive, decide (:meth:`decide`), then never drive into a remembered obstacle
+        (the guard)."""
+        percepts = self.perceive(observation)
+        return guard(self.decide(percepts), percepts.sight)
+
+    def act(self, observation: Observation) -> Command:
+        """IFGM's decision for ``observation`` before the guard: :meth:`perceive`, then
+        :meth:`decide`."""
+        return self.decide(self.perceive(observation))
 
     def goal_bearing(self, pose: Pose) -> float:
         """The destination angle theta_d of eq. (3), world frame (the reading we run); at the
@@ -264,9 +273,8 @@ class IFGMPlanner:
 
     # -- the planner ------------------------------------------------------------------------
     @traces("fig3.move_to_goal", "fig3.regenerate", "fig3.case2", "fig3.case3")
-    def act(self, observation: Observation) -> Command:
+    def decide(self, percepts: Percepts) -> Command:
         """Decide with Figure 3, then act on the branch."""
-        percepts = self.perceive(observation)
         reading = read(percepts, self.state)
         state = self.state
         if (reading.gap_mid, reading.short_look) != (state.gap_mid, state.short_look):

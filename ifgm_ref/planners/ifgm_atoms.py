@@ -226,7 +226,7 @@ def preemptor(
         world = to_world(c.xy, pose)
         apart = np.hypot(world[:, 0] - followed.x, world[:, 1] - followed.y)
         if apart.min() > params.jump:
-            candidates.append((c.nearest, world[int(np.argmin(c.ranges))]))
+            candidates.append((c.nearest, world[int(c.ranges.argmin())]))
     if not candidates:
         return None
     _, point = min(candidates, key=lambda candidate: candidate[0])
@@ -247,9 +247,9 @@ def read(percepts: Percepts, state: IFGMState) -> Reading:
     short_look = state.short_look and not free_ahead >= params.d_look  # in the open again
     look = sight.body.encounter if short_look else params.d_look
     view = percepts.view
-    front_near = bool(np.any(view.ranges[view.beam_mask(Beam.FRONT)] <= params.d_look))
+    front_near = bool((view.ranges[view.beam_mask(Beam.FRONT)] <= params.d_look).any())
     # Every ray returns within the view range (-inf too): the view ahead is closed.
-    enclosed = bool(np.all(view.ranges <= sight.body.tuning.view_range))
+    enclosed = bool((view.ranges <= sight.body.tuning.view_range).all())
     following = state.mode is Mode.FOLLOWING
     other = preemptor(pose, clusters, state.followed, params) if following else None
     atoms = Atoms(

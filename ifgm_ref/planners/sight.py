@@ -17,7 +17,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ifgm_ref.laserscan import PAPER_HALF_FOV
-from ifgm_ref.percepts.corridor import free_length
+from ifgm_ref.percepts.corridor import Offsets, free_length, offsets
 from ifgm_ref.planners.tuning import Tuning, Unit, derived
 from ifgm_ref.pose import Point, Pose, distance, wrap_angle
 from ifgm_ref.protocol import EpisodeParams
@@ -167,16 +167,26 @@ class Sight:
         #: The distance to the goal.
         self.goal_distance = distance(pose, body.goal)
         self._free_length: float | None = None
+        self._offsets: Offsets | None = None
         self._distances: NDArray[np.float64] | None = None
+
+    @property
+    def offsets(self) -> Offsets:
+        """Each remembered point's offset from the robot (shared by every corridor test and
+        distance of the step)."""
+        if self._offsets is None:
+            self._offsets = offsets(self.points, (self.pose.x, self.pose.y))
+        return self._offsets
 
     @property
     def goal_free_length(self) -> float:
         """How far the robot-wide corridor towards the goal is free of remembered points
         (worked out at the first question)."""
         if self._free_length is None:
-            pose = self.pose
-            origin = (pose.x, pose.y)
-            self._free_length = free_length(self.points, origin, self.bearing, self.body.half_width)
+            pose, half_width = self.pose, self.body.half_width
+            self._free_length = free_length(
+                self.points, (pose.x, pose.y), self.bearing, half_width, relative=self.offsets
+            )
         return self._free_length
 
     @property
@@ -184,8 +194,7 @@ class Sight:
         """The distance from the robot to each remembered point (worked out at the first
         question)."""
         if self._distances is None:
-            pose, pts = self.pose, self.points
-            self._distances = np.hypot(pts[:, 0] - pose.x, pts[:, 1] - pose.y)
+            self._distances = np.hypot(*self.offsets)
         return self._distances
 
     def goal_blocked(self) -> bool:
