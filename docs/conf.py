@@ -57,6 +57,8 @@ nb_execution_mode = "force"
 nb_execution_timeout = 600
 nb_execution_raise_on_error = True
 nb_execution_show_tb = True
+# Markdown that a cell displays (the proofs in 00_equations) is MyST, with its $$ math.
+nb_render_markdown_format = "myst"
 # No widget JavaScript from a CDN.
 nb_ipywidgets_js: dict[str, dict[str, str]] = {}
 
@@ -75,6 +77,9 @@ napoleon_custom_sections = [("Reference", "References")]
 html_theme = "furo"
 html_title = "ifgm-ref"
 html_static_path: list[str] = []
+# The site's root page, /index.html, sends the reader on to docs/index.html.
+html_extra_path = ["_root"]
+html_favicon = "_root/favicon.svg"
 html_copy_source = False
 html_show_sourcelink = False
 # myst.header: the notebooks' headings start below level 1 in places. ref.python: a short name
