@@ -76,7 +76,8 @@ napoleon_custom_sections = [("Reference", "References")]
 # ---- HTML -------------------------------------------------------------------------------
 html_theme = "furo"
 html_title = "ifgm-ref"
-html_static_path: list[str] = []
+html_static_path = ["_static"]
+html_css_files = ["site.css"]
 # The site's root page, /index.html, sends the reader on to docs/index.html.
 html_extra_path = ["_root"]
 html_favicon = "_root/favicon.svg"

@@ -119,6 +119,19 @@ def _api_index(names: list[str]) -> str:
     )
 
 
+def keep_notebook_outputs_in_the_site(app: Sphinx, config: Config) -> None:
+    """Have MyST-NB write the executed notebooks in ``OUT/.jupyter_execute`` (config-inited).
+
+    MyST-NB writes them beside the output folder (``OUT/../jupyter_execute``), which for
+    ``--out site`` is the project folder. Its folder name is a module constant joined to that
+    parent, so an absolute path moves it; a MyST-NB without the constant keeps its default.
+    """
+    import myst_nb.sphinx_ext
+
+    if hasattr(myst_nb.sphinx_ext, "OUTPUT_FOLDER"):
+        myst_nb.sphinx_ext.OUTPUT_FOLDER = str(Path(app.outdir) / ".jupyter_execute")
+
+
 def generate(app: Sphinx, config: Config) -> None:
     """Write the proof and API pages into ``docs/_generated`` (config-inited)."""
     out = Path(app.srcdir) / GENERATED
@@ -190,7 +203,7 @@ _NODE = r'(\w+)(?:\(\["(.*?)"\]\)|\{"(.*?)"\}|\["(.*?)"\])?'
 _EDGE = re.compile(rf"^\s*{_NODE}\s*(?:--\s*(.*?)\s*)?-->\s*{_NODE}\s*$")
 
 
-def _dot_label(text: str, width: int = 30) -> str:
+def _dot_label(text: str, width: int = 16) -> str:
     return "\\n".join(textwrap.wrap(text, width)).replace('"', '\\"')
 
 
@@ -227,7 +240,7 @@ def mermaid_to_dot(source: str) -> str:
         edges.append(f"  {groups[0]} -> {groups[5]}{label};")
     head = [
         "digraph flowchart {",
-        '  graph [rankdir=TB, nodesep=0.3, ranksep=0.3, fontname="sans-serif"];',
+        '  graph [rankdir=TB, nodesep=0.15, ranksep=0.3, fontname="sans-serif"];',
         '  node [fontname="sans-serif", fontsize=10, margin="0.08,0.04"];',
         '  edge [fontname="sans-serif", fontsize=9];',
     ]
@@ -270,5 +283,6 @@ def setup(app: Sphinx) -> dict[str, Any]:
     app.setup_extension("sphinx.ext.graphviz")
     app.config.graphviz_output_format = "svg"
     app.connect("config-inited", generate)
+    app.connect("config-inited", keep_notebook_outputs_in_the_site)
     app.connect("source-read", rewrite_source)
     return {"parallel_read_safe": True, "parallel_write_safe": True}
