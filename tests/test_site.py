@@ -2,14 +2,15 @@
 
 Run with ``pytest -m browser`` after ``bash .ci/browser-setup`` (Debian's ``chromium`` and
 ``chromium-driver``, Graphviz, and the ``browser`` extra). The tests build the site with
-``ifgm-ref docs`` into a temporary folder (about 1.5 minutes on 2 cores), or check the build
+``ifgm-ref docs`` into a temporary folder (about a minute on 2 cores), or check the build
 in ``$IFGM_SITE_DIR`` if that is set; they serve it on localhost from a thread and open every
 page. Screenshots of the landing page and of a notebook page are written to
 ``$IFGM_SITE_ARTIFACTS`` (default ``site-artifacts/``, gitignored) and their paths printed.
 
 They are marked ``browser`` and so left out of ``python3 -m pytest`` and CI: CI would have to
-install Chromium (about 100 MB of Debian packages) and build the site with every notebook
-executed, some 3 more minutes on top of a run that already takes about 7.5 of its 10. Without
+install Chromium (about 100 MB of Debian packages), build the site with every notebook
+executed and open its 115 pages: 80 s measured for the last two, plus the install, on top of a
+run that already takes about 7.5 of its 10 minutes. Without
 Chromium, its driver or selenium they skip and say what to install.
 """
 
@@ -182,8 +183,11 @@ def _artifacts() -> Path:
 
 
 @pytest.fixture(scope="module")
-def pages(site: Path, base_url: str, driver: Any) -> dict[str, Page]:
-    """Every page of the site as the browser saw it; screenshots taken on the way."""
+def pages(driver: Any, site: Path, base_url: str) -> dict[str, Page]:
+    """Every page of the site as the browser saw it; screenshots taken on the way.
+
+    The driver comes first, so that without Chromium the tests skip before building the site.
+    """
     shots = {path: name for name, path in SCREENSHOTS.items()}
     seen: dict[str, Page] = {}
     for path in _page_paths(site):
