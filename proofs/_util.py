@@ -278,20 +278,37 @@ class Derivation:
         )
         return "\n".join(lines)
 
-    def to_markdown(self) -> str:
-        """The derivation as Markdown with LaTeX formulas (for the notebook)."""
-        parts = [f"### {self.title}"]
+    def to_markdown(self, *, level: int = 3, anchors: bool = False) -> str:
+        """The derivation as Markdown with LaTeX formulas (for the notebook and the site).
+
+        ``level`` is the title's heading level; with ``anchors``, every claim is preceded by a
+        MyST target ``(proof-KEY-NAME)=`` (:func:`claim_anchor`), which the documentation
+        site links citations such as ``proofs.eq4:convex_combination`` to.
+        """
+        parts = [f"{'#' * level} {self.title}"]
         for step in self._steps:
             if isinstance(step, _Text):
                 parts.append(step.paragraph)
             elif isinstance(step, _Definition):
                 parts.append(f"$${sp.latex(sp.Symbol(step.name))} = {sp.latex(step.expr)}$$")
             else:
-                parts.append(f"**[{step.kind}]** `{self.key}:{step.name}` -- {step.statement}")
+                claim = f"**[{step.kind}]** `{self.key}:{step.name}` -- {step.statement}"
+                if anchors:
+                    claim = f"({claim_anchor(self.key, step.name)})=\n{claim}"
+                parts.append(claim)
                 if step.formula is not None:
                     parts.append(f"$${sp.latex(step.formula)}$$")
                 parts.append(f"*by:* `{step.method}`")
         return "\n\n".join(parts)
+
+
+def claim_anchor(key: str, name: str) -> str:
+    """The site's label of claim ``key:name`` (letters, digits and hyphens).
+
+    >>> claim_anchor("eq4", "convex_combination")
+    'proof-eq4-convex-combination'
+    """
+    return f"proof-{key}-{name}".replace("_", "-").lower()
 
 
 def held_eq(lhs: sp.Basic, rhs: sp.Basic) -> sp.Basic:

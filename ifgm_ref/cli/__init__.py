@@ -6,7 +6,7 @@ Every error that bad input can cause is reported as one line on stderr
 One module per subcommand or group of them, each adding its parser (``add_NAME``) and
 running it (``run_NAME``): :mod:`.simulate`; :mod:`.listings` (``worlds``, ``planners``);
 :mod:`.artefacts` (``figures``, ``vectors``, ``trace-matrix``); :mod:`.oracle`;
-:mod:`.bench`; :mod:`.serve`. What they share is in :mod:`.common`.
+:mod:`.bench`; :mod:`.serve`; :mod:`.docs`. What they share is in :mod:`.common`.
 """
 
 from __future__ import annotations
@@ -18,6 +18,7 @@ from collections.abc import Sequence
 from ifgm_ref.cli.artefacts import add_figures, add_trace_matrix, add_vectors
 from ifgm_ref.cli.bench import add_bench
 from ifgm_ref.cli.common import EXIT_USAGE, Parser
+from ifgm_ref.cli.docs import add_docs
 from ifgm_ref.cli.listings import add_planners, add_worlds
 from ifgm_ref.cli.oracle import add_oracle
 from ifgm_ref.cli.serve import add_serve
@@ -37,6 +38,7 @@ SUBCOMMANDS = (
     add_bench,
     add_trace_matrix,
     add_serve,
+    add_docs,
 )
 
 

@@ -18,22 +18,22 @@ dead-end scenarios for this algo."; section 5.2: the robot "is steered towards c
 obstacle ... At the centre of obstacle, the robot becomes unable to take any decision." This
 module reproduces that: when no gap is left the robot stops (speed 0) facing the goal.
 
-==========================  ======================  ============================================
-FGM symbol                  here                    meaning
-==========================  ======================  ============================================
-obstacle radius + robot     ``inflation``           ``r_inf = robot.radius + margin``, ft: each
-radius                                              return is a disc of this radius
-``phi_i`` (border half-     ``asin(min(1, r/d))``   angular half-width an inflated return at
-angle)                                              ``d`` ft blocks, rad
-gap array                   :func:`find_gaps`       runs of consecutive free (unblocked) rays
-``d_1, phi_1``              ``RayGap.right_*``      right border: distance, clockwise angle
-``d_2, phi_2``              ``RayGap.left_*``       left border: distance, counter-clockwise
-``theta_gap_c``             ``RayGap.centre``       gap centre angle, robot frame, rad
-``theta_goal``              ``goal_angle``          goal bearing, robot frame, rad
-``alpha``, ``beta``         ``alpha``, ``beta``     gap and goal weights of the final heading
-``d_min``                   ``d_min``               range of the nearest return, ft
-``theta_final``             ``FGMDecision.heading`` final heading, robot frame, rad
-==========================  ======================  ============================================
+==========================  ========================  ============================================
+FGM symbol                  here                      meaning
+==========================  ========================  ============================================
+obstacle radius + robot     ``inflation``             ``r_inf = robot.radius + margin``, ft: each
+radius                                                return is a disc of this radius
+``phi_i`` (border half-     ``asin(min(1, r/d))``     angular half-width an inflated return at
+angle)                                                ``d`` ft blocks, rad
+gap array                   :func:`find_gaps`         runs of consecutive free (unblocked) rays
+``d_1, phi_1``              ``RayGap.right_*``        right border: distance, clockwise angle
+``d_2, phi_2``              ``RayGap.left_*``         left border: distance, counter-clockwise
+``theta_gap_c``             ``RayGap.centre``         gap centre angle, robot frame, rad
+``theta_goal``              ``goal_angle``            goal bearing, robot frame, rad
+``alpha``, ``beta``         ``alpha``, ``beta``       gap and goal weights of the final heading
+``d_min``                   ``d_min``                 range of the nearest return, ft
+``theta_final``             ``FGMDecision.heading``   final heading, robot frame, rad
+==========================  ========================  ============================================
 
 Frames: REP-103 robot frame (x forward, y left, angles counter-clockwise positive) for every
 angle here; :class:`FGMPlanner` turns the final heading into a world heading.

@@ -5,15 +5,15 @@ program once and talks to it over its stdin and stdout, one JSON object per line
 (``docs/oracle-protocol.md`` is the full specification). This module is the codec between
 those lines and the protocol's dataclasses (:mod:`ifgm_ref.protocol`):
 
-===========  ================  =========================================  ===================
-message      direction         built by                                   parsed by
-===========  ================  =========================================  ===================
-``reset``    oracle -> program :func:`reset_message` (start, goal, params) :func:`parse_reset`
-``ready``    program -> oracle :func:`ready_message`                      :func:`parse_ready`
-``observe``  oracle -> program :func:`observe_message` (Observation)      :func:`parse_observe`
-``command``  program -> oracle :func:`command_message` (Command)          :func:`parse_command`
-``bye``      oracle -> program :func:`bye_message`                        :func:`parse_bye`
-===========  ================  =========================================  ===================
+===========  =================  ===========================================  =====================
+message      direction          built by                                     parsed by
+===========  =================  ===========================================  =====================
+``reset``    oracle -> program  :func:`reset_message` (start, goal, params)  :func:`parse_reset`
+``ready``    program -> oracle  :func:`ready_message`                        :func:`parse_ready`
+``observe``  oracle -> program  :func:`observe_message` (Observation)        :func:`parse_observe`
+``command``  program -> oracle  :func:`command_message` (Command)            :func:`parse_command`
+``bye``      oracle -> program  :func:`bye_message`                          :func:`parse_bye`
+===========  =================  ===========================================  =====================
 
 :func:`encode` writes a message as one line, :func:`decode` reads one back. Floats are written
 with ``repr`` and read with ``float``, which round-trip exactly: a planner stepped through the

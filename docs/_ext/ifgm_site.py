@@ -1,0 +1,288 @@
+"""The Sphinx extension of the documentation site: generated pages and linked citations.
+
+At the start of a build (``config-inited``) it writes, into ``docs/_generated/`` (gitignored):
+
+- ``proofs/KEY.md``, one page per proof module of ``proofs/``: the sympy derivation built
+  (so every claim is checked again by the build) and rendered as MyST with LaTeX math, each
+  claim with a label (:func:`proofs._util.claim_anchor`);
+- ``api/MODULE.md``, one ``automodule`` page per module of ``ifgm_ref``, and an index.
+
+While Sphinx reads a Markdown page (``source-read``), it turns the inline-code citations of
+the traceability matrix, the errata and the other pages into links: ``ifgm_ref.a.b`` to the
+API page, ``ifgm_ref/a/b.py`` to its module, ``proofs.eq4:name`` to the claim,
+``proofs.eq4.derivation`` to the proof page, ``notebooks/X.ipynb`` to the executed notebook.
+Test ids (``tests/test_x.py::test_y``) stay plain code: the tests are not pages. And it replaces
+the Mermaid block of ``docs/flowchart.md`` by a Graphviz drawing of the same graph (an SVG
+made at build time, so no Mermaid JavaScript is fetched), with the Mermaid source below it.
+"""
+
+from __future__ import annotations
+
+import importlib
+import pkgutil
+import re
+import shutil
+import textwrap
+from pathlib import Path
+from typing import Any
+
+from sphinx.application import Sphinx
+from sphinx.config import Config
+from sphinx.util import logging
+
+LOG = logging.getLogger(__name__)
+
+#: The proof modules (``proofs/KEY.py``) and the function that builds each derivation.
+PROOFS = {
+    "eq1": "derivation",
+    "eq2": "derivation",
+    "eq3": "derivation",
+    "eq4": "derivation",
+    "flowchart": "derivation",
+    "scale": "derivation",
+}
+#: Modules of ifgm_ref left out of the API reference: entry points and a pytest test module.
+API_SKIP = ("__main__", "ifgm_ref.oracle.test_conformance")
+GENERATED = "docs/_generated"
+
+
+# ---- generated pages ----------------------------------------------------------------------
+
+
+def _write(path: Path, text: str, written: set[Path]) -> None:
+    """Write ``text`` to ``path`` unless it is there already (keeps Sphinx's cache valid)."""
+    path.parent.mkdir(parents=True, exist_ok=True)
+    if not path.is_file() or path.read_text(encoding="utf-8") != text:
+        path.write_text(text, encoding="utf-8")
+    written.add(path)
+
+
+def _proof_page(key: str) -> str:
+    module = importlib.import_module(f"proofs.{key}")
+    derivation = getattr(module, PROOFS[key])()
+    body = derivation.to_markdown(level=1, anchors=True)
+    title, _, rest = body.partition("\n\n")
+    proved = sum(c.kind == "proved" for c in derivation.claims)
+    note = (
+        f"*Source: `proofs/{key}.py`; in a terminal: `python -m proofs.{key}`. This page was "
+        f"built by running the derivation: its {proved} **[proved]** claim(s) were reduced by "
+        "sympy to exactly 0 or True during the build, and the build fails if one is not. "
+        "**[numeric spot check]** claims are regression tests at sample points, not proofs.*"
+    )
+    return f"({_proof_label(key)})=\n{title}\n\n{note}\n\n{rest}\n"
+
+
+def _proof_label(key: str) -> str:
+    return f"proof-page-{key}"
+
+
+def _proof_index() -> str:
+    entries = "\n".join(f"{key}" for key in PROOFS)
+    return (
+        "# Proofs\n\n"
+        "The sympy derivations of `proofs/`, run when this site was built and rendered as "
+        "math. A claim cited as `proofs.eq4:convex_combination` in the errata or the "
+        "traceability matrix links to its place here.\n\n"
+        f"```{{toctree}}\n:maxdepth: 1\n\n{entries}\n```\n"
+    )
+
+
+def _api_modules() -> list[str]:
+    import ifgm_ref
+
+    names = ["ifgm_ref"]
+    for info in pkgutil.walk_packages(ifgm_ref.__path__, "ifgm_ref."):
+        if not info.name.endswith(API_SKIP[0]) and info.name not in API_SKIP:
+            names.append(info.name)
+    return sorted(names)
+
+
+def _api_page(name: str) -> str:
+    return f"# `{name}`\n\n```{{eval-rst}}\n.. automodule:: {name}\n```\n"
+
+
+def _api_index(names: list[str]) -> str:
+    groups: dict[str, list[str]] = {}
+    for name in names:
+        parts = name.split(".")
+        group = ".".join(parts[:2]) if len(parts) > 2 else "ifgm_ref"
+        groups.setdefault(group, []).append(name)
+    tocs = "\n".join(
+        f"```{{toctree}}\n:maxdepth: 1\n:caption: {group}\n\n" + "\n".join(members) + "\n```\n"
+        for group, members in sorted(groups.items())
+    )
+    return (
+        "# API reference\n\n"
+        "Every module of `ifgm_ref`, from its docstrings (numpydoc; sphinx.ext.autodoc and "
+        "napoleon). The module docstrings open with the paper's reference and map each "
+        "parameter to its symbol.\n\n" + tocs
+    )
+
+
+def keep_notebook_outputs_in_the_site(app: Sphinx, config: Config) -> None:
+    """Have MyST-NB write the executed notebooks in ``OUT/.jupyter_execute`` (config-inited).
+
+    MyST-NB writes them beside the output folder (``OUT/../jupyter_execute``), which for
+    ``--out site`` is the project folder. Its folder name is a module constant joined to that
+    parent, so an absolute path moves it; a MyST-NB without the constant keeps its default.
+    """
+    import myst_nb.sphinx_ext
+
+    if hasattr(myst_nb.sphinx_ext, "OUTPUT_FOLDER"):
+        myst_nb.sphinx_ext.OUTPUT_FOLDER = str(Path(app.outdir) / ".jupyter_execute")
+
+
+def generate(app: Sphinx, config: Config) -> None:
+    """Write the proof and API pages into ``docs/_generated`` (config-inited)."""
+    out = Path(app.srcdir) / GENERATED
+    written: set[Path] = set()
+    for key in PROOFS:
+        _write(out / "proofs" / f"{key}.md", _proof_page(key), written)
+    _write(out / "proofs" / "index.md", _proof_index(), written)
+    names = _api_modules()
+    for name in names:
+        _write(out / "api" / f"{name}.md", _api_page(name), written)
+    _write(out / "api" / "index.md", _api_index(names), written)
+    for stale in out.rglob("*.md"):
+        if stale not in written:
+            stale.unlink()
+
+
+# ---- citations as links -------------------------------------------------------------------
+
+_CODE = re.compile(r"(?<![`\w])`([^`\n]+)`(?!`)")
+_PYTHON_NAME = re.compile(r"ifgm_ref(\.[A-Za-z_]\w*)+|ifgm_ref")
+_PYTHON_FILE = re.compile(r"ifgm_ref(/[a-z_]\w*)*(\.py|/)")
+_CLAIM = re.compile(r"proofs\.(\w+):(\w+)")
+_PROOF = re.compile(r"proofs\.(\w+)\.(\w+)")
+_NOTEBOOK = re.compile(r"notebooks/([\w.-]+)\.ipynb")
+
+
+def _link(code: str) -> str | None:
+    """The MyST role that links the inline code ``code``, or None to leave it as it is."""
+    from proofs._util import claim_anchor
+
+    if _PYTHON_NAME.fullmatch(code):
+        return f"{{py:obj}}`{code}`"
+    if _PYTHON_FILE.fullmatch(code):
+        module = code.removesuffix(".py").removesuffix("/").replace("/", ".")
+        module = module.removesuffix(".__init__")
+        return f"{{py:mod}}`{code} <{module}>`"
+    if (m := _CLAIM.fullmatch(code)) and m.group(1) in PROOFS:
+        return f"{{ref}}`{code} <{claim_anchor(m.group(1), m.group(2))}>`"
+    if (m := _PROOF.fullmatch(code)) and m.group(1) in PROOFS:
+        return f"{{ref}}`{code} <{_proof_label(m.group(1))}>`"
+    if m := _NOTEBOOK.fullmatch(code):
+        return f"{{doc}}`{code} </notebooks/{m.group(1)}>`"
+    return None
+
+
+def link_citations(text: str) -> str:
+    """Turn the citations in inline code outside fenced blocks and headings into links.
+
+    >>> link_citations("see `proofs.eq4:convex_combination` and `x`")
+    'see {ref}`proofs.eq4:convex_combination <proof-eq4-convex-combination>` and `x`'
+    """
+    lines, fence = [], ""
+    for line in text.split("\n"):
+        stripped = line.lstrip()
+        if fence:
+            fence = "" if stripped.startswith(fence) else fence
+        elif stripped.startswith(("```", "~~~")):
+            fence = stripped[:3]
+        elif not stripped.startswith("#"):  # headings keep their code (and their anchors)
+            line = _CODE.sub(lambda m: _link(m.group(1)) or m.group(0), line)
+        lines.append(line)
+    return "\n".join(lines)
+
+
+# ---- the flowchart ------------------------------------------------------------------------
+
+_MERMAID = re.compile(r"```mermaid\n(.*?)```\n", re.DOTALL)
+_NODE = r'(\w+)(?:\(\["(.*?)"\]\)|\{"(.*?)"\}|\["(.*?)"\])?'
+_EDGE = re.compile(rf"^\s*{_NODE}\s*(?:--\s*(.*?)\s*)?-->\s*{_NODE}\s*$")
+
+
+def _dot_label(text: str, width: int = 16) -> str:
+    return "\\n".join(textwrap.wrap(text, width)).replace('"', '\\"')
+
+
+def mermaid_to_dot(source: str) -> str:
+    """The Graphviz graph of a Mermaid ``flowchart TD`` of the forms the flowchart page uses.
+
+    Nodes ``A(["stadium"])``, ``A{"decision"}``, ``A["box"]`` or a bare id; edges ``A --> B``
+    and ``A -- label --> B``; one per line.
+
+    >>> print(mermaid_to_dot('flowchart TD\\n  A{"x?"} -- yes --> B["do"]'))  # doctest: +ELLIPSIS
+    digraph flowchart {
+    ...
+      A [label="x?", shape=diamond...];
+      B [label="do", shape=box...];
+      A -> B [label=" yes "];
+    }
+    """
+    shapes = ("box, style=rounded", 'diamond, style=filled, fillcolor="#eef3fb"', "box")
+    nodes: dict[str, str] = {}
+    edges: list[str] = []
+    for line in source.splitlines()[1:]:
+        m = _EDGE.match(line)
+        if not m:
+            if line.strip():
+                raise ValueError(f"flowchart line not understood: {line!r}")
+            continue
+        groups = m.groups()
+        for ident, labels in ((groups[0], groups[1:4]), (groups[5], groups[6:9])):
+            for shape, label in zip(shapes, labels, strict=True):
+                if label is not None:
+                    nodes[ident] = f'label="{_dot_label(label)}", shape={shape}'
+            nodes.setdefault(ident, f'label="{ident}", shape=box')
+        label = f' [label=" {groups[4]} "]' if groups[4] else ""
+        edges.append(f"  {groups[0]} -> {groups[5]}{label};")
+    head = [
+        "digraph flowchart {",
+        '  graph [rankdir=TB, nodesep=0.15, ranksep=0.3, fontname="sans-serif"];',
+        '  node [fontname="sans-serif", fontsize=10, margin="0.08,0.04"];',
+        '  edge [fontname="sans-serif", fontsize=9];',
+    ]
+    body = [f"  {ident} [{attrs}];" for ident, attrs in nodes.items()]
+    return "\n".join([*head, *body, *edges, "}"])
+
+
+def _flowchart(text: str) -> str:
+    def replace(m: re.Match[str]) -> str:
+        source = m.group(1)
+        shown = (
+            "<details>\n<summary>The Mermaid source</summary>\n\n"
+            f"```text\n{source}```\n\n</details>\n"
+        )
+        if shutil.which("dot") is None:
+            LOG.warning("Graphviz's `dot` is not installed: the flowchart is shown as source only")
+            return shown
+        dot = mermaid_to_dot(source)
+        return (
+            "```{graphviz}\n:align: center\n"
+            ":alt: The reconstructed Figure 3 flowchart\n\n"
+            f"{dot}\n```\n\n{shown}"
+        )
+
+    return _MERMAID.sub(replace, text)
+
+
+def rewrite_source(app: Sphinx, docname: str, source: list[str]) -> None:
+    """Link citations and draw the flowchart while Sphinx reads a Markdown page."""
+    if not str(app.env.doc2path(docname)).endswith(".md"):
+        return
+    text = source[0]
+    if docname == "docs/flowchart":
+        text = _flowchart(text)
+    source[0] = link_citations(text)
+
+
+def setup(app: Sphinx) -> dict[str, Any]:
+    """Register the extension."""
+    app.setup_extension("sphinx.ext.graphviz")
+    app.config.graphviz_output_format = "svg"
+    app.connect("config-inited", generate)
+    app.connect("config-inited", keep_notebook_outputs_in_the_site)
+    app.connect("source-read", rewrite_source)
+    return {"parallel_read_safe": True, "parallel_write_safe": True}
