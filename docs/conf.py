@@ -7,7 +7,7 @@ time, so the committed notebooks stay without outputs and the site always shows 
 
 The source folder is the project folder itself, narrowed by ``include_patterns``, so the
 relative links of README.md and docs/*.md resolve on the site as they do on a code host. The
-proof pages and the API pages are generated at build time into ``docs/_generated/``
+proof, API and test pages are generated at build time into ``docs/_generated/``
 (gitignored) by ``docs/_ext/ifgm_site.py``, which also links the traceability matrix's cells
 and draws the flowchart. Nothing is fetched from a CDN: MathJax is served from the site
 (sphinx-mathjax-offline) and the flowchart is an SVG drawn at build time.

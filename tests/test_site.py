@@ -143,11 +143,13 @@ ready.then(() => {
     .filter(name => !name.startsWith(origin) && !name.startsWith('data:'));
   const links = [...document.querySelectorAll('a[href]')].map(a => a.href);
   const article = document.querySelector('article') || document.body;
+  const prose = article.cloneNode(true);  // the text outside code: code may show a $$
+  prose.querySelectorAll('pre, code').forEach(e => e.remove());
   done({
     images, foreign, links,
     math: document.querySelectorAll('mjx-container').length,
     mathErrors: document.querySelectorAll('mjx-merror').length,
-    rawMath: article.innerText.includes('$$'),
+    rawMath: prose.textContent.includes('$$'),
   });
 }, err => done({error: String(err)}));
 """

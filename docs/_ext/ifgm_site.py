@@ -5,19 +5,22 @@ At the start of a build (``config-inited``) it writes, into ``docs/_generated/``
 - ``proofs/KEY.md``, one page per proof module of ``proofs/``: the sympy derivation built
   (so every claim is checked again by the build) and rendered as MyST with LaTeX math, each
   claim with a label (:func:`proofs._util.claim_anchor`);
-- ``api/MODULE.md``, one ``automodule`` page per module of ``ifgm_ref``, and an index.
+- ``api/MODULE.md``, one ``automodule`` page per module of ``ifgm_ref``, and an index;
+- ``tests/MODULE.md``, one page per test module of ``tests/``: each test's docstring and
+  source, with a label, and an index.
 
 While Sphinx reads a Markdown page (``source-read``), it turns the inline-code citations of
 the traceability matrix, the errata and the other pages into links: ``ifgm_ref.a.b`` to the
 API page, ``ifgm_ref/a/b.py`` to its module, ``proofs.eq4:name`` to the claim,
-``proofs.eq4.derivation`` to the proof page, ``notebooks/X.ipynb`` to the executed notebook.
-Test ids (``tests/test_x.py::test_y``) stay plain code: the tests are not pages. And it replaces
+``proofs.eq4.derivation`` to the proof page, ``notebooks/X.ipynb`` to the executed notebook,
+``tests/test_x.py::test_y`` to the test on its module's page. And it replaces
 the Mermaid block of ``docs/flowchart.md`` by a Graphviz drawing of the same graph (an SVG
 made at build time, so no Mermaid JavaScript is fetched), with the Mermaid source below it.
 """
 
 from __future__ import annotations
 
+import ast
 import importlib
 import pkgutil
 import re
@@ -119,6 +122,48 @@ def _api_index(names: list[str]) -> str:
     )
 
 
+def _test_label(module: str, test: str | None = None) -> str:
+    """The label of a test module's page, or of one test on it."""
+    return f"tests-{module}" + (f"-{test}" if test else "")
+
+
+def _test_page(path: Path) -> str:
+    """The page of the test module at ``path``: its docstring, then each test's docstring
+    and source (``literalinclude``, so the page shows the code that runs)."""
+    tree = ast.parse(path.read_text(encoding="utf-8"))
+    module = path.stem
+    intro = (ast.get_docstring(tree) or "").split("\n\n")[0]
+    parts = [f"({_test_label(module)})=", f"# `tests/{path.name}`", "", intro, ""]
+    for node in tree.body:
+        if isinstance(node, ast.FunctionDef) and node.name.startswith("test_"):
+            doc = ast.get_docstring(node) or ""
+            first = min([node.lineno, *(d.lineno for d in node.decorator_list)])
+            parts += [
+                f"({_test_label(module, node.name)})=",
+                f"## `{node.name}`",
+                "",
+                doc,
+                "",
+                f"```{{literalinclude}} ../../../tests/{path.name}",
+                f":lines: {first}-{node.end_lineno}",  # by line: Sphinx's own parser can fail
+                ":language: python",
+                "```",
+                "",
+            ]
+    return "\n".join(parts)
+
+
+def _test_index(modules: list[str]) -> str:
+    entries = "\n".join(modules)
+    return (
+        "# Tests\n\n"
+        "The test modules of `tests/`, each test with its docstring and its source. A test "
+        "cited in the traceability matrix or the errata (as tests/test_x.py::test_y) links "
+        "to its place here. `python3 -m pytest` runs them all.\n\n"
+        f"```{{toctree}}\n:maxdepth: 1\n\n{entries}\n```\n"
+    )
+
+
 def keep_notebook_outputs_in_the_site(app: Sphinx, config: Config) -> None:
     """Have MyST-NB write the executed notebooks in ``OUT/.jupyter_execute`` (config-inited).
 
@@ -143,6 +188,10 @@ def generate(app: Sphinx, config: Config) -> None:
     for name in names:
         _write(out / "api" / f"{name}.md", _api_page(name), written)
     _write(out / "api" / "index.md", _api_index(names), written)
+    tests = sorted((Path(app.srcdir) / "tests").glob("test_*.py"))
+    for path in tests:
+        _write(out / "tests" / f"{path.stem}.md", _test_page(path), written)
+    _write(out / "tests" / "index.md", _test_index([p.stem for p in tests]), written)
     for stale in out.rglob("*.md"):
         if stale not in written:
             stale.unlink()
@@ -156,6 +205,7 @@ _PYTHON_FILE = re.compile(r"ifgm_ref(/[a-z_]\w*)*(\.py|/)")
 _CLAIM = re.compile(r"proofs\.(\w+):(\w+)")
 _PROOF = re.compile(r"proofs\.(\w+)\.(\w+)")
 _NOTEBOOK = re.compile(r"notebooks/([\w.-]+)\.ipynb")
+_TEST = re.compile(r"tests/(test_\w+)\.py(?:::(test_\w+))?")
 
 
 def _link(code: str) -> str | None:
@@ -174,6 +224,8 @@ def _link(code: str) -> str | None:
         return f"{{ref}}`{code} <{_proof_label(m.group(1))}>`"
     if m := _NOTEBOOK.fullmatch(code):
         return f"{{doc}}`{code} </notebooks/{m.group(1)}>`"
+    if m := _TEST.fullmatch(code):
+        return f"{{ref}}`{code} <{_test_label(m.group(1), m.group(2))}>`"
     return None
 
 
