@@ -45,9 +45,9 @@ from ifgm_ref.percepts.clusters import Gap, cluster_points, gaps_between
 from ifgm_ref.percepts.corridor import free_length
 from ifgm_ref.percepts.memory import PerceptMemory
 from ifgm_ref.percepts.points import scan_points, to_world
-from ifgm_ref.planners.boundary import EdgeFollower, guard
+from ifgm_ref.planners.boundary import EdgeFollower, guard, steer
 from ifgm_ref.planners.distbug import DistBugParams
-from ifgm_ref.planners.edge_following import FollowSide, turn_speed
+from ifgm_ref.planners.edge_following import FollowSide
 from ifgm_ref.planners.iba import IBAPlanner, IBARule, freer_side
 from ifgm_ref.planners.ifgm_atoms import (
     DeadEndTurn,
@@ -289,7 +289,7 @@ class IFGMPlanner:
         if branch is Branch.MOVE_TO_GOAL:
             if self.state.mode is not Mode.MOVE_TO_GOAL:
                 self.state = replace(self.state, mode=Mode.MOVE_TO_GOAL)
-            return self._steer(sight.bearing, pose, Behaviour.MOVE_TO_GOAL, branch)
+            return steer(sight.bearing, pose, self.body, Behaviour.MOVE_TO_GOAL, branch)
         if branch is Branch.PATH_REGENERATED:
             # Left by the progress rule, with an obstacle still ahead: meet it at IBA's short
             # encounter distance, not d_look (the followed one is still the nearest, and at
@@ -302,12 +302,12 @@ class IFGMPlanner:
                 followed=None,
                 stack=(),
             )
-            return self._steer(sight.bearing, pose, Behaviour.MOVE_TO_GOAL, branch)
+            return steer(sight.bearing, pose, self.body, Behaviour.MOVE_TO_GOAL, branch)
         if branch is Branch.CASE1_GAP:
             self.state = replace(self.state, mode=Mode.THROUGH_GAP)
             assert reading.gap is not None
             heading = self.gap_heading(pose, reading.gap)
-            return self._steer(heading, pose, Behaviour.OBSTACLE_AVOIDANCE, branch)
+            return steer(heading, pose, self.body, Behaviour.OBSTACLE_AVOIDANCE, branch)
         if branch is Branch.DEAD_END_TURN:
             return self.dead_end(percepts)
         if branch is Branch.CASE3_PREEMPT:
@@ -336,10 +336,6 @@ class IFGMPlanner:
             heading=pose.theta,
         )
 
-    def _steer(self, heading: float, pose: Pose, behaviour: Behaviour, branch: Branch) -> Command:
-        speed = turn_speed(wrap_angle(heading - pose.theta), self.body.speed)
-        return Command(heading, speed, behaviour=behaviour, branch=branch)
-
     def _start_following(self, percepts: Percepts) -> None:
         """IBA takes over: follow the nearest obstacle on the freer side, nothing pre-empted."""
         sight = percepts.sight
@@ -361,8 +357,8 @@ class IFGMPlanner:
         heading = self.follower.heading(sight)
         if heading is None:  # the edge is forgotten: the obstacle is behind us
             self.state = replace(self.state, mode=Mode.MOVE_TO_GOAL)
-            return self._steer(sight.bearing, sight.pose, Behaviour.MOVE_TO_GOAL, branch)
-        return self._steer(heading, sight.pose, Behaviour.OBSTACLE_AVOIDANCE, branch)
+            return steer(sight.bearing, sight.pose, self.body, Behaviour.MOVE_TO_GOAL, branch)
+        return steer(heading, sight.pose, self.body, Behaviour.OBSTACLE_AVOIDANCE, branch)
 
     def _resume_if_back(self, sight: Sight) -> None:
         """Case-3 recursion: once the pre-empting obstacle is no longer the nearest, resume
