@@ -23,7 +23,7 @@
 #endif
 
 /* The paper's beams (section 4, Figure 2; errata rows 11 and 30), robot frame, REP-103. */
-#define IFGM_FRONT_HALF_WIDTH (22.5 * (IFGM_PI / 180))
+#define IFGM_FRONT_HALF_WIDTH ((ifgm_real)22.5 * (IFGM_PI / 180))
 #define IFGM_PAPER_HALF_FOV (3 * IFGM_FRONT_HALF_WIDTH)
 /* Rays land on the +-22.5 degree borders only to within rounding: this keeps them front. */
 #define IFGM_BORDER_TOLERANCE ((ifgm_real)1e-9)
