@@ -7,8 +7,13 @@
  *     ifgm_command command = ifgm_step(&planner, &observation);    // every dt
  *
  * Written from docs/flowchart.md (the reconstructed Figure 3: percepts, atoms, branches),
- * docs/errata.md (the readings) and docs/parameters.md (the defaults); the reference is
- * ifgm_ref/planners/ifgm.py and ifgm_atoms.py. */
+ * docs/errata.md (the readings) and docs/parameters.md (the defaults) and, where they were
+ * silent, the reference (ifgm_ref/planners/ifgm.py, ifgm_atoms.py): docs/port-guide.md now
+ * states every rule a step needs.
+ *
+ * The paper calls IFGM computationally inexpensive and simpler than FGM (sections 3, 6):
+ * benchmarks/bench_c.py measures this port's cost against FGM's (fgm.h), docs/benchmark.md.
+ * paper: s3.cheap s6.simpler_than_fgm */
 #ifndef IFGM_IFGM_H
 #define IFGM_IFGM_H
 
