@@ -1,0 +1,408 @@
+"""The C port (``examples/c``), checked end to end by the project's own tools.
+
+The port is built with its Makefile into a temporary directory (the normal, the sanitizer and
+the float builds). It must pass the conformance vectors (``ifgm_vectors``: the equations and
+the reference traces), speak the JSON-lines protocol as ``ifgm-ref serve`` does
+(``ifgm_json``: the documented example session, the documented exit codes), pass the oracle's
+quick profile, and drive the robot in the built-in worlds as the Python planners do.
+
+Skipped as a whole when there is no C compiler or no ``make``.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+from typing import Any
+
+import pytest
+
+from ifgm_ref.oracle.checks import CHECKS, Kind
+from ifgm_ref.oracle.implementation import Implementation
+from ifgm_ref.oracle.runner import Status, check_planner
+from ifgm_ref.oracle.vectors import QUANTITIES
+from ifgm_ref.planners import make_planner
+from ifgm_ref.scenarios import resolve_world
+from ifgm_ref.simulator import Run, simulate
+from ifgm_ref.transport.external import ExternalPlanner
+
+ROOT = Path(__file__).resolve().parent.parent
+PORT = ROOT / "examples" / "c"
+SIMULATION = [name for name, check in CHECKS.items() if check.kind is Kind.SIMULATION]
+#: The sanitizers must report nothing: any report aborts the program (a non-zero status).
+SANITIZERS = {
+    "ASAN_OPTIONS": "detect_leaks=1:abort_on_error=1",
+    "UBSAN_OPTIONS": "halt_on_error=1:print_stacktrace=1",
+}
+#: How close the C port's positions must stay to the Python planner's, ft. Its commands agree
+#: within the vectors' double tolerances (1e-9 rad, 1e-9 ft/s) at every step; over the few
+#: hundred feet of an episode that moves the robot by well under a micro-foot.
+POSITION_TOLERANCE = 1e-6
+#: The planners of the port, by their ``ifgm-ref planners`` names.
+PLANNERS = ["ifgm", "iba", "distbug", "fgm"]
+#: Built-in worlds the port drives through: a post, the paper's U trap and Fig. 7(a), and
+#: scenario 1's clutter.
+WORLDS = ["post", "u_trap", "fig7a", "scenario1"]
+
+pytestmark = pytest.mark.skipif(
+    shutil.which("cc") is None or shutil.which("make") is None,
+    reason="the C port needs a C compiler (cc) and make",
+)
+
+
+def _build(directory: Path, target: str) -> Path:
+    """Build the port with ``make TARGET`` into ``directory``; the programs' directory."""
+    subprocess.run(
+        ["make", "-s", "--no-print-directory", "-C", str(PORT), f"BUILD={directory}", target],
+        check=True,
+        capture_output=True,
+        text=True,
+        timeout=600,
+    )
+    return directory / {"all": "", "asan": "asan", "float": "float"}[target]
+
+
+@pytest.fixture(scope="module")
+def build(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """The normal build (``make``), in a temporary directory: the worktree stays clean."""
+    return _build(tmp_path_factory.mktemp("c-port"), "all")
+
+
+@pytest.fixture(scope="module")
+def asan_build(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """The sanitizer build (``make asan``): AddressSanitizer and UBSan."""
+    return _build(tmp_path_factory.mktemp("c-port"), "asan")
+
+
+@pytest.fixture(scope="module")
+def float_build(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """The single-precision build (``make float``)."""
+    return _build(tmp_path_factory.mktemp("c-port"), "float")
+
+
+@pytest.fixture(scope="module")
+def vectors_file(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """The conformance vectors, written by ``ifgm-ref vectors``."""
+    path = tmp_path_factory.mktemp("vectors") / "vectors.json"
+    subprocess.run(
+        [sys.executable, "-m", "ifgm_ref", "vectors", "--out", str(path)],
+        check=True,
+        capture_output=True,
+        timeout=120,
+    )
+    return path
+
+
+def _builds(request: pytest.FixtureRequest, name: str) -> Path:
+    return Path(request.getfixturevalue(name))
+
+
+def _run(
+    program: Path, args: list[str], stdin: str = "", timeout: float = 60
+) -> subprocess.CompletedProcess[str]:
+    return subprocess.run(
+        [str(program), *args],
+        input=stdin,
+        capture_output=True,
+        text=True,
+        timeout=timeout,
+        check=False,
+        env={**os.environ, **SANITIZERS},
+    )
+
+
+# --- the conformance vectors ------------------------------------------------------------------
+
+
+def _summary(vectors_file: Path, precision: str) -> str:
+    """The summary line ifgm_vectors prints when it checked every case and step of the file
+    and found nothing."""
+    vectors = json.loads(vectors_file.read_text())
+    cases = sum(len(group["cases"]) for group in vectors["equations"].values())
+    steps = sum(len(trace["steps"]) for trace in vectors["traces"])
+    return f"{cases} equation cases, {steps} trace steps: 0 mismatches ({precision} tolerances)"
+
+
+@pytest.mark.parametrize("build_name", ["build", "asan_build"])
+def test_the_port_passes_the_conformance_vectors(
+    request: pytest.FixtureRequest, build_name: str, vectors_file: Path
+) -> None:
+    """Every equation case and every step of every reference trace (IFGM and IBA) agrees with
+    the reference within the file's double tolerances, with nothing skipped -- and, in the
+    sanitizer build, without a report of AddressSanitizer, LeakSanitizer or UBSan."""
+    done = _run(_builds(request, build_name) / "ifgm_vectors", [str(vectors_file)])
+    assert (done.returncode, done.stderr) == (0, ""), done.stdout + done.stderr
+    assert done.stdout == _summary(vectors_file, "double") + "\n"
+
+
+def _equation_mismatches(report: str) -> list[str]:
+    """The mismatch lines of ifgm_vectors' report that are about equation cases."""
+    return [line for line in report.splitlines() if "[case " in line]
+
+
+def test_the_float_build_computes_the_equations_within_the_float32_tolerances(
+    float_build: Path, vectors_file: Path
+) -> None:
+    """In single precision the equations pass the file's float32 tolerances and miss the
+    double ones, as test_vectors.py finds for numpy's float32. (Its trace replay is not
+    asserted: a float port may take another discrete decision where a decision quantity lies
+    within its rounding of a threshold, which docs/vectors-format.md asks to examine.)"""
+    program = float_build / "ifgm_vectors"
+    loose = _run(program, [str(vectors_file), "--precision", "float32"])
+    tight = _run(program, [str(vectors_file), "--precision", "double"])
+    assert _equation_mismatches(loose.stdout) == []
+    assert len(_equation_mismatches(tight.stdout)) > 0 and tight.returncode == 1
+
+
+def test_ifgm_vectors_rejects_a_file_of_another_format(build: Path, tmp_path: Path) -> None:
+    """A file that is not a version-1 vectors file is an input error (status 2), not a pass."""
+    other = tmp_path / "other.json"
+    other.write_text(json.dumps({"format": {"name": "ifgm-ref-vectors", "version": 2}}))
+    done = _run(build / "ifgm_vectors", [str(other)])
+    assert done.returncode == 2 and done.stdout == ""
+    assert done.stderr.startswith("ifgm_vectors: error: ") and "version" in done.stderr
+
+
+# --- the JSON-lines protocol ------------------------------------------------------------------
+
+
+def _documented_session() -> tuple[list[str], list[str]]:
+    """The example of docs/oracle-protocol.md: the lines sent and the replies documented."""
+    text = (ROOT / "docs" / "oracle-protocol.md").read_text()
+    example = text.split("## Example", 1)[1].split("```text\n", 1)[1].split("```", 1)[0]
+    lines = example.splitlines()
+    sent = [line[2:] for line in lines if line.startswith("> ")]
+    documented = [line[2:] for line in lines if line.startswith("< ")]
+    return sent, documented
+
+
+@pytest.mark.parametrize("build_name", ["build", "asan_build"])
+def test_the_documented_example_session_is_what_ifgm_json_answers(
+    request: pytest.FixtureRequest, build_name: str
+) -> None:
+    """Replayed through ``ifgm_json``, the documented session gets the documented replies,
+    character for character (numbers are written as Python's repr writes them), an empty
+    stderr and status 0."""
+    sent, documented = _documented_session()
+    done = _run(_builds(request, build_name) / "ifgm_json", [], "".join(s + "\n" for s in sent))
+    assert (done.returncode, done.stderr) == (0, "")
+    assert done.stdout.splitlines() == documented
+
+
+def _reset(**changes: Any) -> str:
+    """The documented session's reset message, with top-level fields changed."""
+    message = json.loads(_documented_session()[0][0])
+    message.update(changes)
+    return json.dumps(message)
+
+
+def _observe(ranges: list[float | None]) -> str:
+    """The documented session's first observe, with a scan of ``ranges`` over the same fov."""
+    message = json.loads(_documented_session()[0][1])
+    scan = message["scan"]
+    scan["ranges"] = ranges
+    scan["angle_increment"] = (scan["angle_max"] - scan["angle_min"]) / (len(ranges) - 1)
+    return json.dumps(message)
+
+
+BYE = '{"type": "bye"}'
+#: Misbehaving input: the lines sent, the exit status and a phrase of the one error line.
+MISBEHAVIOURS: dict[str, tuple[str, int, str]] = {
+    "malformed_json": ("hello\n", 2, "line 1 is not JSON: 'hello'"),
+    "nan": ('{"type": "bye", "x": NaN}\n', 2, "NaN and Infinity are not JSON"),
+    "eof_before_bye": (_reset() + "\n", 2, "end of input after 1 line(s), before bye"),
+    "empty_input": ("", 2, "end of input after 0 line(s), before bye"),
+    "observe_before_reset": (_observe([None, 1.0]) + "\n", 2, "observe before the first reset"),
+    "a_reply_type": ('{"type": "ready"}\n', 2, "type 'ready', but should be 'reset'"),
+    "no_type": ("{}\n", 2, "message.type: missing"),
+    "missing_field": ('{"type": "reset"}\n', 2, "reset.start: missing"),
+    "range_not_a_number": (
+        _reset() + "\n" + _observe([None, "far"]) + "\n",
+        2,
+        "observe.scan.ranges[1]: must be a finite number or null, got 'far'",
+    ),
+    "too_many_ranges": (
+        _reset() + "\n" + _observe([None] * 5000) + "\n",
+        2,
+        "5000 ranges, but this build holds at most IFGM_MAX_RAYS",
+    ),
+    "line_too_long": (" " * (1 << 20) + "x\n", 2, "line 1 is longer than 1048576 bytes"),
+    "params_out_of_domain": (
+        _reset(params={"d_th": -1.0}) + "\n",
+        1,
+        "line 1 (reset): a parameter is out of its domain",
+    ),
+}
+
+
+@pytest.mark.parametrize("case", sorted(MISBEHAVIOURS))
+@pytest.mark.parametrize("build_name", ["build", "asan_build"])
+def test_misbehaving_input_ends_the_session_with_the_documented_status(
+    request: pytest.FixtureRequest, build_name: str, case: str
+) -> None:
+    """A malformed or out-of-order message, or input ending before ``bye``, exits with
+    status 2; an episode the planner rejects at init, with status 1 (docs/oracle-protocol.md,
+    as ``ifgm-ref serve``); each after exactly one line ``ifgm_json: error: ...`` on stderr."""
+    stdin, status, phrase = MISBEHAVIOURS[case]
+    done = _run(_builds(request, build_name) / "ifgm_json", [], stdin)
+    assert done.returncode == status, done.stderr
+    assert done.stderr.startswith("ifgm_json: error: ") and done.stderr.count("\n") == 1
+    assert phrase in done.stderr
+    assert set(done.stdout.splitlines()) <= {'{"type": "ready"}'}
+
+
+@pytest.mark.parametrize("args", [["--planner", "bug9"], ["--planner"], ["--verbose"]])
+def test_a_usage_error_exits_with_status_2(build: Path, args: list[str]) -> None:
+    """An unknown planner, a missing planner name or an unknown option: status 2, one line."""
+    done = _run(build / "ifgm_json", args, BYE + "\n")
+    assert (done.returncode, done.stdout) == (2, "")
+    assert done.stderr.startswith("ifgm_json: error: ") and done.stderr.count("\n") == 1
+
+
+def test_unknown_fields_are_ignored_and_unknown_params_warned(build: Path) -> None:
+    """Unknown fields of ``reset``, ``observe`` and ``bye`` are ignored, as the protocol asks
+    of every program; an unknown name in ``params`` is ignored with one warning line."""
+    reset = json.loads(_reset(params={"d_th": 3.0, "colour": "red"}))
+    reset["extra"] = {"nested": [1, {"deep": None}]}
+    observe = json.loads(_observe([None, 4.0, None]))
+    observe["scan"]["intensities"] = [0.5, 0.5, 0.5]
+    lines = [json.dumps(reset), json.dumps(observe), '{"type": "bye", "reason": "done"}']
+    done = _run(build / "ifgm_json", [], "".join(line + "\n" for line in lines))
+    warning = "ifgm_json: warning: line 1 (reset): ignoring unknown parameter(s) 'colour'\n"
+    assert (done.returncode, done.stderr) == (0, warning)
+    replies = [json.loads(line) for line in done.stdout.splitlines()]
+    assert [reply["type"] for reply in replies] == ["ready", "command"]
+
+
+#: JSON texts (a value inside a bye message) and near misses: the reader must accept exactly
+#: those Python's json module accepts, without NaN and Infinity (wire.decode's rule).
+JSON_TEXTS = [
+    '"\\u0041\\u00e9\\ud83d\\ude00\\ud800"',  # escapes: BMP, a surrogate pair, a lone one
+    '"\\"\\\\\\/\\b\\f\\n\\r\\t"',
+    "[1, -0, 0.5, -1.5e-3, 2E+10, 1e400, 123456789012345678901234567890]",
+    "[[[[[[[[[[[[[[[[[[[[]]]]]]]]]]]]]]]]]]]]",
+    '{"": {}, "a": [], "a": null, "b": true, "c": false}',
+    " \t[ 1 , 2 ] \r",
+    "01",
+    "1.",
+    ".5",
+    "+1",
+    "1e",
+    "-",
+    "[1,]",
+    '{"a" 1}',
+    '{"a": 1,}',
+    "{1: 2}",
+    "'single'",
+    '"unterminated',
+    '"\\x41"',
+    '"\\u12G4"',
+    '"tab\there"',
+    "tru",
+    "nul",
+    "Infinity",
+    "-Infinity",
+    "NaN",
+    "[1] [2]",
+]
+
+
+def _python_accepts(text: str) -> bool:
+    def reject(constant: str) -> None:
+        raise ValueError(constant)
+
+    try:
+        json.loads(text, parse_constant=reject)
+    except ValueError:
+        return False
+    return True
+
+
+@pytest.mark.parametrize("text", JSON_TEXTS)
+def test_the_json_reader_accepts_what_python_accepts(asan_build: Path, text: str) -> None:
+    """The port's own JSON reader (json.c) agrees with Python's json on what is JSON (RFC
+    8259, without NaN and Infinity), and reports what is not as such."""
+    line = '{"type": "bye", "x": ' + text + "}"
+    done = _run(asan_build / "ifgm_json", [], line + "\n")
+    if _python_accepts(line):
+        assert (done.returncode, done.stderr) == (0, "")
+    else:
+        assert done.returncode == 2 and "is not JSON" in done.stderr, done.stderr
+
+
+def test_a_key_is_compared_with_its_escapes_decoded(build: Path) -> None:
+    """``"\\u0074ype"`` is the key ``type``: the reader decodes escapes in keys."""
+    done = _run(build / "ifgm_json", [], '{"\\u0074ype": "b\\u0079e"}\n')
+    assert (done.returncode, done.stderr) == (0, "")
+
+
+# --- the oracle -------------------------------------------------------------------------------
+
+
+def _oracle(build: Path, planner: str) -> Any:
+    impl = Implementation.from_command(
+        [str(build / "ifgm_json"), "--planner", planner], timeout=30.0, promises=planner
+    )
+    try:
+        return check_planner(impl, profile="quick", checks=SIMULATION, artifacts=None, jobs=2)
+    finally:
+        impl.close()
+
+
+def test_the_c_ifgm_passes_the_quick_profile(build: Path) -> None:
+    """The C IFGM behind ``ifgm_json`` passes every check of the oracle's quick profile that
+    IFGM promises (about 40 s)."""
+    report = _oracle(build, "ifgm")
+    assert report.ok, report.text()
+    assert {r.status for r in report.results} <= {Status.PASSED, Status.NOT_APPLICABLE}
+
+
+@pytest.mark.slow
+def test_the_c_iba_passes_the_quick_profile(build: Path) -> None:
+    """The C IBA passes every check IBA promises (about 45 s, so under ``-m slow``), but for
+    the reference's known failure that some draws meet: a false loop closure in clutter
+    (errata row 25), which ends a mixed world 'goal_unreachable' (test_oracle.py)."""
+    report = _oracle(build, "iba")
+    for result in report.results:
+        if result.check == "converges_mixed" and result.status is Status.FAILED:
+            assert result.message.startswith("stop_reason='goal_unreachable'"), result.line()
+            continue
+        assert result.status in {Status.PASSED, Status.NOT_APPLICABLE}, result.line()
+
+
+# --- the built-in worlds ----------------------------------------------------------------------
+
+
+def _same_runs(ours: Run, reference: Run) -> None:
+    """Assert ``ours`` is ``reference`` within the vectors' trace tolerances."""
+    __tracebackhide__ = True
+    heading, speed = (QUANTITIES[name].tolerance("double") for name in ("heading", "speed"))
+    assert ours.result.stop_reason == reference.result.stop_reason
+    assert [s.branch for s in ours.trace] == [s.branch for s in reference.trace]
+    for a, b in zip(ours.trace, reference.trace, strict=True):
+        where = f"t={b.t} s"
+        assert math.dist((a.x, a.y), (b.x, b.y)) <= POSITION_TOLERANCE, where
+        if b.heading_cmd is None or b.speed_cmd is None:
+            assert (a.heading_cmd, a.speed_cmd) == (None, None), where
+            continue
+        assert a.heading_cmd is not None and a.speed_cmd is not None, where
+        assert heading.allows(b.heading_cmd, a.heading_cmd, periodic=True), where
+        assert speed.allows(b.speed_cmd, a.speed_cmd), where
+
+
+@pytest.mark.parametrize("world", WORLDS)
+@pytest.mark.parametrize("planner", PLANNERS)
+def test_the_c_planner_drives_as_the_python_one(build: Path, planner: str, world: str) -> None:
+    """Closed loop through ``ifgm_json`` in ``ifgm_ref.simulator.simulate``, each C planner
+    gives the Python planner's run: the same stop reason, the same branch at every step, the
+    commands within the vectors' double tolerances and the positions within a micro-foot."""
+    reference = simulate(resolve_world(world), make_planner(planner))
+    command = [str(build / "ifgm_json"), "--planner", planner]
+    with ExternalPlanner(command, name=planner) as external:
+        ours = simulate(resolve_world(world), external)
+    _same_runs(ours, reference)
