@@ -104,9 +104,12 @@ static int numbers(const json_document *doc, int object, const char *where, cons
     int array = member(doc, object, where, name, error);
     if (array < 0)
         return -1;
-    if (!json_is(doc, array, JSON_ARRAY) || json_size(doc, array) != count)
-        return failf(error, "%s.%s: must be an array of %d numbers, got %s of %d", where, name,
-                     count, json_type_name(doc, array), json_size(doc, array));
+    if (!json_is(doc, array, JSON_ARRAY))
+        return failf(error, "%s.%s: must be an array of %d numbers, got %s", where, name, count,
+                     json_type_name(doc, array));
+    if (json_size(doc, array) != count)
+        return failf(error, "%s.%s: must be an array of %d numbers, got %d", where, name, count,
+                     json_size(doc, array));
     int i = 0;
     for (int e = json_first(doc, array); e >= 0; e = json_next(doc, e), i++) {
         char path[64];
@@ -134,7 +137,7 @@ int protocol_type_of(const json_document *doc, int message, protocol_type *type,
                      protocol_error *error)
 {
     if (!json_is(doc, message, JSON_OBJECT))
-        return failf(error, "not a JSON object but %s", json_type_name(doc, message));
+        return failf(error, "message: must be a JSON object, got %s", json_type_name(doc, message));
     int token = member(doc, message, "message", "type", error);
     if (token < 0)
         return -1;
@@ -183,13 +186,11 @@ static int read_sensor(const json_document *doc, int sensor, ifgm_episode *episo
         double_member(doc, sensor, where, "angle_max", &angle_max, error) != 0 ||
         double_member(doc, sensor, where, "angle_increment", &angle_increment, error) != 0)
         return -1;
-    if (rays != floor(rays) || rays < 1 || rays > INT_MAX)
-        return failf(error, "reset.sensor.rays: must be a positive integer, got %.17g", rays);
-    /* with one ray there is no increment to check: the planner's init rejects the sensor */
-    if (rays >= 2 &&
-        (agrees(angle_min, -0.5 * fov, "reset.sensor.angle_min", error) != 0 ||
-         agrees(angle_max, 0.5 * fov, "reset.sensor.angle_max", error) != 0 ||
-         agrees(angle_increment, fov / (rays - 1), "reset.sensor.angle_increment", error) != 0))
+    if (rays != floor(rays) || rays < 2 || rays > INT_MAX)
+        return failf(error, "reset.sensor.rays: must be an integer >= 2, got %.17g", rays);
+    if (agrees(angle_min, -0.5 * fov, "reset.sensor.angle_min", error) != 0 ||
+        agrees(angle_max, 0.5 * fov, "reset.sensor.angle_max", error) != 0 ||
+        agrees(angle_increment, fov / (rays - 1), "reset.sensor.angle_increment", error) != 0)
         return -1;
     episode->fov = (ifgm_real)fov;
     episode->rays = (int)rays;
@@ -252,8 +253,10 @@ int protocol_unknown_params(const json_document *doc, int message, char *names, 
     size_t used = 0;
     if (size > 0)
         names[0] = '\0';
+    if (!json_is(doc, params, JSON_OBJECT))
+        return 0;
     for (int key = json_first(doc, params); key >= 0; key = json_next(doc, key)) {
-        if (!json_is(doc, params, JSON_OBJECT) || tuning_index(doc, key) >= 0)
+        if (tuning_index(doc, key) >= 0)
             continue;
         char name[64];
         json_string_copy(doc, key, name, sizeof name);

@@ -5,8 +5,8 @@
  *
  * The readers check what the port relies on, as ifgm_ref/transport/wire.py does, and name
  * the offending field in their error ("reset.robot.radius: missing"): every field present,
- * every number finite, `sensor.rays` an integer, the scan's angles consistent with its
- * length. Unknown fields are ignored. Domains (a radius > 0, a d_th > 2 r, ...) are left to
+ * every number finite, `sensor.rays` an integer >= 2, the scan's angles consistent with the
+ * sensor's and with the scan's length. Unknown fields are ignored. Domains (a radius > 0, a d_th > 2 r, ...) are left to
  * the planners' init, which answers a status (types.h). */
 #ifndef IFGM_PROTOCOL_H
 #define IFGM_PROTOCOL_H
