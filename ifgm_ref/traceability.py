@@ -9,7 +9,9 @@ Built from markers, never from a hand-kept list (:mod:`ifgm_ref.paper`):
 * **proofs**: functions of the ``proofs`` package marked the same way;
 * **tests**: test functions with ``@pytest.mark.paper("key", ...)`` in ``tests/``, found by
   reading the source (the suite is not run);
-* **notebooks**: the ``"paper"`` list in a notebook's metadata.
+* **notebooks**: the ``"paper"`` list in a notebook's metadata;
+* **ports**: the C port's sources (``examples/c/src/``) count as code where a comment line
+  reads ``paper: key key ...`` (:data:`C_MARK`).
 
 An element is *covered* when something implements it (code, or a figure for a result) and
 something checks it (a test or a proof); *partly covered* when only one of the two exists;
@@ -136,6 +138,23 @@ def marked_tests(tests: Path, root: Path) -> Iterator[tuple[str, tuple[str, ...]
                         yield where, _literal_keys(deco, where)  # type: ignore[arg-type]
 
 
+#: The marker of a paper element in a C source: a comment line ``paper: key key ...``.
+C_MARK = "paper:"
+
+
+def marked_c_sources(sources: Path, root: Path) -> Iterator[tuple[str, tuple[str, ...]]]:
+    """``(path, keys)`` of every C source or header in ``sources`` with ``paper:`` lines
+    (in a comment: ``/* paper: s3.cheap */`` or a line of a block comment)."""
+    for path in sorted([*sources.glob("*.c"), *sources.glob("*.h")]):
+        keys: list[str] = []
+        for line in path.read_text(encoding="utf-8").splitlines():
+            text = line.strip().removeprefix("/*").removeprefix("*").strip()
+            if text.startswith(C_MARK):
+                keys += text.removeprefix(C_MARK).removesuffix("*/").split()
+        if keys:
+            yield path.relative_to(root).as_posix(), tuple(keys)
+
+
 def marked_notebooks(notebooks: Path, root: Path) -> Iterator[tuple[str, tuple[str, ...]]]:
     """``(path, keys)`` of every notebook whose metadata lists ``"paper"`` elements."""
     for path in sorted(notebooks.glob("*.ipynb")):
@@ -175,6 +194,8 @@ def build_matrix(root: str | Path = ".") -> dict[str, Coverage]:
         add("tests", name, keys)
     for name, keys in marked_notebooks(root / "notebooks", root):
         add("figures", name, keys)
+    for name, keys in marked_c_sources(root / "examples" / "c" / "src", root):
+        add("code", name, keys)
     return {key: Coverage(**{c: sorted(found[key][c]) for c in COLUMNS}) for key in ELEMENTS}
 
 

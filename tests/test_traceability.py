@@ -11,7 +11,7 @@ import pytest
 
 from ifgm_ref.errors import ParameterError
 from ifgm_ref.paper import ELEMENTS, traces
-from ifgm_ref.traceability import build_matrix, marked_tests, render_markdown
+from ifgm_ref.traceability import build_matrix, marked_c_sources, marked_tests, render_markdown
 
 ROOT = Path(__file__).resolve().parent.parent
 MATRIX = ROOT / "docs" / "trace-matrix.md"
@@ -79,6 +79,20 @@ def test_markers_are_read_from_test_sources(tmp_path: Path) -> None:
     )
     with pytest.raises(ParameterError, match="string literals only"):
         list(marked_tests(root / "tests", root))
+
+
+def test_markers_are_read_from_c_sources(tmp_path: Path) -> None:
+    """A port's C sources count as code where a comment line says ``paper: key ...``: on
+    its own line, or as a line of a block comment; other comments are not markers."""
+    src = tmp_path / "examples" / "c" / "src"
+    src.mkdir(parents=True)
+    (src / "a.c").write_text("/* paper: s3.cheap */\nint a;\n/* the paper: eq1 */\n")
+    (src / "b.h").write_text("/* A header.\n * paper: s6.simpler_than_fgm eq4\n */\n")
+    (src / "c.c").write_text("/* nothing marked */\n")
+    assert dict(marked_c_sources(src, tmp_path)) == {
+        "examples/c/src/a.c": ("s3.cheap",),
+        "examples/c/src/b.h": ("s6.simpler_than_fgm", "eq4"),
+    }
 
 
 def test_an_unknown_element_is_refused_in_tests(tmp_path: Path) -> None:
