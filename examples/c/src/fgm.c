@@ -5,6 +5,7 @@
 #include <stddef.h>
 
 #include "equations.h"
+#include "tuning.h"
 
 /* Smallest d_min in the final heading, length: a return at range 0 (the robot touches it)
  * weighs the gap by alpha / 1e-6 (fgm.py, D_MIN_FLOOR). */
@@ -27,36 +28,20 @@ static const char NO_OBSTACLE[] = "no_obstacle";
 static const char MAX_GAP[] = "max_gap";
 static const char NO_GAP[] = "no_gap";
 
-/* A parameter: its default if unset (NAN), else the value given if finite and >= 0. */
-static int setting(ifgm_real given, ifgm_real fallback, ifgm_real *out)
-{
-    if (isnan(given)) {
-        *out = fallback;
-        return IFGM_OK;
-    }
-    if (!(isfinite(given) && given >= 0))
-        return IFGM_BAD_PARAMETER;
-    *out = given;
-    return IFGM_OK;
-}
-
 int fgm_init(fgm_planner *planner, const ifgm_episode *episode, const ifgm_tuning *tuning)
 {
-    const ifgm_real r = episode->radius;
-    ifgm_real margin;
-    if (!(isfinite(r) && r > 0) || !(isfinite(episode->speed) && episode->speed > 0))
-        return IFGM_BAD_EPISODE;
+    ifgm_tuning t;
+    int status = ifgm_resolve_tuning(&t, episode, tuning); /* FGMParams.for_episode */
+    if (status != IFGM_OK)
+        return status;
     if (episode->rays > IFGM_MAX_RAYS)
         return IFGM_TOO_MANY_RAYS;
-    /* FGMParams: alpha = 8 r, beta = 1, inflation_margin = r / 2 (docs/parameters.md) */
-    if (setting(tuning->alpha, 8 * r, &planner->alpha) != IFGM_OK ||
-        setting(tuning->beta, 1, &planner->beta) != IFGM_OK ||
-        setting(tuning->inflation_margin, r / 2, &margin) != IFGM_OK)
-        return IFGM_BAD_PARAMETER;
-    if (planner->alpha == 0 && planner->beta == 0)
+    if (t.alpha == 0 && t.beta == 0)
         return IFGM_BAD_PARAMETER;
     planner->speed = episode->speed;
-    planner->inflation = r + margin; /* FGMPlanner.inflation */
+    planner->alpha = t.alpha;
+    planner->beta = t.beta;
+    planner->inflation = episode->radius + t.inflation_margin; /* FGMPlanner.inflation */
     return isfinite(planner->inflation) ? IFGM_OK : IFGM_BAD_PARAMETER;
 }
 

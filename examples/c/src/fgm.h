@@ -45,8 +45,8 @@ typedef struct {
     ifgm_real blocking[IFGM_MAX_RAYS];
 } fgm_planner;
 
-/* Set up `planner` for an episode: IFGM_OK, IFGM_BAD_EPISODE (radius or speed not finite
- * and > 0), IFGM_TOO_MANY_RAYS or IFGM_BAD_PARAMETER. */
+/* Set up `planner` for an episode: IFGM_OK, or IFGM_BAD_EPISODE, IFGM_BAD_PARAMETER
+ * (ifgm_resolve_tuning, tuning.h; alpha and beta both 0) or IFGM_TOO_MANY_RAYS. */
 int fgm_init(fgm_planner *planner, const ifgm_episode *episode, const ifgm_tuning *tuning);
 
 /* Decide one step. */
