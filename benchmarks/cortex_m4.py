@@ -64,6 +64,9 @@ RAM = 0x2000_0000
 STACK = 64 * 1024
 #: The byte the stack is painted with.
 PAINT = 0xA5
+#: Memory given to the planner's struct, bytes: more than any planner of a float build takes
+#: (IFGM's, some 0.8 MB, most of it the remembered points).
+PLANNER_RAM = 4 * 1024 * 1024
 #: A page with no code: a called function returns here and the emulation stops.
 RETURN = 0x7000
 #: Pipeline refill of a taken branch, cycles: nominal, least, most (TRM table 3-1: 1 to 3).
@@ -270,7 +273,7 @@ class Emulator:
     """A Cortex-M4F running one planner image; :meth:`decide` steps it (see the module
     docstring)."""
 
-    def __init__(self, image: Image, name: str, planner_size: int) -> None:
+    def __init__(self, image: Image, name: str) -> None:
         unicorn, arm = _module("unicorn"), _module("unicorn.arm_const")
         self.uc = uc = unicorn.Uc(
             unicorn.UC_ARCH_ARM, unicorn.UC_MODE_THUMB | unicorn.UC_MODE_MCLASS
@@ -286,7 +289,7 @@ class Emulator:
         self.command = self.stack_top
         self.inputs = self.command + 0x100
         self.planner = self.inputs + 0x10000
-        uc.mem_map(RAM, (self.planner - RAM + planner_size + 0xFFFF) & ~0xFFFF)
+        uc.mem_map(RAM, (self.planner - RAM + PLANNER_RAM + 0xFFFF) & ~0xFFFF)
         cpacr = uc.reg_read(arm.UC_ARM_REG_C1_C0_2)
         uc.reg_write(arm.UC_ARM_REG_C1_C0_2, cpacr | 0xF << 20)  # CP10, CP11: the FPU on
         uc.reg_write(arm.UC_ARM_REG_FPEXC, 1 << 30)
