@@ -240,8 +240,7 @@ class M4Code(NamedTuple):
 
 def build_m4(build: Path, cc: str) -> Path:
     """The port's library for the Cortex-M4F (module docstring of ``cortex_m4``), in
-    ``build``; and ``make float`` (its ``ifgm_bench --dump`` writes the emulator's input)."""
-    make("float")
+    ``build``."""
     shim = PORT / "cortex-m4" / "newlib_tgmath.h"
     variant = f"-DIFGM_FLOAT {' '.join(cortex_m4.ARM_FLAGS)} -include {shim} {STACK_FLAGS}"
     make(
@@ -275,7 +274,7 @@ def m4_code(
         check=True,
     )
     emulator = cortex_m4.Emulator(cortex_m4.read_elf(image_path), planner)
-    decisions = []
+    decisions: list[cortex_m4.Decision] = []
     for episode in cortex_m4.read_dump(dump):
         status = emulator.start(episode)
         if status != 0:
@@ -403,6 +402,7 @@ def main(argv: Sequence[str] | None = None) -> int:
             return 0
         build = work / "m4"
         build_m4(build, "arm-none-eabi-gcc")
+        make("float")  # its ifgm_bench --dump writes the emulator's input
         m4 = {
             name: m4_code(
                 name,
