@@ -170,13 +170,3 @@ ifgm_command fgm_step(fgm_planner *planner, const ifgm_observation *o)
     command.speed = command.branch == NO_GAP ? 0 : turn_speed(turn, planner->speed);
     return command;
 }
-
-int fgm_init_any(void *planner, const ifgm_episode *episode, const ifgm_tuning *tuning)
-{
-    return fgm_init(planner, episode, tuning);
-}
-
-ifgm_command fgm_step_any(void *planner, const ifgm_observation *observation)
-{
-    return fgm_step(planner, observation);
-}

@@ -52,8 +52,4 @@ int fgm_init(fgm_planner *planner, const ifgm_episode *episode, const ifgm_tunin
 /* Decide one step. */
 ifgm_command fgm_step(fgm_planner *planner, const ifgm_observation *observation);
 
-/* The same two for the planner table (planners.h): `planner` is an fgm_planner. */
-int fgm_init_any(void *planner, const ifgm_episode *episode, const ifgm_tuning *tuning);
-ifgm_command fgm_step_any(void *planner, const ifgm_observation *observation);
-
 #endif
