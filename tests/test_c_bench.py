@@ -51,6 +51,7 @@ def build(bench: ModuleType, tmp_path_factory: pytest.TempPathFactory) -> Path:
     return folder
 
 
+@pytest.mark.paper("s3.cheap", "s6.simpler_than_fgm")
 @pytest.mark.parametrize("planner", ["ifgm", "iba", "distbug", "fgm"])
 def test_the_decision_makes_no_allocation(
     bench: ModuleType, build: Path, tmp_path: Path, planner: str
@@ -64,6 +65,7 @@ def test_the_decision_makes_no_allocation(
     assert reference["branch_equal"] == 60, f"{reference}, but every branch should be equal"
 
 
+@pytest.mark.paper("s3.cheap")
 def test_the_stack_of_ifgm_decision_is_bounded(bench: ModuleType, build: Path) -> None:
     graph = bench.read_call_graph(sorted((build / "obj").glob("*.ci")))
     stack, chain = bench.deepest_chain(graph, "ifgm_step")
@@ -106,6 +108,7 @@ def test_cortex_m4_instruction_costs() -> None:
     assert doctest.testmod(cortex_m4).failed == 0
 
 
+@pytest.mark.paper("s3.cheap")
 @pytest.mark.skipif(shutil.which("arm-none-eabi-gcc") is None, reason="needs arm-none-eabi-gcc")
 def test_ifgm_code_fits_16_kib_on_a_cortex_m4(
     bench: ModuleType, build: Path, tmp_path: Path
