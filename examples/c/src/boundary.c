@@ -237,7 +237,7 @@ ifgm_follow_side ifgm_freer_side(const ifgm_real *ranges, int n, ifgm_real range
     ifgm_real larger = fabs(left) > fabs(right) ? fabs(left) : fabs(right);
     int goes_left;
     ifgm_real relative = ifgm_wrap_angle(bearing - pose[2]);
-    if (!(fabs(left - right) <= (ifgm_real)1e-9 * larger)) /* math.isclose, rel_tol 1e-9 */
+    if (!(fabs(left - right) <= IFGM_ROUNDING * larger)) /* math.isclose, rel_tol 1e-9 */
         goes_left = left > right;
     else if (fabs(relative) > GOAL_AHEAD)
         goes_left = relative > 0;

@@ -26,7 +26,7 @@
 #define IFGM_FRONT_HALF_WIDTH ((ifgm_real)22.5 * (IFGM_PI / 180))
 #define IFGM_PAPER_HALF_FOV (3 * IFGM_FRONT_HALF_WIDTH)
 /* Rays land on the +-22.5 degree borders only to within rounding: this keeps them front. */
-#define IFGM_BORDER_TOLERANCE ((ifgm_real)1e-9)
+#define IFGM_BORDER_TOLERANCE IFGM_ROUNDING
 
 typedef enum { IFGM_BEAM_NONE, IFGM_BEAM_RIGHT, IFGM_BEAM_FRONT, IFGM_BEAM_LEFT } ifgm_beam;
 typedef enum { IFGM_SIDE_RIGHT, IFGM_SIDE_LEFT, IFGM_SIDE_BOTH } ifgm_side;
