@@ -362,11 +362,10 @@ def test_the_c_ifgm_passes_the_quick_profile(build: Path) -> None:
     assert {r.status for r in report.results} <= {Status.PASSED, Status.NOT_APPLICABLE}
 
 
-@pytest.mark.slow
 def test_the_c_iba_passes_the_quick_profile(build: Path) -> None:
-    """The C IBA passes every check IBA promises (about 45 s, so under ``-m slow``), but for
-    the reference's known failure that some draws meet: a false loop closure in clutter
-    (errata row 25), which ends a mixed world 'goal_unreachable' (test_oracle.py)."""
+    """The C IBA passes every check IBA promises (35 to 45 s), but for the reference's known
+    failure that some draws meet: a false loop closure in clutter (errata row 25), which ends
+    a mixed world 'goal_unreachable' (test_oracle.py)."""
     report = _oracle(build, "iba")
     for result in report.results:
         if result.check == "converges_mixed" and result.status is Status.FAILED:
