@@ -234,7 +234,7 @@ MISBEHAVIOURS: dict[str, tuple[str, int, str]] = {
     "line_too_long": (" " * (1 << 20) + "x\n", 2, "line 1 is longer than 1048576 bytes"),
     "params_out_of_domain": (
         _reset(params={"d_th": -1.0}) + "\n",
-        1,
+        2,
         "line 1 (reset): a parameter is out of its domain",
     ),
 }
@@ -245,9 +245,9 @@ MISBEHAVIOURS: dict[str, tuple[str, int, str]] = {
 def test_misbehaving_input_ends_the_session_with_the_documented_status(
     request: pytest.FixtureRequest, build_name: str, case: str
 ) -> None:
-    """A malformed or out-of-order message, or input ending before ``bye``, exits with
-    status 2; an episode the planner rejects at init, with status 1 (docs/oracle-protocol.md,
-    as ``ifgm-ref serve``); each after exactly one line ``ifgm_json: error: ...`` on stderr."""
+    """A malformed or out-of-order message, input ending before ``bye``, or an episode the
+    planner rejects at init exits with status 2 (docs/oracle-protocol.md, as ``ifgm-ref
+    serve`` does), after exactly one line ``ifgm_json: error: ...`` on stderr."""
     stdin, status, phrase = MISBEHAVIOURS[case]
     done = _run(_builds(request, build_name) / "ifgm_json", [], stdin)
     assert done.returncode == status, done.stderr
@@ -362,8 +362,10 @@ def test_the_c_ifgm_passes_the_quick_profile(build: Path) -> None:
     assert {r.status for r in report.results} <= {Status.PASSED, Status.NOT_APPLICABLE}
 
 
+@pytest.mark.slow
 def test_the_c_iba_passes_the_quick_profile(build: Path) -> None:
-    """The C IBA passes every check IBA promises (35 to 45 s), but for the reference's known
+    """The C IBA passes every check IBA promises (35 to 45 s, so under ``-m slow``; the
+    default run checks the C IFGM, which the issue asks CI to check), but for the reference's known
     failure that some draws meet: a false loop closure in clutter (errata row 25), which ends
     a mixed world 'goal_unreachable' (test_oracle.py)."""
     report = _oracle(build, "iba")

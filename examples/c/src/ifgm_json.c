@@ -9,9 +9,10 @@
  * is one step; every reply is flushed at once. Unknown fields are ignored; an unknown name in
  * `params` is ignored with one warning line on stderr.
  *
- * Exit status: 0 after `bye`; 2 on a usage error, a malformed or out-of-order message, or the
- * end of input before `bye`; 1 when the planner's init rejects an episode (its status, named
- * by ifgm_status_text) or its step returns a command JSON cannot carry. Each failure writes
+ * Exit status: 0 after `bye`; 2 on a usage error, a malformed or out-of-order message, the
+ * end of input before `bye`, or an episode the planner's init rejects (its status, named by
+ * ifgm_status_text), as `ifgm-ref serve` does; 1 when the reply cannot be written or a
+ * step returns a command JSON cannot carry. Each failure writes
  * one line "ifgm_json: error: ..." on stderr.
  *
  * Memory: the line and its tokens are static; the planner's storage, ifgm_planner_max_size()
@@ -115,7 +116,7 @@ static int answer_reset(session *s, const json_document *doc)
     int status = s->kind->init(s->planner, &episode, &tuning);
     if (status != IFGM_OK) {
         report("error", "line %ld (reset): %s", s->count, ifgm_status_text(status));
-        return EXIT_PLANNER_FAILED;
+        return EXIT_BAD_INPUT;
     }
     s->ready = 1;
     if (protocol_write_ready(stdout) != 0 || fflush(stdout) != 0) {
