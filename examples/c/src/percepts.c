@@ -179,13 +179,22 @@ int ifgm_gaps_between(const ifgm_scan_points *p, const ifgm_cluster *clusters, i
     return n_clusters > 1 ? n_clusters - 1 : 0;
 }
 
+/* The offset of (x, y) from (ox, oy) in the frame facing (cos, sin) = (c, s): how far
+ * along that direction, and how far to its left. */
+static void along_across(ifgm_real x, ifgm_real y, ifgm_real ox, ifgm_real oy, ifgm_real c,
+                         ifgm_real s, ifgm_real *along, ifgm_real *across)
+{
+    ifgm_real dx = x - ox, dy = y - oy;
+    *along = c * dx + s * dy;
+    *across = -s * dx + c * dy;
+}
+
 ifgm_real ifgm_free_length(const ifgm_real *x, const ifgm_real *y, int n, ifgm_real ox,
                            ifgm_real oy, ifgm_real direction, ifgm_real half_width)
 {
-    ifgm_real c = cos(direction), s = sin(direction), best = IFGM_INF;
+    ifgm_real c = cos(direction), s = sin(direction), best = IFGM_INF, along, across;
     for (int i = 0; i < n; i++) {
-        ifgm_real dx = x[i] - ox, dy = y[i] - oy;
-        ifgm_real along = c * dx + s * dy, across = -s * dx + c * dy;
+        along_across(x[i], y[i], ox, oy, c, s, &along, &across);
         if (along >= 0 && fabs(across) < half_width && along < best)
             best = along;
     }
@@ -195,10 +204,9 @@ ifgm_real ifgm_free_length(const ifgm_real *x, const ifgm_real *y, int n, ifgm_r
 ifgm_real ifgm_disc_travel(const ifgm_real *x, const ifgm_real *y, int n, ifgm_real ox,
                            ifgm_real oy, ifgm_real direction, ifgm_real radius)
 {
-    ifgm_real c = cos(direction), s = sin(direction), best = IFGM_INF;
+    ifgm_real c = cos(direction), s = sin(direction), best = IFGM_INF, along, across;
     for (int i = 0; i < n; i++) {
-        ifgm_real dx = x[i] - ox, dy = y[i] - oy;
-        ifgm_real along = c * dx + s * dy, across = -s * dx + c * dy;
+        along_across(x[i], y[i], ox, oy, c, s, &along, &across);
         if (along >= 0 && fabs(across) < radius) {
             ifgm_real touch = along - sqrt(radius * radius - across * across);
             if (touch < best)
