@@ -13,7 +13,7 @@ the robot and the sensor (:mod:`ifgm_ref.planners.tuning`).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, fields
+from dataclasses import dataclass, field, fields
 from typing import Any, Final, Literal, Self
 
 from ifgm_ref.errors import ParameterError
@@ -37,6 +37,27 @@ def _require(
         raise ParameterError(f"`{name}` must be > 0, got {value!r}")
     if non_negative and value < 0:
         raise ParameterError(f"`{name}` must be >= 0, got {value!r}")
+
+
+#: Metadata of a field a protocol message may leave out (the noise models came later: a
+#: ``reset`` written before them still reads, with the noise off).
+OPTIONAL = {"optional": True}
+
+
+def _noise(default: float | int = 0) -> Any:
+    """A noise field: off (0) by default, optional in a protocol message."""
+    return field(default=default, metadata=OPTIONAL)
+
+
+def _probability(name: str, value: float) -> None:
+    _require(name, value, non_negative=True)
+    if value > 1:
+        raise ParameterError(f"`{name}` must be a probability in [0, 1], got {value!r}")
+
+
+def _count(name: str, value: object) -> None:
+    if isinstance(value, bool) or not isinstance(value, int) or value < 0:
+        raise ParameterError(f"`{name}` must be an integer >= 0, got {value!r}")
 
 
 class _Block:
@@ -78,16 +99,33 @@ class RobotParams(_Block):
     max_turn_rate : float, default pi/2
         Largest heading change per second, rad/s. The paper's stepper-motor platform turns in
         45-degree steps (section 4, Case-3); 90 deg/s lets one such step take half a second.
+    odometry_drift : float, default 0
+        Odometry noise ``k``: the pose the planner is told walks away from the true one, its
+        position error gaining ``k r`` over each stretch of ``r`` travelled (:mod:`ifgm_ref.noise`).
+    actuation_noise : float, default 0
+        Standard deviation of the executed turn and speed, relative to the commanded ones.
+    latency : int, default 0
+        Steps between a decision and its execution.
+    seed : int, default 0
+        Seed of the odometry and actuation noise.
     """
 
     radius: float = 1.0
     speed: float = PAPER_FREE_DISTANCE_FT / PAPER_FREE_TIME_S
     max_turn_rate: float = math.pi / 2
+    odometry_drift: float = _noise(0.0)
+    actuation_noise: float = _noise(0.0)
+    latency: int = _noise()
+    seed: int = _noise()
 
     def __post_init__(self) -> None:
         _require("radius", self.radius, positive=True)
         _require("speed", self.speed, positive=True)
         _require("max_turn_rate", self.max_turn_rate, positive=True)
+        _require("odometry_drift", self.odometry_drift, non_negative=True)
+        _require("actuation_noise", self.actuation_noise, non_negative=True)
+        _count("latency", self.latency)
+        _count("seed", self.seed)
 
 
 @traces("sensor.fov")
@@ -113,6 +151,13 @@ class SensorParams(_Block):
         Standard deviation of additive Gaussian range noise in ft (off by default).
     seed : int, default 0
         Seed of the noise generator, so noisy runs are reproducible.
+    noise_rel : float, default 0.0
+        Standard deviation of Gaussian range noise proportional to the range, a fraction of it.
+    dropout : float, default 0.0
+        Probability that a ray reads no return.
+    spurious : float, default 0.0
+        Probability that a ray reads a false return nearer than what it sees
+        (:mod:`ifgm_ref.noise` gives every model's formula).
     """
 
     fov: float = 3.0 * math.pi / 4.0
@@ -121,6 +166,9 @@ class SensorParams(_Block):
     range_min: float = 0.0
     noise_std: float = 0.0
     seed: int = 0
+    noise_rel: float = _noise(0.0)
+    dropout: float = _noise(0.0)
+    spurious: float = _noise(0.0)
 
     def __post_init__(self) -> None:
         _require("fov", self.fov, positive=True)
@@ -135,8 +183,10 @@ class SensorParams(_Block):
                 f"`range_min` must be < `range_max`, got {self.range_min!r} >= {self.range_max!r}"
             )
         _require("noise_std", self.noise_std, non_negative=True)
-        if isinstance(self.seed, bool) or not isinstance(self.seed, int) or self.seed < 0:
-            raise ParameterError(f"`seed` must be an integer >= 0, got {self.seed!r}")
+        _count("seed", self.seed)
+        _require("noise_rel", self.noise_rel, non_negative=True)
+        _probability("dropout", self.dropout)
+        _probability("spurious", self.spurious)
 
     @property
     def angle_increment(self) -> float:

@@ -16,8 +16,19 @@ from ifgm_ref.pose import Pose, wrap_angle
 from ifgm_ref.protocol import Command
 
 
-def advance(pose: Pose, command: Command, robot: RobotParams, dt: float) -> Pose:
+def advance(
+    pose: Pose,
+    command: Command,
+    robot: RobotParams,
+    dt: float,
+    *,
+    turn_scale: float = 1.0,
+    speed_scale: float = 1.0,
+) -> Pose:
     """Move ``pose`` by one time step ``dt`` under ``command`` (turn, then translate).
+
+    ``turn_scale`` and ``speed_scale`` multiply the turn (after the turn-rate limit) and the
+    speed (after the top speed): the actuation noise of :mod:`ifgm_ref.noise`.
 
     Examples
     --------
@@ -33,7 +44,7 @@ def advance(pose: Pose, command: Command, robot: RobotParams, dt: float) -> Pose
     Pose(x=1.0, y=0.0, theta=0.0)
     """
     limit = robot.max_turn_rate * dt
-    turn = min(max(wrap_angle(command.heading - pose.theta), -limit), limit)
+    turn = min(max(wrap_angle(command.heading - pose.theta), -limit), limit) * turn_scale
     theta = wrap_angle(pose.theta + turn)
-    step = min(command.speed, robot.speed) * dt
+    step = min(command.speed, robot.speed) * speed_scale * dt
     return Pose(pose.x + step * math.cos(theta), pose.y + step * math.sin(theta), theta)

@@ -34,6 +34,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ifgm_ref.laserscan import LaserScan
+from ifgm_ref.noise import RangeNoise
 from ifgm_ref.params import SensorParams
 from ifgm_ref.pose import Pose
 from ifgm_ref.raycast import RayCaster, RayFan
@@ -55,12 +56,12 @@ class IRSensor:
     the reading is below ``range_min``. A hit at exactly ``range_max`` is a reading. A robot
     centre inside a circle or on an edge reads 0 on every ray (``-inf`` if ``range_min > 0``).
 
-    With ``noise_std > 0`` every finite reading gets independent Gaussian noise of that standard
-    deviation from a generator seeded with ``seed``; a noisy reading is clipped at 0 (never
+    With noise on (``noise_std``, ``noise_rel``, ``dropout``, ``spurious``: the models of
+    :mod:`ifgm_ref.noise`, seeded with ``seed``) a noisy reading is clipped at 0 (never
     negative), one pushed beyond ``range_max`` becomes ``+inf`` (no return), one pushed below
-    ``range_min`` becomes ``-inf``. Noise never creates a return where there is none: ``+inf``
-    stays ``+inf``. Each scan draws exactly ``rays`` numbers whatever it sees, so the noise of
-    the n-th scan depends only on the seed and n.
+    ``range_min`` becomes ``-inf``. Gaussian noise never creates a return where there is none:
+    ``+inf`` stays ``+inf`` (only a spurious return does). Each scan draws a fixed number of
+    numbers whatever it sees, so the noise of the n-th scan depends only on the seed and n.
 
     Parameters
     ----------
@@ -118,7 +119,7 @@ class IRSensor:
         self._caster = RayCaster(
             world.segments, world.circle_centers, world.circle_radii, params.range_max
         )
-        self._rng = np.random.default_rng(params.seed)
+        self._noise = RangeNoise(params)
 
     @property
     def params(self) -> SensorParams:
@@ -131,8 +132,8 @@ class IRSensor:
         return self._fan.angles
 
     def reset(self) -> None:
-        """Restart the noise generator from ``params.seed``, as if newly built."""
-        self._rng = np.random.default_rng(self._params.seed)
+        """Restart the noise generators from ``params.seed``, as if newly built."""
+        self._noise = RangeNoise(self._params)
 
     def scan(self, pose: Pose) -> LaserScan:
         """Return the scan seen from ``pose``.
@@ -150,9 +151,8 @@ class IRSensor:
         params = self._params
         x, y, theta = pose
         ranges = self._caster.cast_fan((x, y), theta, self._fan)
-        if params.noise_std > 0.0:
-            noise = self._rng.normal(0.0, params.noise_std, ranges.shape[0])
-            ranges += noise  # inf + noise stays inf
+        if self._noise.active:
+            self._noise.apply(ranges)
             np.maximum(ranges, 0.0, out=ranges)
             ranges[ranges > params.range_max] = np.inf
         if params.range_min > 0.0:

@@ -59,6 +59,7 @@ from typing import Any
 from tqdm import tqdm
 
 from ifgm_ref.collision import ClearanceChecker
+from ifgm_ref.noise import Actuation, Odometry
 from ifgm_ref.params import SimParams
 from ifgm_ref.planners.tuning import Scale, evaluate
 from ifgm_ref.pose import Pose, distance, wrap_angle
@@ -91,7 +92,9 @@ class TraceStep:
 
     The last sample of a trace has no command (its command fields are ``None``).
     ``clearance`` is that of the disc swept from this sample to the next (or standing here,
-    for the last sample), in ft.
+    for the last sample), in ft. ``x``, ``y`` and ``theta`` are the true pose; the
+    ``believed_`` ones the pose the planner was told, which differs with odometry noise
+    (:mod:`ifgm_ref.noise`).
     """
 
     t: float
@@ -103,6 +106,9 @@ class TraceStep:
     behaviour: str | None
     branch: str | None
     clearance: float
+    believed_x: float | None = None
+    believed_y: float | None = None
+    believed_theta: float | None = None
 
 
 TRACE_FIELDS = tuple(TraceStep.__dataclass_fields__)
@@ -206,10 +212,11 @@ def simulate(
     stall = stall_steps(sim, episode)
     pose = Pose(*world.start)
     recent = deque([pose], maxlen=(stall or 0) + 1)  # the last stall + 1 positions
-    state = _Episode(pose, recent, min_clearance=checker.pose_clearance(pose))
+    state = _Episode(pose, recent, checker.pose_clearance(pose), Odometry(world.robot))
     stop, detail = _drive(state, world, planner, sim, sensor, checker, stall, progress)
     end = round(state.steps * sim.dt, 12)
-    state.trace.append(_sample(end, state.pose, None, checker.pose_clearance(state.pose)))
+    last = _sample(end, state.pose, None, checker.pose_clearance(state.pose), state.believed)
+    state.trace.append(last)
     result = Result(
         planner=planner.name,
         world=world.name,
@@ -233,15 +240,26 @@ class _Episode:
     pose: Pose
     recent: deque[Pose]
     min_clearance: float
+    odometry: Odometry
     trace: list[TraceStep] = field(default_factory=list)
     path_length: float = 0.0
     steps: int = 0
 
-    def move(self, t: float, command: Command, new_pose: Pose, clearance: float) -> None:
-        """Record the step taken at time ``t`` from :attr:`pose` to ``new_pose``."""
-        self.trace.append(_sample(t, self.pose, command, clearance))
+    @property
+    def believed(self) -> Pose:
+        """The pose the planner is told (the true one but for odometry noise)."""
+        return self.odometry.believed(self.pose)
+
+    def move(
+        self, t: float, command: Command, believed: Pose, new_pose: Pose, clearance: float
+    ) -> None:
+        """Record the step decided at time ``t`` (told ``believed``) from :attr:`pose` to
+        ``new_pose``."""
+        self.trace.append(_sample(t, self.pose, command, clearance, believed))
         self.min_clearance = min(self.min_clearance, clearance)
-        self.path_length += distance(self.pose, new_pose)
+        moved = distance(self.pose, new_pose)
+        self.path_length += moved
+        self.odometry.moved(moved)
         self.pose = new_pose
         self.recent.append(new_pose)
         self.steps += 1
@@ -261,6 +279,7 @@ def _drive(
     return the stop reason and, for an invalid command, what is wrong with it."""
     max_steps = math.ceil(sim.max_time / sim.dt - 1e-9)
     disable = None if progress is None else not progress
+    actuation = Actuation(world.robot)
     with tqdm(total=max_steps, unit="step", desc=planner.name, disable=disable, leave=False) as bar:
         while True:
             t = round(state.steps * sim.dt, 12)
@@ -270,15 +289,19 @@ def _drive(
                 return StopReason.TIME_LIMIT, None
             if stall is not None and _stalled(state.recent, world.robot.radius):
                 return StopReason.STALLED, None
-            command = planner.step(Observation(t, state.pose, world.goal, sensor.scan(state.pose)))
+            believed = state.believed
+            command = planner.step(Observation(t, believed, world.goal, sensor.scan(state.pose)))
             detail = _problem(command)
             if detail is not None:
                 return StopReason.INVALID_COMMAND, detail
             if command.stop is not None:
                 return command.stop, None
-            new_pose = advance(state.pose, command, world.robot, sim.dt)
+            executed, turn, speed = actuation.executed(command, state.pose)
+            new_pose = advance(
+                state.pose, executed, world.robot, sim.dt, turn_scale=turn, speed_scale=speed
+            )
             clearance = checker.segment_clearance(state.pose, new_pose)
-            state.move(t, command, new_pose, clearance)
+            state.move(t, command, believed, new_pose, clearance)
             if state.steps % 100 == 0:
                 bar.update(100)
             if clearance < 0.0:
@@ -323,7 +346,9 @@ def _problem(command: object) -> str | None:
     return command.problem()
 
 
-def _sample(t: float, pose: Pose, command: Command | None, clearance: float) -> TraceStep:
+def _sample(
+    t: float, pose: Pose, command: Command | None, clearance: float, believed: Pose
+) -> TraceStep:
     return TraceStep(
         t=t,
         x=pose.x,
@@ -334,4 +359,7 @@ def _sample(t: float, pose: Pose, command: Command | None, clearance: float) -> 
         behaviour=None if command is None else command.behaviour,
         branch=None if command is None else command.branch,
         clearance=clearance,
+        believed_x=believed.x,
+        believed_y=believed.y,
+        believed_theta=believed.theta,
     )

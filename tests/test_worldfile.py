@@ -288,7 +288,8 @@ CASES = [
     ("robot-nan", extra('"robot": {"speed": NaN}'),
      "robot: `speed` must be finite, got NaN"),
     ("sensor-unknown", extra('"sensor": {"range": 5}'),
-     "sensor: unknown field(s) range; allowed: fov, rays, range_max, range_min, noise_std, seed"),
+     "sensor: unknown field(s) range; allowed: fov, rays, range_max, range_min, noise_std, seed, "
+     "noise_rel, dropout, spurious"),
     ("sensor-rays", extra('"sensor": {"rays": 76.5}'),
      "sensor: `rays` must be an integer >= 2, got 76.5"),
     ("sensor-range", extra('"sensor": {"range_min": 20}'),

@@ -7,8 +7,9 @@ import json
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from ifgm_ref.cli.common import positive_float
+from ifgm_ref.cli.common import non_negative_int, positive_float
 from ifgm_ref.errors import ParameterError
+from ifgm_ref.noise import KINDS, NoiseLevels
 from ifgm_ref.params import SimParams
 from ifgm_ref.planners import PLANNERS
 from ifgm_ref.scenarios import resolve_world
@@ -80,11 +81,24 @@ def _add_output_options(sim: argparse.ArgumentParser) -> None:
         type=positive_float,
         help=f"goal radius, in the world's length unit (default {SimParams.goal_tolerance})",
     )
+    sim.add_argument(
+        "--noise",
+        metavar="KIND=LEVEL,...",
+        help=f"noise levels ({', '.join(KINDS)}; docs/noise.md), e.g. "
+        "range=0.02,dropout=0.05,odometry=0.01: they replace the world file's",
+    )
+    sim.add_argument(
+        "--noise-seed",
+        type=non_negative_int,
+        help="seed of every noise generator (default: the world file's seeds)",
+    )
 
 
 def run_simulate(args: argparse.Namespace) -> int:
     """Run ``ifgm-ref simulate``; return the exit status."""
     world = resolve_world(args.world)
+    if args.noise is not None or args.noise_seed is not None:
+        world = NoiseLevels.parse(args.noise or "").apply(world, args.noise_seed)
     defaults = SimParams()
     sim = SimParams(
         dt=defaults.dt if args.dt is None else args.dt,

@@ -488,10 +488,15 @@ def _optional_text(value: object, where: str) -> str | None:
 
 
 def _block(cls: type[_BlockT], data: object, where: str) -> _BlockT:
-    """Build a parameter block from every one of its fields in ``data`` (others ignored)."""
+    """Build a parameter block from its fields in ``data`` (others ignored): every one, but
+    those marked optional (the noise models), which default to off."""
     if not isinstance(data, dict):
         raise ProtocolError(f"{where}: must be an object, got {data!r}")
-    values = {f.name: _field(data, f.name, where) for f in fields(cls)}
+    values = {
+        f.name: _field(data, f.name, where)
+        for f in fields(cls)
+        if f.name in data or not f.metadata.get("optional")
+    }
     try:
         return cls(**values)
     except ParameterError as err:
