@@ -31,8 +31,9 @@ Its variance grows with the distance travelled, not with time or the number of s
 any stretch of length ``r`` the position error gains ``k r`` (``k = 0.01``: 1 % of the
 distance) and over a path of length ``D`` it reaches ``k sqrt(r D)`` per axis, and the heading's
 ``k sqrt(D / r)`` rad. The world frame is the planner's too: its goal stays where it is, and
-it finds it by its believed pose. Collisions, the goal and the stall rule are judged on the
-true pose; traces record both.
+it finds it by its believed pose. The robot's heading controller knows only the believed
+heading: a command to face ``psi`` turns the robot towards the true heading ``psi - e_theta``.
+Collisions, the goal and the stall rule are judged on the true pose; traces record both.
 
 **Actuation** (the robot block, ``actuation_noise = s``, ``latency = k``): the command executed
 at step ``n`` is the one decided at step ``n - k`` (before the first, the robot stands still),
@@ -121,6 +122,11 @@ class Odometry:
             return pose
         ex, ey, et = self.error
         return Pose(pose.x + ex, pose.y + ey, wrap_angle(pose.theta + et))
+
+    def true_heading(self, heading: float) -> float:
+        """The true heading a command to face ``heading`` turns the robot towards: its heading
+        controller knows only the believed heading, so it is ``e_theta`` off."""
+        return heading - self.error[2] if self.drift else heading
 
     def moved(self, distance: float) -> None:
         """The robot's centre moved ``distance``: the error walks on."""

@@ -51,7 +51,7 @@ import json
 import math
 from collections import deque
 from collections.abc import Sequence
-from dataclasses import asdict, dataclass, field
+from dataclasses import asdict, dataclass, field, replace
 from enum import StrEnum
 from itertools import pairwise
 from typing import Any
@@ -296,7 +296,10 @@ def _drive(
                 return StopReason.INVALID_COMMAND, detail
             if command.stop is not None:
                 return command.stop, None
-            executed, turn, speed = actuation.executed(command, state.pose)
+            executed, turn, speed = actuation.executed(command, believed)
+            if state.odometry.drift:  # the heading controller knows the believed heading only
+                heading = state.odometry.true_heading(executed.heading)
+                executed = replace(executed, heading=heading)
             new_pose = advance(
                 state.pose, executed, world.robot, sim.dt, turn_scale=turn, speed_scale=speed
             )

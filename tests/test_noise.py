@@ -12,7 +12,7 @@ import pytest
 
 from ifgm_ref.errors import ParameterError
 from ifgm_ref.noise import Actuation, NoiseLevels, Odometry
-from ifgm_ref.params import RobotParams, SensorParams
+from ifgm_ref.params import RobotParams, SensorParams, SimParams
 from ifgm_ref.planners import make_planner
 from ifgm_ref.pose import Point, Pose, distance
 from ifgm_ref.protocol import Command
@@ -223,3 +223,28 @@ def test_noise_fields_are_checked(block: type, field: str, value: float) -> None
     """Each noise field of the world file's blocks refuses a value out of its domain."""
     with pytest.raises(ParameterError, match=f"`{field}`"):
         block(**{field: value})
+
+
+class _DriveThenFace:
+    """Drive along +x for 40 steps, then turn in place to face heading 1.0 (as believed)."""
+
+    name = "drive_then_face"
+
+    def reset(self, start: object, goal: object, params: object) -> None:
+        self.steps = 0
+
+    def step(self, observation: object) -> Command:
+        self.steps += 1
+        return Command(0.0, 1.0) if self.steps <= 40 else Command(1.0, 0.0)
+
+
+def test_the_heading_controller_knows_only_the_believed_heading() -> None:
+    """With drift, a command to face ``psi`` brings the *believed* heading to ``psi``; the
+    true heading ends ``e_theta`` away from it (``docs/noise.md``)."""
+    world = replace(resolve_world("free"), robot=RobotParams(odometry_drift=0.2, seed=4))
+    run = simulate(world, _DriveThenFace(), SimParams(max_time=8.0, stall_time=None))
+    last = run.trace[-1]
+    assert last.believed_theta == pytest.approx(1.0, abs=1e-9)
+    error = last.believed_theta - last.theta
+    assert abs(error) > 0.01
+    assert last.theta == pytest.approx(1.0 - error, abs=1e-9)
