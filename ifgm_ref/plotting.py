@@ -188,15 +188,28 @@ def draw_field_of_view(ax: Axes, world: World, poses: Sequence[tuple[float, floa
         )
 
 
+def draw_believed_path(ax: Axes, trace: Sequence[TraceStep]) -> bool:
+    """Draw where the planner believed the robot was (odometry noise, ``docs/noise.md``) as a
+    dashed line, if anywhere it was not where the robot was; return whether it drew."""
+    believed = [(s.believed_x, s.believed_y) for s in trace]
+    if all(b == (s.x, s.y) for b, s in zip(believed, trace, strict=True)):
+        return False
+    xy = np.array(believed, dtype=float)
+    ax.plot(xy[:, 0], xy[:, 1], color="0.3", linestyle="--", linewidth=1.0, label="believed")
+    return True
+
+
 def plot_run(
     world: World, trace: Sequence[TraceStep], result: Result, *, colour_by: str = "behaviour"
 ) -> Figure:
-    """A figure of one episode: world, path by behaviour (or branch), switches, field of view."""
+    """A figure of one episode: world, path by behaviour (or branch), switches, field of view,
+    and the believed path where odometry noise moved it off the true one."""
     fig, ax = plt.subplots(figsize=(9.5, 5), layout="constrained")
     draw_world(ax, world)
     wedges = [(trace[i].x, trace[i].y, trace[i].theta) for i in switch_indices(trace)[:MAX_WEDGES]]
     draw_field_of_view(ax, world, wedges)
     draw_path(ax, trace, world.robot.radius, colour_by=colour_by, by_frequency=True)
+    draw_believed_path(ax, trace)
     # Equal scales by widening the data limits, not by shrinking the box: the layout keeps
     # its box, and the labels and the legend beside it stay within the figure.
     ax.set_aspect("equal", adjustable="datalim")

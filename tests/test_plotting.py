@@ -12,6 +12,7 @@ import matplotlib.pyplot as plt
 import pytest
 from PIL import Image
 
+from ifgm_ref.noise import NoiseLevels
 from ifgm_ref.planners.fgm import FGMPlanner
 from ifgm_ref.planners.ifgm import IFGMPlanner
 from ifgm_ref.plotting import (
@@ -136,3 +137,16 @@ def test_animation_counts_its_frames_on_stderr(
     animate_run(world, run.trace, run.result, tmp_path / "run.gif", max_frames=4, progress=True)
     shown = capsys.readouterr().err
     assert "GIF" in shown and "1/4" in shown and "4/4" in shown
+
+
+def test_run_plot_draws_the_believed_path_only_where_odometry_moved_it() -> None:
+    """With odometry noise the plot adds a dashed "believed" path (``docs/noise.md``);
+    without, none."""
+    world = resolve_world("post")
+    for levels, drawn in (("odometry=0.02", True), ("none", False)):
+        noisy = NoiseLevels.parse(levels).apply(world, 1)
+        run = simulate(noisy, IFGMPlanner())
+        fig = plot_run(noisy, run.trace, run.result)
+        labels = [line.get_label() for line in fig.axes[0].get_lines()]
+        assert ("believed" in labels) is drawn, labels
+        plt.close(fig)

@@ -107,7 +107,8 @@ def reset_message(start: Pose, goal: Point, params: EpisodeParams) -> dict[str, 
     """Build the ``reset`` message that starts an episode.
 
     ``sensor`` carries the :class:`SensorParams` fields and the angles of the scans that will
-    follow (``angle_min = -fov / 2``, ``angle_max = +fov / 2``, ``angle_increment``).
+    follow (``angle_min = -fov / 2``, ``angle_max = +fov / 2``, ``angle_increment``); ``robot``
+    and ``sensor`` carry the noise fields and seeds too (``docs/noise.md``).
 
     Examples
     --------
@@ -115,8 +116,8 @@ def reset_message(start: Pose, goal: Point, params: EpisodeParams) -> dict[str, 
     >>> message["type"], message["start"], message["goal"], message["dt"]
     ('reset', [0.0, 0.0, 0.0], [10.0, 0.0], 0.1)
     >>> sorted(message["sensor"])  # doctest: +NORMALIZE_WHITESPACE
-    ['angle_increment', 'angle_max', 'angle_min', 'fov', 'noise_std', 'range_max', 'range_min',
-     'rays', 'seed']
+    ['angle_increment', 'angle_max', 'angle_min', 'dropout', 'fov', 'noise_rel', 'noise_std',
+     'range_max', 'range_min', 'rays', 'seed', 'spurious']
     """
     sensor = params.sensor
     return {
