@@ -16,6 +16,7 @@ from ifgm_ref.bench.noise import (
     AXIS_LABELS,
     DEFAULT_SWEEP,
     parse_sweep,
+    plot_sweep,
     summarize_sweep,
     sweep_conditions,
     write_sweep_report,
@@ -239,8 +240,8 @@ def _row(planner: str, kind: str | None, level: float | None, **kw: object) -> R
 def test_sweep_summary_shares_the_baseline_and_counts_with_wilson() -> None:
     """The baseline is level 0 of every kind; each point counts its episodes, its success
     and collision rates with Wilson intervals, time-outs and stalls; the path ratio's
-    quartiles are over the episodes that reached the goal; rows outside a sweep are left
-    out."""
+    quartiles and the median turning are over the episodes that reached the goal; rows
+    outside a sweep are left out."""
     rows = [_row("p", "none", 0.0, path_ratio=1.0 + k / 10) for k in range(5)]
     rows += [_row("p", "range", 0.1, path_ratio=1.5), _row("p", "range", 0.1, path_ratio=2.5)]
     rows += [_row("p", "range", 0.1, reached=False, collided=True, stop_reason="collision",
@@ -259,8 +260,22 @@ def test_sweep_summary_shares_the_baseline_and_counts_with_wilson() -> None:
     assert (noisy.success_rate, noisy.collision_rate, noisy.stall_rate) == (0.5, 0.25, 0.25)
     assert (noisy.success_low, noisy.success_high) == wilson_interval(2, 4)
     assert (noisy.collision_low, noisy.collision_high) == wilson_interval(1, 4)
-    assert noisy.path_ratio_median == 2.0
+    assert noisy.path_ratio_median == 2.0 and noisy.heading_change_median == 1.0
     assert drift.timeout_rate == 1.0 and drift.path_ratio_median is None
+    assert drift.heading_change_median is None
+
+
+def test_sweep_plot_leaves_gaps_where_there_is_nothing_to_draw(tmp_path: Path) -> None:
+    """A planner that never reached the goal has no path ratio, and one missing at a level
+    has no point there: the plot leaves those out rather than failing."""
+    rows = [_row("p", "none", 0.0), _row("p", "dropout", 0.5)]
+    rows += [_row("q", "none", 0.0, reached=False, stop_reason="stalled", path_ratio=None)]
+    points = summarize_sweep(rows)
+    assert [(p.planner, p.level, p.path_ratio_median) for p in points] == [
+        ("p", 0.0, 1.2), ("p", 0.5, 1.2), ("q", 0.0, None),
+    ]  # fmt: skip
+    plot_sweep(points, "dropout", tmp_path / "sweep.png")
+    assert (tmp_path / "sweep.png").stat().st_size > 10_000
 
 
 def test_sweep_report_files(tmp_path: Path, sweep_rows: list[Row]) -> None:

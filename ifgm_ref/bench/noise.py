@@ -1,4 +1,4 @@
-"""The benchmark under noise: the sweep's grid, its summary with confidence bands, its plots.
+"""The benchmark under noise: the sweep's grid, its summary with confidence intervals, its plots.
 
 ``ifgm-ref bench --noise-sweep`` runs every planner in every world once without noise (the
 baseline, level 0 of every kind) and then at each level of each kind swept, one kind at a
@@ -148,8 +148,9 @@ class SweepPoint:
     Level 0 is the baseline, repeated under every kind. ``success_rate`` and
     ``collision_rate`` are shares of the ``episodes`` with their Wilson 95 % intervals
     (``_low``, ``_high``); ``timeout_rate`` and ``stall_rate`` the shares that ended at the
-    time limit or stalled; the path ratio's median and quartiles are over the episodes that
-    reached the goal (``None`` when none did).
+    time limit or stalled; the path ratio's median and quartiles, and the median total
+    turning (``heading_change``, rad: smoothness), are over the episodes that reached the
+    goal (``None`` when none did).
     """
 
     kind: str
@@ -167,6 +168,7 @@ class SweepPoint:
     path_ratio_median: float | None
     path_ratio_q1: float | None
     path_ratio_q3: float | None
+    heading_change_median: float | None
 
     @classmethod
     def columns(cls) -> tuple[str, ...]:
@@ -180,6 +182,7 @@ def sweep_point(kind: str, planner: str, level: float, rows: Sequence[Row]) -> S
     reached = sum(r.reached for r in rows)
     collided = sum(r.collided for r in rows)
     ratios = [r.path_ratio for r in rows if r.reached and r.path_ratio is not None]
+    turning = [r.heading_change for r in rows if r.reached]
     q1, median, q3 = (
         (float(q) for q in np.percentile(ratios, [25, 50, 75])) if ratios else [None] * 3
     )
@@ -188,6 +191,7 @@ def sweep_point(kind: str, planner: str, level: float, rows: Sequence[Row]) -> S
         *wilson_interval(collided, n),
         sum(r.stop_reason == StopReason.TIME_LIMIT for r in rows) / n,
         sum(r.stop_reason == StopReason.STALLED for r in rows) / n, median, q1, q3,
+        float(np.median(turning)) if turning else None,
     )  # fmt: skip
 
 
