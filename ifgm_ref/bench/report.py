@@ -151,7 +151,7 @@ def read_rows(path: str | Path) -> list[Row]:
                     values[name] = math.nan if kind == "float" else None
                 elif kind == "bool":
                     values[name] = text == "True"
-                elif kind == "int":
+                elif kind.startswith("int"):
                     values[name] = int(text)
                 elif "float" in kind:
                     values[name] = float(text)

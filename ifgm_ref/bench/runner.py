@@ -17,7 +17,7 @@ from collections.abc import Callable, Iterator, Sequence
 
 from tqdm import tqdm
 
-from ifgm_ref.bench.tasks import Row, WorldSpec, run_world
+from ifgm_ref.bench.tasks import NOISE_FREE, Condition, Row, WorldSpec, run_world
 from ifgm_ref.errors import ParameterError
 
 
@@ -51,10 +51,13 @@ def run_bench(
     jobs: int = 1,
     scheduler: str | None = None,
     max_time: float | None = None,
+    conditions: Sequence[Condition] = (NOISE_FREE,),
+    noise_seed: int = 0,
     progress: bool | None = None,
     on_rows: Callable[[list[Row]], None] | None = None,
 ) -> list[Row]:
-    """Every planner in every world: the rows, world by world in ``specs`` order.
+    """Every planner in every world under every noise condition: the rows, world by world in
+    ``specs`` order (then condition by condition, planner by planner).
 
     Parameters
     ----------
@@ -63,12 +66,15 @@ def run_bench(
     jobs : local worker processes (1: run in this process); ignored with ``scheduler``.
     scheduler : a Dask scheduler address (``tcp://host:8786``) to run the tasks on.
     max_time : episode time limit, s (default: each world's convergence budget).
+    conditions : the noise conditions (default: none; :class:`~ifgm_ref.bench.tasks.Condition`).
+    noise_seed : the run's noise seed, from which each world's is derived
+        (:func:`~ifgm_ref.bench.tasks.noise_seed`).
     progress : show a progress bar with an ETA on stderr (``None``: only on a terminal).
     on_rows : called with each world's rows as they arrive (in completion order).
     """
     if jobs < 1:
         raise ParameterError(f"jobs must be at least 1, got {jobs}")
-    names = tuple(planners)
+    names, noises = tuple(planners), tuple(conditions)
     results: list[list[Row] | None] = [None] * len(specs)
     disable = None if progress is None else not progress
     with (
@@ -77,11 +83,13 @@ def run_bench(
     ):
         if executor is None:
             done: Iterator[tuple[int, list[Row]]] = (
-                (k, run_world(spec, names, max_time)) for k, spec in enumerate(specs)
+                (k, run_world(spec, names, max_time, noises, noise_seed))
+                for k, spec in enumerate(specs)
             )
         else:
             futures = {
-                executor.submit(run_world, spec, names, max_time): k for k, spec in enumerate(specs)
+                executor.submit(run_world, spec, names, max_time, noises, noise_seed): k
+                for k, spec in enumerate(specs)
             }
             done = ((futures[f], f.result()) for f in cf.as_completed(futures))
         for k, rows in done:

@@ -16,8 +16,16 @@ path is not computed: extremitypathfinder takes about 20 s per BARN world (~240 
 measured), twenty times the episodes themselves, so ``optimal_length`` and
 ``path_ratio`` stay empty there.
 
-Each (planner, world) pair gives one :class:`Row`. A planner that raises is recorded as a
-row with stop reason ``error`` and the message in ``detail``, so one crash loses nothing else.
+Each (planner, world) pair gives one :class:`Row`, under each noise :class:`Condition` of the
+task (by default one: no noise). A planner that raises is recorded as a row with stop reason
+``error`` and the message in ``detail``, so one crash loses nothing else.
+
+Noise (:mod:`ifgm_ref.noise`) is seeded per world, never per task or worker: every episode in
+world ``NAME`` draws from :func:`noise_seed` of the run's noise seed and ``NAME``, whatever
+the planner, the noise level or the worker. So the planners meet the same draws, step for
+step (common random numbers: a difference between them is theirs, not the dice's), and the
+levels of one kind are coupled: the rays a 2 % dropout loses are among those a 5 % one does,
+and range noise of 10 % is that of 5 %, doubled.
 """
 
 from __future__ import annotations
@@ -25,6 +33,8 @@ from __future__ import annotations
 import dataclasses
 import math
 import time
+import zlib
+from collections.abc import Sequence
 from dataclasses import asdict, dataclass, fields
 from pathlib import Path
 from typing import Any
@@ -35,6 +45,7 @@ from ifgm_ref.bench import barn
 from ifgm_ref.bench.optimal import optimal_path
 from ifgm_ref.convergence import time_bound
 from ifgm_ref.errors import WorldError
+from ifgm_ref.noise import NoiseLevels
 from ifgm_ref.params import SimParams
 from ifgm_ref.protocol import Command, EpisodeParams, Observation, Planner
 from ifgm_ref.scenarios import BUILTIN_WORLDS
@@ -139,6 +150,12 @@ class Row:
     ``decisions_per_cpu_s`` counts the planner's ``step`` calls per second of CPU spent in
     them (the only column that varies between runs). ``reference_length`` (BARN's path length
     L, m) and ``barn_score`` (BARN's score of the episode) are filled for BARN worlds only.
+
+    ``noise`` is the episode's noise levels as ``--noise`` reads them (``none``: no noise);
+    ``noise_kind`` and ``noise_level`` the point of a noise sweep it belongs to (``none``
+    and 0 for the sweep's noise-free baseline; empty outside a sweep); ``noise_seed`` the
+    seed of its noise generators (empty without noise): ``ifgm-ref simulate WORLD --noise
+    NOISE --noise-seed NOISE_SEED`` replays it.
     """
 
     planner: str
@@ -158,6 +175,10 @@ class Row:
     detail: str | None = None
     reference_length: float | None = None
     barn_score: float | None = None
+    noise: str = "none"
+    noise_kind: str | None = None
+    noise_level: float | None = None
+    noise_seed: int | None = None
 
     @classmethod
     def columns(cls) -> tuple[str, ...]:
@@ -167,6 +188,59 @@ class Row:
     def as_dict(self) -> dict[str, Any]:
         """The row as a mapping of column names to values."""
         return asdict(self)
+
+
+@dataclass(frozen=True)
+class Condition:
+    """The noise every episode of a task runs under (:mod:`ifgm_ref.noise`).
+
+    ``levels`` are applied to each world with the world's :func:`noise_seed`; with every level
+    0 the world runs as it is (a world file's own noise included). ``kind`` and ``level``
+    name the point of a noise sweep (``ifgm-ref bench --noise-sweep``) this is: the kind
+    swept and its level, ``"none"`` and 0 for the noise-free baseline, ``None`` outside a
+    sweep.
+    """
+
+    levels: NoiseLevels = dataclasses.field(default_factory=NoiseLevels)
+    kind: str | None = None
+    level: float | None = None
+
+    @property
+    def noisy(self) -> bool:
+        """Whether any level is on."""
+        return self.levels != NoiseLevels()
+
+    def apply(self, world: World, seed: int) -> World:
+        """``world`` under these levels, its noise generators seeded with ``seed``."""
+        return self.levels.apply(world, seed) if self.noisy else world
+
+    def columns(self, seed: int) -> dict[str, Any]:
+        """The noise columns of a :class:`Row` run under this condition with ``seed``."""
+        return {
+            "noise": self.levels.tags(),
+            "noise_kind": self.kind,
+            "noise_level": self.level,
+            "noise_seed": seed if self.noisy else None,
+        }
+
+
+#: The default condition: no noise.
+NOISE_FREE = Condition()
+
+
+def noise_seed(seed: int, world: str) -> int:
+    """The seed of the noise of every episode in the world named ``world``, for the run's
+    noise seed ``seed``: an integer in [0, 2**32), the first word of
+    ``numpy.random.SeedSequence([seed, crc32(world)])``.
+
+    By name, not by position in the run, so that world ``u-0007`` meets the same noise
+    however many worlds are asked for (and a built-in or file world has one too).
+
+    >>> noise_seed(0, "u-0007") == noise_seed(0, "u-0007") != noise_seed(1, "u-0007")
+    True
+    """
+    sequence = np.random.SeedSequence([seed, zlib.crc32(world.encode())])
+    return int(sequence.generate_state(1)[0])
 
 
 class _Timed:
@@ -201,25 +275,38 @@ def optimal_length(world: World, goal_tolerance: float) -> float:
 
 
 def run_world(
-    spec: WorldSpec, planners: tuple[str, ...], max_time: float | None = None
+    spec: WorldSpec,
+    planners: tuple[str, ...],
+    max_time: float | None = None,
+    conditions: Sequence[Condition] = (NOISE_FREE,),
+    seed: int = 0,
 ) -> list[Row]:
-    """Build ``spec``'s world, find its shortest path, run each planner there: one row each.
+    """Build ``spec``'s world, find its shortest path, run each planner there under each noise
+    condition: one row each, condition by condition, planner by planner.
 
     The time limit is ``max_time`` s or, by default, the oracle's convergence budget for the
     world (:func:`ifgm_ref.convergence.time_bound`: Bug1's path bound driven slowly); for a
-    BARN world, BARN's 100 s (and its time step and success radius, :data:`barn.SIM`).
+    BARN world, BARN's 100 s (and its time step and success radius, :data:`barn.SIM`). The
+    noise is seeded with :func:`noise_seed` of ``seed`` and the world's name.
     """
     world = spec.build()
+    rng_seed = noise_seed(seed, spec.name)
+    reference: float | None = None
     if spec.kind == "barn":
         sim = dataclasses.replace(barn.SIM, max_time=max_time or barn.SIM.max_time)
         reference = barn.reference_length(str(spec.path_file))
-        return [_episode(spec, world, name, None, sim, reference) for name in planners]
-    sim = SimParams(max_time=max_time or time_bound(world))
-    try:
-        optimal: float | None = optimal_length(world, sim.goal_tolerance)
-    except WorldError:
-        optimal = None
-    return [_episode(spec, world, name, optimal, sim) for name in planners]
+        optimal: float | None = None
+    else:
+        sim = SimParams(max_time=max_time or time_bound(world))
+        try:
+            optimal = optimal_length(world, sim.goal_tolerance)
+        except WorldError:
+            optimal = None
+    return [
+        _episode(spec, c.apply(world, rng_seed), name, optimal, sim, reference, c.columns(rng_seed))
+        for c in conditions
+        for name in planners
+    ]
 
 
 def _episode(
@@ -228,7 +315,8 @@ def _episode(
     planner: str,
     optimal: float | None,
     sim: SimParams,
-    reference: float | None = None,
+    reference: float | None,
+    noise: dict[str, Any],
 ) -> Row:
     timed = _Timed(load_factory(planner)())
     try:
@@ -237,7 +325,7 @@ def _episode(
         return Row(
             planner, spec.name, spec.kind, False, False, ERROR, math.nan, math.nan, optimal,
             None, None, math.nan, timed.decisions, None, f"{type(err).__name__}: {err}",
-            reference, None if reference is None else 0.0,
+            reference, None if reference is None else 0.0, **noise,
         )  # fmt: skip
     result = run.result
     ratio = result.path_length / optimal if result.reached and optimal else None
@@ -261,4 +349,5 @@ def _episode(
         barn_score=None
         if reference is None
         else barn.barn_score(result.reached, result.time_s, reference),
+        **noise,
     )

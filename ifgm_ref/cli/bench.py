@@ -8,16 +8,18 @@ import sys
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from ifgm_ref.cli.common import names, positive_float
+from ifgm_ref.cli.common import names, non_negative_int, positive_float
 from ifgm_ref.errors import ParameterError
 
 if TYPE_CHECKING:
-    from ifgm_ref.bench.tasks import WorldSpec
+    from ifgm_ref.bench.tasks import Condition, WorldSpec
     from ifgm_ref.cli.common import Subcommands
 
 #: What ``ifgm-ref bench`` runs by default: the paper's seven planners on four classes.
 DEFAULT_BENCH_PLANNERS = ("bug1", "bug2", "distbug", "iba", "fgm", "ifgm", "apf")
 DEFAULT_BENCH_CLASSES = ("open", "u", "h", "symmetric")
+#: Worlds per class of ``ifgm-ref bench`` (a sweep's default is ``bench.noise.SWEEP_PER_CLASS``).
+DEFAULT_PER_CLASS = 50
 #: Exit status when the run is interrupted (Ctrl-C): 128 + SIGINT, as a shell reports it.
 EXIT_INTERRUPTED = 130
 
@@ -58,6 +60,7 @@ def add_bench(sub: Subcommands) -> None:
         "barn_score to the results (docs/benchmark.md)",
     )
     _add_run_options(bench)
+    _add_noise_options(bench)
     bench.set_defaults(func=run_bench)
 
 
@@ -75,7 +78,10 @@ def _add_run_options(bench: argparse.ArgumentParser) -> None:
         "paper_ir: the paper's IR sensor scaled to the 0.22 m robot)",
     )
     bench.add_argument(
-        "--per-class", type=int, default=50, metavar="N", help="worlds per class (default 50)"
+        "--per-class",
+        type=int,
+        metavar="N",
+        help=f"worlds per class (default {DEFAULT_PER_CLASS}; 13 with --noise-sweep)",
     )
     bench.add_argument("--seed", type=int, default=0, help="seed of the generated worlds (0)")
     bench.add_argument(
@@ -102,19 +108,50 @@ def _add_run_options(bench: argparse.ArgumentParser) -> None:
     )
 
 
+def _add_noise_options(bench: argparse.ArgumentParser) -> None:
+    """The noise of every episode, the noise sweep, the noise seed."""
+    bench.add_argument(
+        "--noise",
+        metavar="KIND=LEVEL,...",
+        help="run every episode with this noise, e.g. range=0.02,dropout=0.05,odometry=0.01 "
+        "(the kinds and levels of ifgm-ref simulate --noise; docs/benchmark.md#under-noise); "
+        "with --noise-sweep, the noise under every point of the sweep",
+    )
+    bench.add_argument(
+        "--noise-sweep",
+        nargs="?",
+        const="",
+        metavar="KIND=L1:L2:...,...",
+        help="sweep noise levels, one kind at a time, from a noise-free baseline; alone, the "
+        "default sweep range=0.01:0.02:0.05:0.1,dropout=0.05:0.1:0.2:0.5,"
+        "odometry=0.005:0.01:0.02:0.05 (13 worlds per class unless --per-class); writes "
+        "sweep.csv, sweep.md and a plot per kind",
+    )
+    bench.add_argument(
+        "--noise-seed",
+        type=non_negative_int,
+        metavar="N",
+        help="seed of the noise, each world's derived from it and the world's name "
+        "(default: --seed)",
+    )
+
+
 def run_bench(args: argparse.Namespace) -> int:
     """Run the benchmark and write its report; return the exit status."""
     import time
 
+    from ifgm_ref.bench.noise import write_sweep_report
     from ifgm_ref.bench.report import PARTIAL, write_csv, write_report
     from ifgm_ref.bench.runner import run_bench as run_tasks
     from ifgm_ref.bench.tasks import Row
 
     _check_args(args)
+    conditions = _conditions(args)
     specs, source = _specs(args)
     where = f"Dask scheduler {args.scheduler}" if args.scheduler else f"{args.jobs} process(es)"
+    points = f" x {len(conditions)} noise levels" if args.noise_sweep is not None else ""
     print(
-        f"bench: {len(args.planners)} planners x {len(specs)} worlds ({source}) on {where}",
+        f"bench: {len(args.planners)} planners x {len(specs)} worlds{points} ({source}) on {where}",
         file=sys.stderr,
     )
     partial = Path(args.out) / PARTIAL
@@ -128,6 +165,8 @@ def run_bench(args: argparse.Namespace) -> int:
             jobs=args.jobs,
             scheduler=args.scheduler,
             max_time=args.max_time,
+            conditions=conditions,
+            noise_seed=_noise_seed(args),
             progress=None,
             on_rows=lambda done: write_csv(partial, Row.columns(), done, append=True),
         )
@@ -135,8 +174,9 @@ def run_bench(args: argparse.Namespace) -> int:
         print(f"interrupted: the rows so far are in {partial}", file=sys.stderr)
         return EXIT_INTERRUPTED
     wall = time.perf_counter() - begin
-    header = _header(args, source, where, wall, len(rows))
-    written = write_report(rows, specs, args.out, header)
+    header = _header(args, source, where, wall, len(rows), conditions)
+    write = write_report if args.noise_sweep is None else write_sweep_report
+    written = write(rows, specs, args.out, header)
     partial.unlink()
     print(
         f"wrote {', '.join(p.name for p in written)} to {args.out} ({wall:.1f} s)",
@@ -175,16 +215,52 @@ def _specs(args: argparse.Namespace) -> tuple[list[WorldSpec], str]:
         return builtin_specs(), "the built-in worlds"
     if args.world_dir is not None:
         return folder_specs(args.world_dir), f"the world files in {args.world_dir}"
-    if args.per_class < 1:
-        raise ParameterError(f"--per-class must be at least 1, got {args.per_class}")
-    specs = generated_specs(args.classes, args.per_class, args.seed)
+    per_class = _per_class(args)
+    if per_class < 1:
+        raise ParameterError(f"--per-class must be at least 1, got {per_class}")
+    specs = generated_specs(args.classes, per_class, args.seed)
     return specs, (
-        f"{args.per_class} generated worlds per class ({', '.join(args.classes)}), seed {args.seed}"
+        f"{per_class} generated worlds per class ({', '.join(args.classes)}), seed {args.seed}"
     )
 
 
-def _header(args: argparse.Namespace, source: str, where: str, wall: float, episodes: int) -> str:
-    """The report's header: the command, the worlds, the planners, the limit, the machine."""
+def _per_class(args: argparse.Namespace) -> int:
+    """Generated worlds per class: ``--per-class``, else the default of a run or a sweep."""
+    from ifgm_ref.bench.noise import SWEEP_PER_CLASS
+
+    if args.per_class is not None:
+        return int(args.per_class)
+    return DEFAULT_PER_CLASS if args.noise_sweep is None else SWEEP_PER_CLASS
+
+
+def _noise_seed(args: argparse.Namespace) -> int:
+    """The run's noise seed: ``--noise-seed``, else ``--seed``."""
+    return int(args.seed if args.noise_seed is None else args.noise_seed)
+
+
+def _conditions(args: argparse.Namespace) -> list[Condition]:
+    """The noise conditions of ``--noise`` and ``--noise-sweep`` (none: one, noise-free),
+    checked before anything runs."""
+    from ifgm_ref.bench.noise import check_levels, parse_sweep, sweep_conditions
+    from ifgm_ref.bench.tasks import Condition
+    from ifgm_ref.noise import NoiseLevels
+
+    background = NoiseLevels.parse(args.noise or "")
+    if args.noise_sweep is not None:
+        return sweep_conditions(parse_sweep(args.noise_sweep), background)
+    return [Condition(check_levels(background))]
+
+
+def _header(
+    args: argparse.Namespace,
+    source: str,
+    where: str,
+    wall: float,
+    episodes: int,
+    conditions: list[Condition],
+) -> str:
+    """The report's header: the command, the worlds, the planners, the noise, the limit, the
+    machine."""
     import shlex
 
     from ifgm_ref.bench.report import machine
@@ -192,16 +268,44 @@ def _header(args: argparse.Namespace, source: str, where: str, wall: float, epis
     limit = f"{args.max_time:g} s" if args.max_time else "each world's convergence budget"
     if args.barn is not None and not args.max_time:
         limit = "BARN's 100 s"
+    title = "Benchmark against the shortest collision-free path"
+    if args.noise_sweep is not None:
+        title = "Benchmark under noise: a sweep of noise levels"
     return "\n".join(
         [
-            "# Benchmark against the shortest collision-free path",
+            f"# {title}",
             "",
             f"Generated by `ifgm-ref {shlex.join(args.argv)}`; do not edit.",
             "",
             f"- worlds: {source}",
             f"- planners: {', '.join(args.planners)}",
+            *_noise_lines(args, conditions),
             f"- episode time limit: {limit}",
             f"- ran on: {where}; {machine()}",
             f"- wall time: {wall:.1f} s for {episodes} episodes",
         ]
     )
+
+
+def _noise_lines(args: argparse.Namespace, conditions: list[Condition]) -> list[str]:
+    """The header's lines on the noise: its levels or the sweep's, and its seed."""
+    from ifgm_ref.bench.noise import level_label
+
+    seed = (
+        f"- noise seed: {_noise_seed(args)} (each world's noise is seeded from it and the "
+        "world's name: the rows' `noise_seed`)"
+    )
+    if args.noise_sweep is None:
+        levels = conditions[0].levels.tags()
+        return [f"- noise: {levels}", seed] if levels != "none" else ["- noise: none"]
+    swept: dict[str, list[str]] = {}
+    for c in conditions[1:]:
+        swept.setdefault(str(c.kind), []).append(level_label(str(c.kind), c.level or 0.0))
+    background = conditions[0].levels.tags()
+    return [
+        "- noise sweep: "
+        + "; ".join(f"{kind} {', '.join(levels)}" for kind, levels in swept.items())
+        + "; one kind at a time, from the noise-free baseline (level 0)"
+        + ("" if background == "none" else f", all over `--noise {background}`"),
+        seed,
+    ]
