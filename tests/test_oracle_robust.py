@@ -226,7 +226,7 @@ def test_the_reference_ifgm_passes_a_short_robust_run() -> None:
 @pytest.mark.parametrize("planner", ["ifgm", "iba"])
 def test_the_reference_planners_pass_the_robust_profile(planner: str) -> None:
     """IFGM and IBA keep every promise at the levels they promise (docs/oracle.md,
-    'Robustness': the measured tallies; 2-3 minutes each on 2 cores)."""
+    'Robustness': the measured tallies; 30-70 s each on 2 cores)."""
     report = check_planner(planner, profile="robust", checks=SIMULATION, artifacts=None, jobs=2)
     assert report.ok, report.text()
     assert Status.FAILED not in {r.status for r in report.results}
