@@ -9,6 +9,7 @@ from typing import TYPE_CHECKING, TextIO
 
 from ifgm_ref.cli.common import positive_float
 from ifgm_ref.errors import ParameterError
+from ifgm_ref.noise import KINDS
 
 if TYPE_CHECKING:
     from ifgm_ref.cli.common import Subcommands
@@ -20,7 +21,8 @@ def add_oracle(sub: Subcommands) -> None:
         "oracle",
         help="check a planner against the oracle's properties (docs/oracle.md)",
         description="Run the oracle's property checks against a built-in or Python planner "
-        "(--planner) or a program speaking the JSON-lines protocol (--cmd). Prints each "
+        "(--planner) or a program speaking the JSON-lines protocol (--cmd), noise-free or under "
+        "noise (--profile robust, --noise). Prints each "
         "check's line on stderr as it finishes, then the report on stdout: every check's line "
         "and a summary (only the summary when stdout is the terminal that showed the lines). "
         "Exit status 0 when every check passed (or failed as expected), 1 otherwise. "
@@ -31,9 +33,17 @@ def add_oracle(sub: Subcommands) -> None:
     oracle.add_argument(
         "--profile",
         default="quick",
-        choices=("quick", "standard", "thorough", "default"),
-        help="examples per check: quick 50 (the default), standard 200, thorough 1000 "
-        "('default' is the old name of standard)",
+        choices=("quick", "standard", "thorough", "robust", "default"),
+        help="examples per check: quick 50 (the default), standard 200, thorough 1000; robust: "
+        "50 under the noise levels the planner promises ('default' is the old name of "
+        "standard)",
+    )
+    oracle.add_argument(
+        "--noise",
+        metavar="KIND=LEVEL,...",
+        help=f"check under these noise levels, in any profile ({', '.join(KINDS)}; e.g. "
+        "range=0.02,dropout=0.05,odometry=0.01): collisions fail at once, convergence is "
+        "counted (docs/oracle.md, 'Robustness')",
     )
     oracle.add_argument(
         "--equations",
@@ -115,6 +125,7 @@ def run_oracle(args: argparse.Namespace) -> int:
             progress=True,
             stop_on_failure=args.stop_on_failure,
             jobs=args.jobs,
+            noise=args.noise,
         )
     finally:
         impl.close()

@@ -2,8 +2,10 @@
 
 A :class:`Check` draws an example with a Hypothesis strategy and runs its test, which raises
 :class:`CheckFailed` when the implementation breaks the property; a :class:`Recorder` counts
-the examples and keeps the :class:`Evidence` of the last failure for the report. The checks
-themselves are registered in :data:`ifgm_ref.oracle.checks.CHECKS`.
+the examples and keeps the :class:`Evidence` of the last failure for the report. Under noise a
+check is absolute (the same test on noisy examples), statistical (it has a ``sample``: its
+misses are counted, :mod:`ifgm_ref.oracle.robust`), or does not apply (``noisy_applies``).
+The checks themselves are registered in :data:`ifgm_ref.oracle.checks.CHECKS`.
 """
 
 from __future__ import annotations
@@ -15,11 +17,13 @@ from typing import Any
 
 from hypothesis import strategies as st
 
+from ifgm_ref.noise import NoiseLevels
 from ifgm_ref.oracle.implementation import Implementation
 from ifgm_ref.simulator import Run
 from ifgm_ref.world import World
+from ifgm_ref.worldgen.draws import Draw
 
-__all__ = ["Check", "CheckFailed", "Evidence", "Kind", "Recorder"]
+__all__ = ["Check", "CheckFailed", "Evidence", "Kind", "PlannerFault", "Recorder"]
 
 
 class Kind(StrEnum):
@@ -31,6 +35,11 @@ class Kind(StrEnum):
 
 class CheckFailed(AssertionError):
     """An implementation broke a property; the message says how."""
+
+
+class PlannerFault(CheckFailed):
+    """The planner raised or answered an invalid command: a failure in every check, never a
+    miss that a statistical check counts."""
 
 
 @dataclass
@@ -45,16 +54,29 @@ class Evidence:
 
 @dataclass
 class Recorder:
-    """Counts the examples a check ran and keeps the evidence of the last failure."""
+    """Counts the examples a check ran and keeps the evidence of the last failure (and a
+    statistical check's tally: ``summary``)."""
 
     examples: int = 0
     worlds: set[World] = field(default_factory=set)
     evidence: Evidence | None = None
+    summary: str = ""
+
+
+def _applies_under_any_noise(levels: NoiseLevels) -> str | None:
+    return None
 
 
 @dataclass(frozen=True)
 class Check:
-    """One property: its name, its sentence, its example strategy and its test."""
+    """One property: its name, its sentence, its example strategy and its test, and whether
+    it applies to an implementation.
+
+    Under noise, ``sample`` (if any) makes the check statistical: it builds one example from
+    seeded draws (a world generator of :mod:`ifgm_ref.worldgen.classes`); and
+    ``noisy_applies`` says why the property means nothing at some noise levels (``None``: it
+    applies).
+    """
 
     name: str
     sentence: str
@@ -62,3 +84,5 @@ class Check:
     strategy: Callable[[Implementation], st.SearchStrategy[Any]]
     test: Callable[[Implementation, Any, Recorder], None]
     applies: Callable[[Implementation], str | None]
+    sample: Callable[[Draw], Any] | None = None
+    noisy_applies: Callable[[NoiseLevels], str | None] = _applies_under_any_noise

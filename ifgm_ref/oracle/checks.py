@@ -52,13 +52,13 @@ from dataclasses import replace
 
 import numpy as np
 import shapely
-from hypothesis import note
+from hypothesis import currently_in_test_context, note
 from hypothesis import strategies as st
 from numpy.typing import NDArray
 
 from ifgm_ref.convergence import time_bound
 from ifgm_ref.errors import ImplementationError
-from ifgm_ref.oracle.check_types import Check, CheckFailed, Evidence, Kind, Recorder
+from ifgm_ref.oracle.check_types import Check, CheckFailed, Evidence, Kind, PlannerFault, Recorder
 from ifgm_ref.oracle.equation_checks import (
     EQUATION_TOL,
     NO_EQUATIONS,
@@ -68,6 +68,7 @@ from ifgm_ref.oracle.equation_checks import (
 from ifgm_ref.oracle.implementation import Implementation
 from ifgm_ref.oracle.metamorphic import is_power_of_two, scale_params, scale_sim, scale_world
 from ifgm_ref.oracle.recording import RecordingPlanner, replay
+from ifgm_ref.oracle.robust import rigid_motion_unmeasurable
 from ifgm_ref.oracle.strategies import (
     SOLVABLE_CLASSES,
     any_solvable_worlds,
@@ -83,7 +84,7 @@ from ifgm_ref.protocol import Command, Planner
 from ifgm_ref.shapes import circle
 from ifgm_ref.simulator import Run, StopReason, TraceStep, simulate
 from ifgm_ref.world import Polygon, World
-from ifgm_ref.worldgen.classes import placed
+from ifgm_ref.worldgen.classes import GENERATORS, enclosed_world, gap_wall, placed
 
 __all__ = [
     "CHECKS",
@@ -159,19 +160,20 @@ def episode(
     recorder.worlds.add(world)
     sim = sim or SimParams(max_time=time_bound(world))
     max_time = sim.max_time
-    note(f"world: {world}")
+    if currently_in_test_context():  # not in a statistical check's seeded examples
+        note(f"world: {world}")
     try:
         run = simulate(world, planner or impl.factory(), sim, params=params)
     except (ImplementationError, CheckFailed):
         raise
     except Exception as err:  # the planner crashed: that is a failure of this example
         recorder.evidence = Evidence([world], [], max_time)
-        raise CheckFailed(
+        raise PlannerFault(
             f"the planner raised {type(err).__name__}: {err} [{_where(impl, world)}]"
         ) from err
     recorder.evidence = Evidence([world], [run], max_time)
     if run.result.stop_reason == StopReason.INVALID_COMMAND:
-        raise CheckFailed(f"invalid command: {run.result.detail} [{_where(impl, world)}]")
+        raise PlannerFault(f"invalid command: {run.result.detail} [{_where(impl, world)}]")
     return run
 
 
@@ -418,12 +420,13 @@ def _gap_test(impl: Implementation, example: tuple[World, Polygon], rec: Recorde
     for step in run.trace[:-1]:
         if step.heading_cmd is None:  # no command recorded at this sample
             continue
-        to_goal = math.atan2(world.goal.y - step.y, world.goal.x - step.x)
+        # Bearings from where the planner was told it is (odometry noise moves it off the pose).
+        x = step.x if step.believed_x is None else step.believed_x
+        y = step.y if step.believed_y is None else step.believed_y
+        to_goal = math.atan2(world.goal.y - y, world.goal.x - x)
         turn = math.remainder(step.heading_cmd - to_goal, 2.0 * math.pi)
         if abs(turn) > FIRST_TURN:
-            side = math.remainder(
-                math.atan2(centre.y - step.y, centre.x - step.x) - to_goal, 2.0 * math.pi
-            )
+            side = math.remainder(math.atan2(centre.y - y, centre.x - x) - to_goal, 2.0 * math.pi)
             if turn * side < 0.0:
                 raise CheckFailed(
                     f"first turn off the goal bearing at t={step.t:.1f} s is "
@@ -474,6 +477,7 @@ def _convergence_check(world_class: str) -> Check:
         lambda impl: SOLVABLE_CLASSES[world_class](),
         _converges_test,
         applies,
+        sample=GENERATORS[world_class],
     )
 
 
@@ -512,6 +516,7 @@ CHECKS: dict[str, Check] = {
             lambda impl: enclosed_worlds(),
             _unreachable_test,
             _unreachable_applies,
+            sample=enclosed_world,
         ),
         Check(
             "rigid_motion_invariant",
@@ -520,6 +525,7 @@ CHECKS: dict[str, Check] = {
             lambda impl: st.tuples(_promised_worlds(impl), placements()),
             _invariance_test,
             _always,
+            noisy_applies=rigid_motion_unmeasurable,
         ),
         Check(
             "scale_invariant",
@@ -544,6 +550,7 @@ CHECKS: dict[str, Check] = {
             lambda impl: gap_walls(),
             _gap_test,
             _gaps_apply,
+            sample=gap_wall,
         ),
         Check(
             "deterministic",

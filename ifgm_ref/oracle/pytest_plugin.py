@@ -9,9 +9,10 @@ or against a program in any language that speaks the JSON-lines protocol
 
     pytest --pyargs ifgm_ref.oracle --ifgm-cmd "./my_planner --flag"
 
-The pytest header names the implementation, the profile and the promises; a missing or
-unimportable implementation stops the run with a usage error before any test runs; the
-terminal summary says how much was checked.
+The pytest header names the implementation, the profile and the promises (and, in a
+robustness run, ``--ifgm-profile robust`` or ``--ifgm-noise``, the noise levels checked and
+promised); a missing or unimportable implementation stops the run with a usage error before
+any test runs; the terminal summary says how much was checked.
 """
 
 from __future__ import annotations
@@ -23,14 +24,17 @@ import pytest
 
 from ifgm_ref.errors import IfgmRefError
 from ifgm_ref.oracle.checks import CHECKS
-from ifgm_ref.oracle.implementation import PROMISES, Implementation, load_equations
+from ifgm_ref.oracle.implementation import PROMISES, Implementation, Promises, load_equations
 from ifgm_ref.oracle.runner import (
     PROFILE_ALIASES,
     PROFILES,
     CheckResult,
+    Profile,
     Status,
+    noise_tags,
     profile_named,
     run_check,
+    with_noise,
 )
 
 #: The test module whose items need an implementation.
@@ -54,8 +58,14 @@ def pytest_addoption(parser: pytest.Parser) -> None:
         "--ifgm-profile",
         default="quick",
         choices=[*PROFILES, *PROFILE_ALIASES],
-        help="examples per check: quick 50 (default), standard 200, thorough 1000 "
-        "('default' is the old name of standard)",
+        help="examples per check: quick 50 (default), standard 200, thorough 1000; robust: 50 "
+        "under the noise levels the implementation promises ('default' is the old name of "
+        "standard)",
+    )
+    group.addoption(
+        "--ifgm-noise",
+        metavar="KIND=LEVEL,...",
+        help="check under these noise levels, in any profile (docs/oracle.md, 'Robustness')",
     )
     group.addoption(
         "--ifgm-promises",
@@ -95,11 +105,8 @@ class OracleSession:
         self.config = config
         self.results: list[CheckResult] = []
         self.expected = _expected_failures(config.getoption("ifgm_xfails"))
+        self.profile = _profile(config)
         self.implementation = _implementation(config)
-
-    @property
-    def profile(self) -> str:
-        return str(self.config.getoption("ifgm_profile"))
 
     def run(self, check: str) -> CheckResult:
         """Run ``check`` against the implementation under test."""
@@ -157,6 +164,14 @@ def _implementation(config: pytest.Config) -> Implementation:
         raise pytest.UsageError(f"ifgm-ref oracle: cannot load the implementation: {err}") from err
 
 
+def _profile(config: pytest.Config) -> Profile:
+    """The profile of ``--ifgm-profile``, with the levels of ``--ifgm-noise`` if given."""
+    try:
+        return with_noise(config.getoption("ifgm_profile"), config.getoption("ifgm_noise"))
+    except IfgmRefError as err:
+        raise pytest.UsageError(f"ifgm-ref oracle: --ifgm-noise: {err}") from err
+
+
 def _suite_requested(items: list[pytest.Item]) -> bool:
     return any(item.path.name == SUITE for item in items)
 
@@ -185,14 +200,21 @@ def pytest_report_header(config: pytest.Config) -> list[str]:
     spec, cmd = config.getoption("ifgm_impl"), config.getoption("ifgm_cmd")
     if spec is None and cmd is None:
         return []
-    profile = profile_named(config.getoption("ifgm_profile"))
+    try:
+        profile = _profile(config)
+    except pytest.UsageError:  # said once the suite is collected
+        profile = profile_named(config.getoption("ifgm_profile"))
     promises = config.getoption("ifgm_promises") or (spec if spec in PROMISES else None)
-    return [
+    lines = [
         f"ifgm-ref oracle: implementation {spec or 'cmd: ' + cmd}",
         f"ifgm-ref oracle: profile {profile.name} ({profile.max_examples} examples per check), "
         f"promises {promises or 'default'}, equations {config.getoption('ifgm_equations')}, "
         f"artifacts {config.getoption('ifgm_artifacts')}",
     ]
+    checked, promised = noise_tags(profile, PROMISES.get(promises or "ifgm", Promises()))
+    if checked is not None:
+        lines.append(f"ifgm-ref oracle: noise {checked} checked, {promised} promised")
+    return lines
 
 
 def pytest_terminal_summary(terminalreporter: Any, exitstatus: int, config: pytest.Config) -> None:

@@ -6,11 +6,14 @@
 ``expected_failed_checks`` with a reason), unexpectedly passed, not applicable, or error (the
 implementation crashed, hung or answered garbage: it could not be checked). A failure leaves a
 folder under ``artifacts``: the shrunk counterexample as a world file, the trace (CSV), a
-plot, and a ``report.md`` that says how to replay it with ``ifgm-ref simulate``.
+plot, and a ``report.md`` that says how to replay it with ``ifgm-ref simulate``. Under noise
+(the ``robust`` profile, or ``noise=``) the same checks run on noisy worlds, and those about
+convergence count successes instead (:mod:`ifgm_ref.oracle.robust`).
 """
 
 from __future__ import annotations
 
+import functools
 import re
 import sys
 import time
@@ -23,10 +26,11 @@ from pathlib import Path
 from types import TracebackType
 from typing import Any
 
-from hypothesis import HealthCheck, Phase, given, seed, settings
+from hypothesis import given, seed
 from hypothesis.errors import Flaky
 
 from ifgm_ref.errors import ImplementationError
+from ifgm_ref.noise import NoiseLevels
 from ifgm_ref.oracle.checks import (
     CHECKS,
     Check,
@@ -36,72 +40,17 @@ from ifgm_ref.oracle.checks import (
     Recorder,
 )
 from ifgm_ref.oracle.implementation import Implementation, Promises, promises_of
+from ifgm_ref.oracle.profiles import (
+    PROFILE_ALIASES,
+    PROFILES,
+    Profile,
+    noise_tags,
+    profile_named,
+    with_noise,
+)
+from ifgm_ref.oracle.robust import noisy_examples, run_statistical
 from ifgm_ref.protocol import Planner
 from ifgm_ref.worldfile import save_world
-
-
-@dataclass(frozen=True)
-class Profile:
-    """How hard to look: examples per check, derandomized draws, and whether a failing
-    example is shrunk (to the simplest world that still fails) before it is reported.
-
-    ``seed`` draws the examples from that seed instead (random, but repeatable): how the
-    oracle's power over many draws is measured (``benchmarks/bench_oracle_power.py``).
-    """
-
-    name: str
-    max_examples: int
-    derandomize: bool = True
-    shrink: bool = True
-    seed: int | None = None
-
-    def settings(self) -> settings:
-        """Hypothesis settings of this profile (no deadline, no example database)."""
-        phases = [Phase.explicit, Phase.reuse, Phase.generate]
-        return settings(
-            max_examples=self.max_examples,
-            phases=[*phases, Phase.shrink] if self.shrink else phases,
-            derandomize=self.derandomize and self.seed is None,
-            deadline=None,
-            database=None,
-            print_blob=False,
-            # One counterexample per check: a check that fails in two ways (two raise sites)
-            # would otherwise end in an ExceptionGroup, which is no verdict.
-            report_multiple_bugs=False,
-            suppress_health_check=[
-                HealthCheck.too_slow,
-                HealthCheck.filter_too_much,
-                HealthCheck.data_too_large,
-            ],
-        )
-
-
-#: The profiles, by examples per check: ``quick`` 50 (the default, for CI), ``standard`` 200,
-#: ``thorough`` 1000. All are derandomized: the same implementation gives the same verdicts on
-#: every run.
-PROFILES: dict[str, Profile] = {
-    p.name: p for p in (Profile("quick", 50), Profile("standard", 200), Profile("thorough", 1000))
-}
-#: Old profile names that still work: ``default`` was ``standard``'s name (it was never the
-#: default: ``quick`` is).
-PROFILE_ALIASES: dict[str, str] = {"default": "standard"}
-
-
-def profile_named(name: str) -> Profile:
-    """The profile called ``name`` (or an old alias of it, :data:`PROFILE_ALIASES`).
-
-    >>> profile_named("default").name
-    'standard'
-    >>> profile_named("fast")
-    Traceback (most recent call last):
-    ...
-    ifgm_ref.errors.ImplementationError: unknown profile 'fast'; known: quick, standard, thorough
-    """
-    try:
-        return PROFILES[PROFILE_ALIASES.get(name, name)]
-    except KeyError:
-        known = ", ".join(PROFILES)
-        raise ImplementationError(f"unknown profile {name!r}; known: {known}") from None
 
 
 class Status(StrEnum):
@@ -120,7 +69,8 @@ class CheckResult:
     """The outcome of one check.
 
     ``examples`` counts the examples run (shrinking included), ``worlds`` the distinct worlds
-    simulated; ``message`` says what failed, or why the check did not apply; ``artifacts`` is
+    simulated; ``message`` says what failed, or why the check did not apply (or, for a
+    statistical check that passed, its tally: :mod:`ifgm_ref.oracle.robust`); ``artifacts`` is
     the folder holding the counterexample of a failure.
     """
 
@@ -141,7 +91,7 @@ class CheckResult:
         """One line for a terminal."""
         counts = f"{self.examples} examples, {self.worlds} worlds, {self.seconds:.1f} s"
         text = f"{self.status.upper():<19} {self.check:<26} {counts}"
-        if self.message and self.status is not Status.PASSED:
+        if self.message:
             text += f"\n    {self.message}"
         if self.artifacts is not None:
             text += f"\n    counterexample: {self.artifacts}"
@@ -150,11 +100,19 @@ class CheckResult:
 
 @dataclass(frozen=True)
 class Report:
-    """Every check's result for one implementation under one profile."""
+    """Every check's result for one implementation under one profile.
+
+    A robustness run also says which noise levels it checked (``noise``, as
+    :meth:`~ifgm_ref.noise.NoiseLevels.tags` writes them: ``"none"`` when the implementation
+    promised none) and which the implementation promises (``promised``); ``noise`` is ``None``
+    for a noise-free run.
+    """
 
     implementation: str
     profile: str
     results: tuple[CheckResult, ...] = field(default_factory=tuple)
+    noise: str | None = None
+    promised: str = "none"
 
     @property
     def ok(self) -> bool:
@@ -174,8 +132,11 @@ class Report:
         for r in self.results:
             counts[r.status] = counts.get(r.status, 0) + 1
         verdicts = ", ".join(f"{n} {status}" for status, n in counts.items())
+        how = f"profile {self.profile}"
+        if self.noise is not None:
+            how += f", noise {self.noise} checked, {self.promised} promised"
         return (
-            f"{self.implementation} (profile {self.profile}): {len(ran)} properties checked, "
+            f"{self.implementation} ({how}): {len(ran)} properties checked, "
             f"{sum(r.examples for r in ran)} examples, {sum(r.worlds for r in ran)} worlds: "
             f"{verdicts}"
         )
@@ -200,24 +161,16 @@ def run_check(
 ) -> CheckResult:
     """Run one check against ``impl``; see :func:`check_planner`."""
     profile = profile_named(profile) if isinstance(profile, str) else profile
-    reason = check.applies(impl)
+    levels = profile.levels(impl.promises) if check.kind is Kind.SIMULATION else None
+    reason = check.applies(impl) or _noise_reason(check, profile, levels)
     if reason is not None:
         return CheckResult(check.name, Status.NOT_APPLICABLE, message=reason)
     recorder = Recorder()
-
-    @profile.settings()
-    @given(check.strategy(impl))
-    def prop(example: Any) -> None:
-        check.test(impl, example, recorder)
-        if progress is not None:
-            progress(1)
-
-    if profile.seed is not None:
-        prop = seed(profile.seed)(prop)
+    explore = _explorer(check, impl, profile, levels, recorder, progress)
     started = time.perf_counter()
     failure: Exception | None = None
     try:
-        prop()
+        explore()
     except (CheckFailed, Flaky) as err:
         failure = err
     except ImplementationError as err:
@@ -236,7 +189,7 @@ def run_check(
     if failure is None:
         if expected_failure is not None:
             return _result(*common, Status.UNEXPECTED_PASS, f"expected to fail: {expected_failure}")
-        return _result(*common, Status.PASSED, "")
+        return _result(*common, Status.PASSED, recorder.summary)
     message = str(failure).split("\n")[0]
     if isinstance(failure, Flaky):
         message = f"nondeterministic: a failing example passed when replayed ({message})"
@@ -248,6 +201,46 @@ def run_check(
         message = f"{message} (expected: {expected_failure})"
         return _result(*common, Status.EXPECTED_FAILURE, message, folder)
     return _result(*common, Status.FAILED, message, folder)
+
+
+def _noise_reason(check: Check, profile: Profile, levels: NoiseLevels | None) -> str | None:
+    """Why ``check`` does not apply in ``profile``'s robustness run at ``levels``, if it
+    does not (``None`` for a noise-free run)."""
+    if check.kind is not Kind.SIMULATION or not profile.is_robustness_run:
+        return None
+    if levels is None:
+        return "it promises no noise levels (Promises.noise); give some to check: --noise"
+    reason = check.noisy_applies(levels)
+    return None if reason is None else f"not under noise {levels.tags()}: {reason}"
+
+
+def _explorer(
+    check: Check,
+    impl: Implementation,
+    profile: Profile,
+    levels: NoiseLevels | None,
+    recorder: Recorder,
+    progress: Callable[[int], None] | None,
+) -> Callable[[], None]:
+    """What runs ``check``'s examples: Hypothesis (noisy examples at ``levels``, if any), or
+    for a statistical check under noise, its seeded sample counted
+    (:func:`~ifgm_ref.oracle.robust.run_statistical`)."""
+    if levels is not None and check.sample is not None:
+        first = profile.seed or 0
+        n = profile.max_examples
+        return functools.partial(run_statistical, check, impl, levels, n, first, recorder, progress)
+    examples = check.strategy(impl)
+    if levels is not None:
+        examples = noisy_examples(examples, levels)
+
+    @profile.settings()
+    @given(examples)
+    def prop(example: Any) -> None:
+        check.test(impl, example, recorder)
+        if progress is not None:
+            progress(1)
+
+    return prop if profile.seed is None else seed(profile.seed)(prop)
 
 
 def crash(err: BaseException, *, outer: TracebackType | None = None) -> str:
@@ -410,6 +403,7 @@ def check_planner(
     progress: bool = False,
     stop_on_failure: bool = False,
     jobs: int = 1,
+    noise: NoiseLevels | str | None = None,
 ) -> Report:
     """Check a planner implementation against every property it promises.
 
@@ -418,14 +412,12 @@ def check_planner(
     planner : callable, Implementation or str
         A factory returning a new planner (a class will do), an :class:`Implementation`, or a
         spec: a built-in name or ``module:attribute``.
-    profile : {"quick", "standard", "thorough"} or Profile, default "quick"
-        Examples per check: 50, 200 or 1000; ``"default"`` is the old name of ``"standard"``.
+    profile : {"quick", "standard", "thorough", "robust"} or Profile, default "quick"
+        Examples per check: 50, 200, 1000, or 50 under the noise levels the planner promises.
     promises : Promises or str, optional
-        What the planner promises, or the name of the built-in planner whose promises it
-        shares; default: IFGM's (or the built-in planner's own, for a built-in spec).
+        What it promises, or a built-in planner's name (default: a built-in's own, else IFGM's).
     equations : object, optional
-        A module or object exposing the reference's equation functions
-        (``eq1_gap_midpoint`` ...) to check eqs. (1)-(4).
+        A module or object exposing ``eq1_gap_midpoint`` ... to check eqs. (1)-(4).
     expected_failed_checks : mapping of str to str, optional
         ``{check: reason}``: checks known to fail; they report "expected failure".
     checks : iterable of str, optional
@@ -439,28 +431,29 @@ def check_planner(
     stop_on_failure : bool, default False
         Stop after the first check that fails or errors (the rest are not reported).
     jobs : int, default 1
-        Run the simulation checks in this many worker processes (each check is drawn from
-        its own derandomized seed, so the verdicts do not depend on ``jobs``). The planner
-        factory must then be picklable (a class, a module-level function,
-        :class:`~ifgm_ref.transport.external.ExternalFactory`); a program under test is started
-        once per worker.
+        Run the simulation checks in this many processes (the verdicts do not depend on it);
+        the planner factory must then pickle (a class, a module-level function, an
+        ``ExternalFactory``: a program under test is started once per worker).
+    noise : NoiseLevels or str, optional
+        Check under these noise levels (``"range=0.02,dropout=0.05"``), in any profile,
+        instead of those promised (:mod:`ifgm_ref.oracle.robust`).
 
     Returns
     -------
     Report
-        One :class:`CheckResult` per check, and a :meth:`Report.summary`.
+        One :class:`CheckResult` per check, the noise levels checked, and a summary.
     """
     impl = _implementation(planner, promises, equations)
     expected = dict(expected_failed_checks or {})
-    names, profile = _arguments(checks, expected, profile, jobs)
+    names, profile = _arguments(checks, expected, with_noise(profile, noise), jobs)
     done = _run_checks(names, impl, profile, artifacts, expected, jobs, progress, stop_on_failure)
-    report = Report(impl.label, profile.name, done)
+    report = Report(impl.label, profile.name, done, *noise_tags(profile, impl.promises))
     _act_on(report, on_fail)
     return report
 
 
 def _arguments(
-    checks: Iterable[str] | None, expected: Mapping[str, str], profile: Profile | str, jobs: int
+    checks: Iterable[str] | None, expected: Mapping[str, str], profile: Profile, jobs: int
 ) -> tuple[list[str], Profile]:
     """Validate :func:`check_planner`'s arguments; return the names of the checks to run and
     the profile."""
@@ -468,7 +461,6 @@ def _arguments(
     unknown = [n for n in [*names, *expected] if n not in CHECKS]
     if unknown:
         raise ImplementationError(f"unknown check(s) {unknown}; known: {', '.join(CHECKS)}")
-    profile = profile_named(profile) if isinstance(profile, str) else profile
     if isinstance(jobs, bool) or not isinstance(jobs, int) or jobs < 1:
         raise ImplementationError(f"`jobs` must be an integer >= 1, got {jobs!r}")
     return names, profile
@@ -537,6 +529,8 @@ __all__ = [
     "Report",
     "Status",
     "check_planner",
+    "noise_tags",
     "profile_named",
     "run_check",
+    "with_noise",
 ]

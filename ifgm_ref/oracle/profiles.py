@@ -1,0 +1,158 @@
+"""The oracle's profiles: how hard it looks (examples per check) and under which noise.
+
+``quick`` (50 examples per check, the default), ``standard`` (200) and ``thorough`` (1000) are
+noise-free; ``robust`` runs the quick profile's 50 under the noise levels the implementation
+promises (:attr:`~ifgm_ref.oracle.implementation.Promises.noise`), and :func:`with_noise` puts
+given levels on any profile: a robustness run (:mod:`ifgm_ref.oracle.robust`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+from hypothesis import HealthCheck, Phase, settings
+
+from ifgm_ref.errors import ImplementationError
+from ifgm_ref.noise import NoiseLevels
+from ifgm_ref.oracle.implementation import Promises
+from ifgm_ref.oracle.robust import is_noisy
+
+__all__ = [
+    "PROFILES",
+    "PROFILE_ALIASES",
+    "Profile",
+    "noise_tags",
+    "profile_named",
+    "with_noise",
+]
+
+
+@dataclass(frozen=True)
+class Profile:
+    """How hard to look: examples per check, derandomized draws, and whether a failing
+    example is shrunk (to the simplest world that still fails) before it is reported.
+
+    ``seed`` draws the examples from that seed instead (random, but repeatable): how the
+    oracle's power over many draws is measured (``benchmarks/bench_oracle_power.py``).
+
+    ``noise`` puts those noise levels in every world simulated; a ``robust`` profile without
+    its own levels checks those the implementation promises (:meth:`levels`). Either makes a
+    robustness run (:mod:`ifgm_ref.oracle.robust`).
+    """
+
+    name: str
+    max_examples: int
+    derandomize: bool = True
+    shrink: bool = True
+    seed: int | None = None
+    noise: NoiseLevels | None = None
+    robust: bool = False
+
+    @property
+    def is_robustness_run(self) -> bool:
+        """Whether it checks under noise (its own levels, or the promised ones)."""
+        return self.robust or self.noise is not None
+
+    def levels(self, promises: Promises) -> NoiseLevels | None:
+        """The noise levels it checks an implementation of ``promises`` at: its own, else for
+        a robust profile the promised ones; ``None``: none (a noise-free run, or nothing
+        promised).
+
+        >>> from ifgm_ref.oracle.implementation import REFERENCE_NOISE
+        >>> promised = Promises(noise=REFERENCE_NOISE)
+        >>> PROFILES["robust"].levels(promised).tags()
+        'range=0.02,dropout=0.05,odometry=0.01'
+        >>> PROFILES["quick"].levels(promised) is None
+        True
+        """
+        levels = self.noise if self.noise is not None or not self.robust else promises.noise
+        return levels if levels is not None and is_noisy(levels) else None
+
+    def settings(self) -> settings:
+        """Hypothesis settings of this profile (no deadline, no example database)."""
+        phases = [Phase.explicit, Phase.reuse, Phase.generate]
+        return settings(
+            max_examples=self.max_examples,
+            phases=[*phases, Phase.shrink] if self.shrink else phases,
+            derandomize=self.derandomize and self.seed is None,
+            deadline=None,
+            database=None,
+            print_blob=False,
+            # One counterexample per check: a check that fails in two ways (two raise sites)
+            # would otherwise end in an ExceptionGroup, which is no verdict.
+            report_multiple_bugs=False,
+            suppress_health_check=[
+                HealthCheck.too_slow,
+                HealthCheck.filter_too_much,
+                HealthCheck.data_too_large,
+            ],
+        )
+
+
+#: The profiles, by examples per check: ``quick`` 50 (the default, for CI), ``standard`` 200,
+#: ``thorough`` 1000; ``robust``, the quick profile's 50 under the noise levels the
+#: implementation promises. All are derandomized: the same implementation gives the same
+#: verdicts on every run.
+PROFILES: dict[str, Profile] = {
+    p.name: p
+    for p in (
+        Profile("quick", 50),
+        Profile("standard", 200),
+        Profile("thorough", 1000),
+        Profile("robust", 50, robust=True),
+    )
+}
+#: Old profile names that still work: ``default`` was ``standard``'s name (it was never the
+#: default: ``quick`` is).
+PROFILE_ALIASES: dict[str, str] = {"default": "standard"}
+
+
+def profile_named(name: str) -> Profile:
+    """The profile called ``name`` (or an old alias of it, :data:`PROFILE_ALIASES`).
+
+    >>> profile_named("default").name
+    'standard'
+    >>> profile_named("fast")  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    ifgm_ref.errors.ImplementationError: unknown profile 'fast'; known: quick, standard, ...
+    """
+    try:
+        return PROFILES[PROFILE_ALIASES.get(name, name)]
+    except KeyError:
+        known = ", ".join(PROFILES)
+        raise ImplementationError(f"unknown profile {name!r}; known: {known}") from None
+
+
+def with_noise(profile: Profile | str, noise: NoiseLevels | str | None) -> Profile:
+    """``profile`` (or the one named) checking at the noise levels ``noise``, if given
+    (``"KIND=LEVEL,..."`` as :meth:`~ifgm_ref.noise.NoiseLevels.parse` reads it).
+
+    >>> with_noise("quick", "dropout=0.1").noise.tags()
+    'dropout=0.1'
+    >>> with_noise("quick", "none")
+    Traceback (most recent call last):
+    ...
+    ifgm_ref.errors.ImplementationError: noise 'none' turns no noise on: leave it out
+    """
+    profile = profile_named(profile) if isinstance(profile, str) else profile
+    if noise is None:
+        return profile
+    levels = NoiseLevels.parse(noise) if isinstance(noise, str) else noise
+    if not is_noisy(levels):
+        raise ImplementationError(f"noise {noise!r} turns no noise on: leave it out")
+    return replace(profile, noise=levels)
+
+
+def noise_tags(profile: Profile, promises: Promises) -> tuple[str | None, str]:
+    """The noise levels ``profile`` checks an implementation of ``promises`` at (``None`` in
+    a noise-free run) and those it promises, as :meth:`~ifgm_ref.noise.NoiseLevels.tags`.
+
+    >>> noise_tags(PROFILES["robust"], Promises())
+    ('none', 'none')
+    >>> noise_tags(PROFILES["quick"], Promises(noise=NoiseLevels(range=0.02, odometry=0.01)))
+    (None, 'range=0.02,odometry=0.01')
+    """
+    levels = profile.levels(promises)
+    checked = (levels or NoiseLevels()).tags() if profile.is_robustness_run else None
+    return checked, (promises.noise or NoiseLevels()).tags()
