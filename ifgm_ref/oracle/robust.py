@@ -59,6 +59,7 @@ from __future__ import annotations
 import math
 from collections import Counter
 from collections.abc import Callable
+from statistics import NormalDist
 from typing import Any
 
 import numpy as np
@@ -68,6 +69,7 @@ from ifgm_ref.noise import NoiseLevels
 from ifgm_ref.oracle.check_types import Check, CheckFailed, Evidence, PlannerFault, Recorder
 from ifgm_ref.oracle.implementation import Implementation
 from ifgm_ref.simulator import Run
+from ifgm_ref.stats import wilson_interval
 from ifgm_ref.world import World
 from ifgm_ref.worldgen.draws import RandomDraw
 
@@ -83,8 +85,9 @@ __all__ = [
     "wilson_lower",
 ]
 
-#: The normal quantile of the statistical checks' two-sided 95 % Wilson score interval.
-CONFIDENCE_Z = 1.96
+#: The normal quantile of the statistical checks' two-sided 95 % Wilson score interval
+#: (1.95996, as :mod:`ifgm_ref.stats` computes it).
+CONFIDENCE_Z = NormalDist().inv_cdf(0.975)
 #: A statistical check passes when the Wilson lower bound of its success rate reaches this.
 #: 0.85: with the quick profile's 50 worlds a planner may miss 2 (``L(48/50) = 0.865``) but not
 #: 3 (``L(47/50) = 0.838``); a planner that truly arrives 90 % of the time then fails 89 % of
@@ -95,24 +98,21 @@ SUCCESS_THRESHOLD = 0.85
 NOISE_SEEDS = 2**32
 
 
-def wilson_lower(successes: int, n: int, z: float = CONFIDENCE_Z) -> float:
-    """The Wilson score lower bound of a success proportion: ``successes`` of ``n`` trials.
+def wilson_lower(successes: int, n: int) -> float:
+    """The Wilson score lower bound of a success proportion: ``successes`` of ``n`` trials
+    (the lower end of :func:`ifgm_ref.stats.wilson_interval`'s 95 % interval; 0 without a
+    trial).
 
     Examples
     --------
     >>> round(wilson_lower(50, 50), 4), round(wilson_lower(48, 50), 4)
-    (0.9286, 0.8654)
+    (0.9287, 0.8654)
     >>> round(wilson_lower(47, 50), 4), round(wilson_lower(0, 10), 4)
     (0.8378, 0.0)
     >>> wilson_lower(0, 0)
     0.0
     """
-    if n == 0:
-        return 0.0
-    p, z2 = successes / n, z * z
-    centre = p + z2 / (2 * n)
-    spread = z * math.sqrt(p * (1 - p) / n + z2 / (4 * n * n))
-    return max(0.0, (centre - spread) / (1 + z2 / n))
+    return wilson_interval(successes, n).low if n else 0.0
 
 
 def is_noisy(levels: NoiseLevels) -> bool:
