@@ -43,6 +43,7 @@ include_patterns = [
     "notebooks/*.ipynb",
     "paper_figs/reproduction.md",
     "benchmarks/README.md",
+    "examples/c/README.md",
 ]
 exclude_patterns = ["site/**", "build/**", "**/.ipynb_checkpoints"]
 
