@@ -126,7 +126,7 @@ class Odometry:
     def true_heading(self, heading: float) -> float:
         """The true heading a command to face ``heading`` turns the robot towards: its heading
         controller knows only the believed heading, so it is ``e_theta`` off."""
-        return heading - self.error[2] if self.drift else heading
+        return heading - self.error[2]
 
     def moved(self, distance: float) -> None:
         """The robot's centre moved ``distance``: the error walks on."""
@@ -221,6 +221,15 @@ class NoiseLevels:
             except ValueError:
                 raise ParameterError(f"--noise {item}: the level must be a number") from None
         return cls(**levels)  # type: ignore[arg-type]
+
+    @property
+    def on(self) -> bool:
+        """Whether any level is on.
+
+        >>> NoiseLevels().on, NoiseLevels(latency=1).on
+        (False, True)
+        """
+        return self != NoiseLevels()
 
     def tags(self) -> str:
         """The levels that are on, as ``parse`` reads them (``"none"`` if none is)."""

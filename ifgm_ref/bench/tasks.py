@@ -208,7 +208,7 @@ class Condition:
     @property
     def noisy(self) -> bool:
         """Whether any level is on."""
-        return self.levels != NoiseLevels()
+        return self.levels.on
 
     def apply(self, world: World, seed: int) -> World:
         """``world`` under these levels, its noise generators seeded with ``seed``."""

@@ -15,7 +15,6 @@ from hypothesis import HealthCheck, Phase, settings
 from ifgm_ref.errors import ImplementationError
 from ifgm_ref.noise import NoiseLevels
 from ifgm_ref.oracle.implementation import Promises
-from ifgm_ref.oracle.robust import is_noisy
 
 __all__ = [
     "PROFILES",
@@ -66,7 +65,7 @@ class Profile:
         True
         """
         levels = self.noise if self.noise is not None or not self.robust else promises.noise
-        return levels if levels is not None and is_noisy(levels) else None
+        return levels if levels is not None and levels.on else None
 
     def settings(self) -> settings:
         """Hypothesis settings of this profile (no deadline, no example database)."""
@@ -139,7 +138,7 @@ def with_noise(profile: Profile | str, noise: NoiseLevels | str | None) -> Profi
     if noise is None:
         return profile
     levels = NoiseLevels.parse(noise) if isinstance(noise, str) else noise
-    if not is_noisy(levels):
+    if not levels.on:
         raise ImplementationError(f"noise {noise!r} turns no noise on: leave it out")
     return replace(profile, noise=levels)
 

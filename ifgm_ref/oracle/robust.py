@@ -76,7 +76,6 @@ from ifgm_ref.worldgen.draws import RandomDraw
 __all__ = [
     "CONFIDENCE_Z",
     "SUCCESS_THRESHOLD",
-    "is_noisy",
     "noisy_example",
     "noisy_examples",
     "rigid_motion_unmeasurable",
@@ -113,15 +112,6 @@ def wilson_lower(successes: int, n: int) -> float:
     0.0
     """
     return wilson_interval(successes, n).low if n else 0.0
-
-
-def is_noisy(levels: NoiseLevels) -> bool:
-    """Whether any level of ``levels`` is on.
-
-    >>> is_noisy(NoiseLevels()), is_noisy(NoiseLevels(latency=1))
-    (False, True)
-    """
-    return levels.tags() != "none"
 
 
 def noisy_example(example: Any, levels: NoiseLevels, seed: int) -> Any:

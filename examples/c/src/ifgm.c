@@ -80,6 +80,12 @@ static int nearest_remembered(const ifgm_planner *p, const ifgm_sight *s, const 
     return 1;
 }
 
+/* The view's points: the scan's own when the view is the whole scan (the paper's sensor). */
+static const ifgm_scan_points *view_points(const ifgm_planner *p)
+{
+    return p->rays.view_n != p->rays.n ? &p->view_points : &p->points;
+}
+
 /* Remember the scan; work out the 135-degree view, its obstacles and gaps; while
  * following, track the followed point and ask IBA's leaving rules. Returns 0 on a scan the
  * build cannot hold. */
@@ -97,12 +103,10 @@ static int perceive(ifgm_planner *p, const ifgm_observation *o, ifgm_sight *s, i
     for (int j = 0; j < rays->view_n; j++)
         p->view_ranges[j] = window[j] > view_range ? IFGM_INF : window[j];
     p->view_range_max = view_range < o->range_max ? view_range : o->range_max;
-    const ifgm_scan_points *view = &p->points;
-    if (rays->view_n != o->n) {
+    if (rays->view_n != rays->n)
         ifgm_scan_points_of(&p->view_points, window, rays->view_n, o->range_min, view_range,
                             rays->view_angle, rays->view_cos, rays->view_sin);
-        view = &p->view_points;
-    }
+    const ifgm_scan_points *view = view_points(p);
     p->n_clusters = ifgm_cluster_points(view, p->body.tuning.jump, p->clusters);
     p->n_gaps = ifgm_gaps_between(view, p->clusters, p->n_clusters, p->gaps);
     ifgm_sight_init(s, &p->body, o->pose, &p->memory, goal_bearing(p, o->pose));
@@ -168,7 +172,7 @@ static int find_preemptor(const ifgm_planner *p, const ifgm_real pose[3], ifgm_p
 {
     const ifgm_tuning *t = &p->body.tuning;
     const ifgm_point f = p->state.followed;
-    const ifgm_scan_points *v = p->rays.view_n != p->rays.n ? &p->view_points : &p->points;
+    const ifgm_scan_points *v = view_points(p);
     ifgm_real reach = hypot(f.x - pose[0], f.y - pose[1]) - t->preempt_margin;
     ifgm_real best = IFGM_INF, jump2 = t->jump * t->jump;
     int found = 0;
