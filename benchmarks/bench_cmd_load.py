@@ -6,12 +6,13 @@ Runs ``--oracles`` (default 4) ``ifgm-ref oracle --cmd ... --profile quick`` at 
 against ``ifgm-ref serve --planner ifgm`` behind ``benchmarks/cmd_relay.py``, a relay that
 logs how long the oracle waited for each reply (``cmd_relay.py`` says how). The reference
 behind ``serve`` passes every check in process, so an ERROR here is the load blamed on the
-program (issue 24, item 5). First it times ``--alone`` starts of the relayed program one at a
-time, before the oracles (the start-up at the machine's load of the moment). Then it prints
-per oracle: its verdict counts and wall time, the
-start-up latency of its programs (one per program start: the oracle starts one per check in
-each worker process) and the per-reply latency (median, 99th percentile, max), then every
-ERROR's message, and the load average sampled every ``--sample`` seconds during the run.
+program (issue 24, item 5). First it times ``--alone`` sessions of the relayed program one
+at a time, before the oracles (start-up and exit at the machine's load of the moment). Then
+it prints per oracle: its exit status, wall time and verdict counts; the start-up latency of
+its programs (one per program start: the oracle starts one per check in each worker
+process), the per-reply latency (median, 99th percentile, max) and the exit latency after
+``bye``; then every ERROR's message, and the load average sampled every ``--sample`` seconds
+during the run.
 ``--timeout`` and ``--startup-timeout``, if given, are passed to every oracle.
 """
 
@@ -40,20 +41,22 @@ from ifgm_ref.transport.external import ExternalPlanner
 RELAY = Path(__file__).resolve().parent / "cmd_relay.py"
 #: The start-up timeout of the starts timed alone, s: long enough never to cut one short.
 LONG_WAIT = 600.0
+#: What the relay times: the first reply of a start, every other reply, the exit after bye.
+KINDS = ("startup", "reply", "exit")
 #: The verdicts of the report's lines, in the order they are printed.
 VERDICTS = [status.upper() for status in Status]
 
 
 @dataclass(frozen=True)
 class OracleRun:
-    """One oracle's outcome: its report's verdicts and the latencies its relays logged, s."""
+    """One oracle's outcome: its report's verdicts, and the latencies its relays logged, s,
+    by kind (:data:`KINDS`)."""
 
     status: int
     seconds: float
     verdicts: dict[str, int]
     errors: list[str]
-    startups: list[float]
-    replies: list[float]
+    latencies: dict[str, list[float]]
 
 
 def program_command(args: argparse.Namespace, logs: Path) -> list[str]:
@@ -78,17 +81,20 @@ def oracle_command(args: argparse.Namespace, logs: Path, artifacts: Path) -> lis
     return command
 
 
-def startups_alone(args: argparse.Namespace, logs: Path) -> list[float]:
-    """Seconds from starting the relayed program to its first ``ready``, as the oracle waits
-    (:class:`ExternalPlanner`), ``--alone`` times, one program at a time."""
-    seconds = []
+def sessions_alone(args: argparse.Namespace, logs: Path) -> tuple[list[float], list[float]]:
+    """Seconds from starting the relayed program to its first ``ready``, and from ``bye`` to
+    its exit, as the oracle waits (:class:`ExternalPlanner`), ``--alone`` times, one program
+    at a time."""
+    starts, exits = [], []
     for _ in range(args.alone):
         planner = ExternalPlanner(program_command(args, logs), startup_timeout=LONG_WAIT)
         began = time.monotonic()
         planner.reset(Pose(0.0, 0.0, 0.0), Point(10.0, 0.0), EpisodeParams())
-        seconds.append(time.monotonic() - began)
+        starts.append(time.monotonic() - began)
+        began = time.monotonic()
         planner.close()
-    return seconds
+        exits.append(time.monotonic() - began)
+    return starts, exits
 
 
 def read_report(stdout: str) -> tuple[dict[str, int], list[str]]:
@@ -107,18 +113,14 @@ def read_report(stdout: str) -> tuple[dict[str, int], list[str]]:
     return {v: n for v, n in counts.items() if n}, errors
 
 
-def read_logs(folder: Path) -> tuple[list[float], list[float]]:
-    """The start-up and per-reply latencies, s, every relay in ``folder`` logged."""
-    startups: list[float] = []
-    replies: list[float] = []
+def read_logs(folder: Path) -> dict[str, list[float]]:
+    """The latencies, s, every relay in ``folder`` logged, by kind (:data:`KINDS`)."""
+    latencies: dict[str, list[float]] = {kind: [] for kind in KINDS}
     for path in sorted(folder.glob("relay-*.jsonl")):
         for line in path.read_text().splitlines():
-            record = json.loads(line)
-            if "startup" in record:
-                startups.append(record["startup"])
-            else:
-                replies.append(record["reply"])
-    return startups, replies
+            ((kind, seconds),) = json.loads(line).items()
+            latencies[kind].append(seconds)
+    return latencies
 
 
 def median(values: list[float]) -> float:
@@ -167,8 +169,7 @@ def run_oracles(args: argparse.Namespace, work: Path) -> tuple[list[OracleRun], 
         err.close()
         print(f"oracle {k} done after {seconds:.0f} s (exit {status})", file=sys.stderr)
         verdicts, errors = read_report((work / f"oracle-{k}.out").read_text())
-        startups, replies = read_logs(work / f"logs-{k}")
-        runs.append(OracleRun(status, seconds, verdicts, errors, startups, replies))
+        runs.append(OracleRun(status, seconds, verdicts, errors, read_logs(work / f"logs-{k}")))
     stop.set()
     sampler.join()
     return runs, load
@@ -197,22 +198,24 @@ def main() -> None:
     with tempfile.TemporaryDirectory() as temporary:
         work = Path(args.keep or temporary)
         work.mkdir(parents=True, exist_ok=True)
-        alone = startups_alone(args, work / "logs-alone")
+        starts, exits = sessions_alone(args, work / "logs-alone")
         print(
-            f"start-up alone: median {median(alone):.2f} s, max {maximum(alone):.2f} s "
-            f"over {len(alone)} starts, at load average {os.getloadavg()[0]:.2f}",
+            f"alone: start-up median {median(starts):.2f} s, max {maximum(starts):.2f} s; exit "
+            f"median {median(exits):.2f} s, max {maximum(exits):.2f} s; over {len(starts)} "
+            f"sessions, at load average {os.getloadavg()[0]:.2f}",
             flush=True,
         )
         runs, load = run_oracles(args, work)
     print_runs(runs)
-    every_start = [s for run in runs for s in run.startups]
-    every_reply = [r for run in runs for r in run.replies]
+    every = {kind: [x for run in runs for x in run.latencies[kind]] for kind in KINDS}
     print(
         f"all: {sum(run.verdicts.get('ERROR', 0) for run in runs)} errors; start-up median "
-        f"{median(every_start):.2f} s, max {maximum(every_start):.2f} s over "
-        f"{len(every_start)} starts; reply median {1e3 * median(every_reply):.2f} ms, "
-        f"p99 {1e3 * percentile(every_reply, 0.99):.1f} ms, max "
-        f"{1e3 * maximum(every_reply):.1f} ms over {len(every_reply)} replies"
+        f"{median(every['startup']):.2f} s, max {maximum(every['startup']):.2f} s over "
+        f"{len(every['startup'])} starts; reply median {1e3 * median(every['reply']):.2f} ms, "
+        f"p99 {1e3 * percentile(every['reply'], 0.99):.1f} ms, max "
+        f"{1e3 * maximum(every['reply']):.1f} ms over {len(every['reply'])} replies; exit "
+        f"median {median(every['exit']):.2f} s, max {maximum(every['exit']):.2f} s over "
+        f"{len(every['exit'])} exits"
     )
     print(
         f"load average (1 min) during the run: min {min(load):.2f}, median "
@@ -222,19 +225,21 @@ def main() -> None:
 
 
 def print_runs(runs: list[OracleRun]) -> None:
-    """One line per oracle (start-ups in s, replies in ms), then every ERROR's message."""
+    """One line per oracle (start-ups and exits in s, replies in ms), then every ERROR."""
     print(
-        f"{'oracle':>6} {'exit':>4} {'wall s':>7}  {'verdicts':<34} {'starts':>6} "
-        f"{'start med':>9} {'start max':>9} {'replies':>8} {'median ms':>9} {'p99 ms':>7} "
-        f"{'max ms':>8}"
+        f"{'oracle':>6} {'status':>6} {'wall s':>6}  {'verdicts':<34} {'starts':>6} "
+        f"{'median':>6} {'max':>6} {'replies':>8} {'med ms':>6} {'p99 ms':>6} {'max ms':>7} "
+        f"{'exits':>5} {'median':>6} {'max':>6}"
     )
     for k, run in enumerate(runs):
         verdicts = ", ".join(f"{n} {v.lower()}" for v, n in run.verdicts.items())
+        starts, replies, exits = (run.latencies[kind] for kind in KINDS)
         print(
-            f"{k:>6} {run.status:>4} {run.seconds:>7.0f}  {verdicts:<34} {len(run.startups):>6} "
-            f"{median(run.startups):>9.2f} {maximum(run.startups):>9.2f} {len(run.replies):>8} "
-            f"{1e3 * median(run.replies):>9.2f} {1e3 * percentile(run.replies, 0.99):>7.1f} "
-            f"{1e3 * maximum(run.replies):>8.1f}"
+            f"{k:>6} {run.status:>6} {run.seconds:>6.0f}  {verdicts:<34} {len(starts):>6} "
+            f"{median(starts):>6.2f} {maximum(starts):>6.2f} {len(replies):>8} "
+            f"{1e3 * median(replies):>6.2f} {1e3 * percentile(replies, 0.99):>6.1f} "
+            f"{1e3 * maximum(replies):>7.1f} {len(exits):>5} {median(exits):>6.2f} "
+            f"{maximum(exits):>6.2f}"
         )
     for k, run in enumerate(runs):
         for error in run.errors:

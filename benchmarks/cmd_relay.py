@@ -10,7 +10,10 @@ the oracle. For every reply it appends one JSON line to ``LOG_DIR/relay-<pid>.js
   to that reply, which is what the oracle waits for its first ``ready`` (the relay's and the
   program's start-up, and the first ``reset``);
 - ``{"reply": S}`` for every later one: seconds from the request's arrival at the relay to
-  its reply, which is what the oracle waits per reply, less two pipe hops.
+  its reply, which is what the oracle waits per reply, less two pipe hops;
+- ``{"exit": S}`` at the end: seconds from the end of the relay's input (the oracle closes
+  it after ``bye``) to the program's exit, which is most of what the oracle waits for the
+  exit (the relay's own exit follows).
 
 Every record is written and flushed at once, so a relay the oracle kills has logged every
 reply it relayed. The relay exits with the program's status. Standard library only: it is a
@@ -25,6 +28,7 @@ _BEGUN = time.monotonic()  # before the other imports: the fallback start of the
 
 import collections  # noqa: E402 -- after the clock read, on purpose
 import json  # noqa: E402
+import math  # noqa: E402
 import os  # noqa: E402
 import subprocess  # noqa: E402
 import sys  # noqa: E402
@@ -98,10 +102,12 @@ def main(argv: list[str]) -> int:
             sent.append(time.monotonic())
             program.stdin.write(line)
             program.stdin.flush()
+        ended = time.monotonic()
         program.stdin.close()
     except BrokenPipeError:
-        pass  # the program ended first; its status says how
+        ended = math.nan  # the program ended first; its status says how
     status = program.wait()
+    log.write({"exit": time.monotonic() - ended})
     copier.join()
     return status
 

@@ -8,7 +8,9 @@ from __future__ import annotations
 
 import dataclasses
 import io
+import math
 import os
+import pickle
 import subprocess
 import sys
 import textwrap
@@ -21,13 +23,14 @@ import pytest
 from ifgm_ref.cli import main
 from ifgm_ref.errors import ImplementationError, ParameterError
 from ifgm_ref.laserscan import LaserScan
+from ifgm_ref.oracle.implementation import Implementation
 from ifgm_ref.planners.ifgm import IFGMPlanner
 from ifgm_ref.planners.straight import StraightPlanner
 from ifgm_ref.pose import Point, Pose
 from ifgm_ref.protocol import Command, EpisodeParams, Observation, Planner
 from ifgm_ref.scenarios import resolve_world
 from ifgm_ref.simulator import Run, simulate
-from ifgm_ref.transport.external import ExternalPlanner
+from ifgm_ref.transport.external import ExternalFactory, ExternalPlanner
 from ifgm_ref.transport.serve import serve
 from ifgm_ref.transport.wire import bye_message, encode, observe_message, reset_message
 
@@ -139,6 +142,24 @@ PROGRAMS = {
         send('{"type": "ready"}')
         time.sleep(60)
     """,
+    # Healthy, but slow to start and to exit (as an interpreter loading its imports and
+    # tearing them down on a loaded machine): argv[1] s before reading, argv[2] after bye.
+    "slow_to_start_and_exit": """
+        time.sleep(float(sys.argv[1]))
+        for line in sys.stdin:
+            kind = json.loads(line)["type"]
+            if kind == "bye":
+                break
+            send('{"type": "ready"}' if kind == "reset" else
+                 '{"type": "command", "heading": 0.0, "speed": 1.0}')
+        time.sleep(float(sys.argv[2]))
+    """,
+    "slow_second_ready": """
+        sys.stdin.readline()
+        send('{"type": "ready"}')
+        sys.stdin.readline()
+        time.sleep(60)
+    """,
 }
 #: Makes an :class:`ExternalPlanner` for the named program of :data:`PROGRAMS`.
 MakeProgram = Callable[..., ExternalPlanner]
@@ -156,10 +177,11 @@ def program(tmp_path: Path) -> Iterator[MakeProgram]:
     """Make an :class:`ExternalPlanner` for one of :data:`PROGRAMS`; kill what it started."""
     made: list[ExternalPlanner] = []
 
-    def make(name: str, **kwargs: object) -> ExternalPlanner:
+    def make(name: str, *args: str, **kwargs: object) -> ExternalPlanner:
         path = tmp_path / f"{name}.py"
         path.write_text(PRELUDE + textwrap.dedent(PROGRAMS[name]))
-        planner = ExternalPlanner([sys.executable, str(path)], timeout=TIMEOUT, **kwargs)
+        kwargs.setdefault("timeout", TIMEOUT)
+        planner = ExternalPlanner([sys.executable, str(path), *args], **kwargs)
         made.append(planner)
         return planner
 
@@ -168,12 +190,15 @@ def program(tmp_path: Path) -> Iterator[MakeProgram]:
         planner._kill()
 
 
-def expect_failure(call: Callable[[], object], *phrases: str) -> ImplementationError:
-    """Run ``call``; it must raise ImplementationError quickly, its message holding ``phrases``."""
+def expect_failure(
+    call: Callable[[], object], *phrases: str, within: float = TIMEOUT
+) -> ImplementationError:
+    """Run ``call``; it must raise ImplementationError within ``within`` s (and the slack for
+    the report), its message holding ``phrases``."""
     began = time.monotonic()
     with pytest.raises(ImplementationError) as info:
         call()
-    assert time.monotonic() - began < TIMEOUT + SLACK
+    assert time.monotonic() - began < within + SLACK
     for phrase in phrases:
         assert phrase in str(info.value)
     return info.value
@@ -196,7 +221,8 @@ def test_hanging_program_is_killed_at_the_timeout(program: MakeProgram) -> None:
     assert pid is not None
     error = expect_failure(
         lambda: planner.step(observation()),
-        "no reply within 1.5 s to observe at t=0.0 s (program killed)",
+        "no reply within 1.5 s to observe at t=0.0 s "
+        "(the per-reply timeout, --timeout; program killed)",
     )
     assert not _alive(pid)
     # Broken for good: the same error at once, without waiting on the program again.
@@ -276,6 +302,85 @@ def test_program_that_never_reads_cannot_block_the_oracle(program: MakeProgram) 
     )
 
 
+# --- the start-up timeout ---------------------------------------------------------------------
+
+#: The start-up timeout of the tests that start or exit slowly, s: over twice their delay.
+STARTUP = 3 * TIMEOUT
+
+
+def test_first_reply_gets_the_startup_timeout(program: MakeProgram) -> None:
+    """A start longer than the per-reply timeout, within the start-up one, is not a failure."""
+    planner = program("slow_to_start_and_exit", str(TIMEOUT + 0.5), "0", startup_timeout=STARTUP)
+    planner.reset(START, GOAL, EpisodeParams())  # waited longer than TIMEOUT for its ready
+    assert planner.step(observation()) == Command(0.0, 1.0)
+    planner.reset(START, GOAL, EpisodeParams())
+    planner.close()
+    assert planner.failure is None
+
+
+def test_a_start_past_the_startup_timeout_names_it(program: MakeProgram) -> None:
+    planner = program("slow_to_start_and_exit", "60", "0", startup_timeout=STARTUP)
+    expect_failure(
+        lambda: planner.reset(START, GOAL, EpisodeParams()),
+        f"no reply within {STARTUP!r} s to reset "
+        "(the start-up timeout, --startup-timeout; program killed)",
+        within=STARTUP,
+    )
+    assert planner.pid is None
+
+
+def test_every_start_of_the_program_gets_the_startup_timeout(program: MakeProgram) -> None:
+    planner = program("slow_to_start_and_exit", str(TIMEOUT + 0.5), "0", startup_timeout=STARTUP)
+    for _ in range(2):  # a reset after close starts the program again
+        planner.reset(START, GOAL, EpisodeParams())
+        planner.close()
+    assert planner.failure is None
+
+
+def test_the_exit_after_bye_gets_the_startup_timeout(program: MakeProgram) -> None:
+    """Tearing a program down is as load-bound as starting it: the exit is not a reply."""
+    planner = program("slow_to_start_and_exit", "0", str(TIMEOUT + 0.5), startup_timeout=STARTUP)
+    planner.reset(START, GOAL, EpisodeParams())
+    planner.close()  # waited longer than TIMEOUT for the exit
+    assert planner.failure is None and planner.pid is None
+
+
+def test_an_exit_past_the_startup_timeout_names_it(program: MakeProgram) -> None:
+    planner = program("slow_to_start_and_exit", "0", "60", startup_timeout=STARTUP)
+    planner.reset(START, GOAL, EpisodeParams())
+    expect_failure(
+        planner.close,
+        f"program did not exit within {STARTUP!r} s after bye (the start-up timeout, "
+        "--startup-timeout, which bounds the exit too; program killed)",
+        within=STARTUP,
+    )
+
+
+def test_a_later_reset_gets_the_per_reply_timeout(program: MakeProgram) -> None:
+    planner = program("slow_second_ready", startup_timeout=STARTUP)
+    planner.reset(START, GOAL, EpisodeParams())
+    expect_failure(
+        lambda: planner.reset(START, GOAL, EpisodeParams()),
+        "no reply within 1.5 s to reset (the per-reply timeout, --timeout; program killed)",
+    )
+
+
+@pytest.mark.parametrize(
+    ("timeout", "startup_timeout", "expected"),
+    [(10.0, None, 60.0), (100.0, None, 100.0), (10.0, 2.0, 2.0), (1, 30, 30.0)],
+)
+def test_startup_timeout_defaults_to_60_s_or_the_per_reply_one(
+    timeout: float, startup_timeout: float | None, expected: float
+) -> None:
+    planner = ExternalPlanner("x", timeout=timeout, startup_timeout=startup_timeout)
+    factory = ExternalFactory("x", timeout=timeout, startup_timeout=startup_timeout)
+    impl = Implementation.from_command("x", timeout=timeout, startup_timeout=startup_timeout)
+    made = pickle.loads(pickle.dumps(factory))()  # as a worker process gets it
+    assert isinstance(impl.factory, ExternalFactory)
+    for each in (planner, factory, made, impl.factory):
+        assert (each.timeout, each.startup_timeout) == (float(timeout), expected)
+
+
 def test_program_that_cannot_start_is_reported(tmp_path: Path) -> None:
     planner = ExternalPlanner([str(tmp_path / "nothing-here")], timeout=TIMEOUT)
     expect_failure(lambda: planner.reset(START, GOAL, EpisodeParams()), "cannot start program")
@@ -300,7 +405,7 @@ def test_adapter_is_a_planner_with_argv_and_repr() -> None:
     assert planner.name == "python3 'my planner.py' --fast"
     assert repr(planner) == (
         "ExternalPlanner(['python3', 'my planner.py', '--fast'], timeout=2.0, "
-        "name=\"python3 'my planner.py' --fast\") <not running>"
+        "startup_timeout=60.0, name=\"python3 'my planner.py' --fast\") <not running>"
     )
     planner.close()  # never started: nothing to do
 
@@ -309,13 +414,23 @@ def test_adapter_is_a_planner_with_argv_and_repr() -> None:
     ("kwargs", "message"),
     [
         ({"command": ""}, "`command` must be a non-empty"),
-        ({"command": ["x"], "timeout": 0}, "`timeout` must be a number > 0, got 0"),
+        ({"command": ["x"], "timeout": 0}, "`timeout` must be a finite number > 0, got 0"),
+        ({"command": ["x"], "timeout": math.inf}, "`timeout` must be a finite .* got inf"),
+        ({"command": ["x"], "timeout": True}, "`timeout` must be a finite .* got True"),
+        ({"command": ["x"], "startup_timeout": -1.0}, "`startup_timeout` must be .* got -1.0"),
+        ({"command": ["x"], "startup_timeout": math.nan}, "`startup_timeout` must .* got nan"),
+        ({"command": ["x"], "startup_timeout": "60"}, "`startup_timeout` must .* got '60'"),
     ],
 )
 def test_adapter_arguments_are_checked(kwargs: dict[str, object], message: str) -> None:
     command = kwargs.pop("command")
     with pytest.raises(ParameterError, match=message):
         ExternalPlanner(command, **kwargs)  # type: ignore[arg-type]
+    if kwargs:  # a factory and an implementation refuse it at once, not in a worker
+        with pytest.raises(ParameterError, match=message):
+            ExternalFactory(command, **kwargs)  # type: ignore[arg-type]
+        with pytest.raises(ParameterError, match=message):
+            Implementation.from_command(command, **kwargs)  # type: ignore[arg-type]
 
 
 def _alive(pid: int) -> bool:

@@ -6,6 +6,7 @@ from __future__ import annotations
 import os
 import pty
 import select
+import shlex
 import subprocess
 import sys
 from collections.abc import Callable
@@ -231,3 +232,76 @@ def test_a_factory_that_makes_no_planner_is_a_one_line_error(args: list[str]) ->
         "ifgm-ref: error: 'os:getcwd' made a str, not a planner: it has no name, reset, step "
         "(see ifgm_ref.protocol.Planner)"
     ]
+
+
+# -- a --cmd program's two timeouts (issue 24) -------------------------------------------------
+
+
+def _slow_start(folder: Path, seconds: float) -> str:
+    """The command line of the goal-seeker example that sleeps ``seconds`` before it starts."""
+    script = folder / "slow_start.py"
+    script.write_text(
+        f"import runpy, sys, time\ntime.sleep({seconds!r})\nsys.argv = [{str(GOAL_SEEKER)!r}]\n"
+        f"runpy.run_path({str(GOAL_SEEKER)!r}, run_name='__main__')\n"
+    )
+    return shlex.join([sys.executable, str(script)])
+
+
+def test_simulate_waits_the_startup_timeout_for_the_first_reply(tmp_path: Path) -> None:
+    done = run_cli("simulate", "free", "--cmd", _slow_start(tmp_path, 2.0), "--timeout", "1")
+    assert done.returncode == 0, done.stderr
+    assert "goal_reached (reached=True" in done.stdout
+
+
+def test_simulate_names_the_startup_timeout_that_expired(tmp_path: Path) -> None:
+    args = ["--timeout", "10", "--startup-timeout", "1.5"]
+    done = run_cli("simulate", "free", "--cmd", _slow_start(tmp_path, 60.0), *args)
+    assert done.returncode == 2 and done.stdout == ""
+    assert len(done.stderr.splitlines()) == 1
+    assert (
+        "slow_start.py: no reply within 1.5 s to reset "
+        "(the start-up timeout, --startup-timeout; program killed); no stderr output"
+    ) in done.stderr
+
+
+def test_oracle_reports_an_error_naming_the_startup_timeout(tmp_path: Path) -> None:
+    args = ["--check", "converges_open", "--jobs", "1", "--timeout", "10"]
+    args += ["--startup-timeout", "1", "--artifacts", str(tmp_path / "found")]
+    done = run_cli("oracle", "--cmd", _slow_start(tmp_path, 60.0), *args)
+    assert done.returncode == 1
+    lines = done.stdout.splitlines()
+    assert lines[0].startswith("ERROR               converges_open")
+    assert lines[1].endswith(
+        "no reply within 1.0 s to reset "
+        "(the start-up timeout, --startup-timeout; program killed); no stderr output"
+    )
+
+
+@pytest.mark.parametrize(
+    ("command", "option", "value", "message"),
+    [
+        ("oracle", "--startup-timeout", "0", "must be a finite number > 0, got '0'"),
+        ("oracle", "--startup-timeout", "nan", "must be a finite number > 0, got 'nan'"),
+        ("oracle", "--timeout", "-1", "must be a finite number > 0, got '-1'"),
+        ("simulate", "--startup-timeout", "inf", "must be a finite number > 0, got 'inf'"),
+        ("simulate", "--startup-timeout", "soon", "must be a number, got 'soon'"),
+    ],
+)
+def test_a_bad_timeout_is_a_one_line_error(
+    command: str, option: str, value: str, message: str
+) -> None:
+    where = ["free"] if command == "simulate" else []
+    done = run_cli(command, *where, "--cmd", "nothing-runs", option, value)
+    assert done.returncode == 2 and done.stdout == ""
+    assert done.stderr.splitlines() == [
+        f"ifgm-ref {command}: error: argument {option}: {message} (see ifgm-ref {command} --help)"
+    ]
+
+
+def test_the_plugin_refuses_a_bad_startup_timeout(pytester: pytest.Pytester) -> None:
+    result = pytester.runpytest_subprocess(
+        "--pyargs", "ifgm_ref.oracle", "--ifgm-cmd", "nothing-runs",
+        "--ifgm-startup-timeout", "0", "-p", "no:cacheprovider",
+    )  # fmt: skip
+    assert result.ret == pytest.ExitCode.USAGE_ERROR
+    result.stderr.fnmatch_lines(["*`startup_timeout` must be a finite number > 0, got 0.0*"])

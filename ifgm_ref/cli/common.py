@@ -5,6 +5,8 @@ from __future__ import annotations
 import argparse
 from typing import TYPE_CHECKING, NoReturn
 
+from ifgm_ref.transport.external import STARTUP_TIMEOUT, TIMEOUT
+
 #: Exit status of a usage error or of bad input, reported as one line on stderr.
 EXIT_USAGE = 2
 
@@ -38,6 +40,27 @@ def positive_float(text: str) -> float:
     if not value > 0 or value == float("inf"):
         raise argparse.ArgumentTypeError(f"must be a finite number > 0, got {text!r}")
     return value
+
+
+def add_timeout_options(parser: argparse.ArgumentParser) -> None:
+    """Add ``--timeout`` and ``--startup-timeout``, the waits for a ``--cmd`` program's replies,
+    start and exit (:class:`~ifgm_ref.transport.external.ExternalPlanner`); a bad value is a
+    usage error."""
+    parser.add_argument(
+        "--timeout",
+        type=positive_float,
+        default=TIMEOUT,
+        metavar="S",
+        help=f"per-reply timeout for --cmd, s (default {TIMEOUT:g})",
+    )
+    parser.add_argument(
+        "--startup-timeout",
+        type=positive_float,
+        metavar="S",
+        help="timeout for a --cmd program's first reply (its start-up, imports and first "
+        f"reset) and its exit after bye, s (default {STARTUP_TIMEOUT:g}, or --timeout if "
+        "longer)",
+    )
 
 
 def non_negative_int(text: str) -> int:

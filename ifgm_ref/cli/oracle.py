@@ -7,7 +7,7 @@ import os
 import sys
 from typing import TYPE_CHECKING, TextIO
 
-from ifgm_ref.cli.common import positive_float
+from ifgm_ref.cli.common import add_timeout_options
 from ifgm_ref.errors import ParameterError
 from ifgm_ref.noise import KINDS
 
@@ -78,9 +78,7 @@ def _add_run_options(oracle: argparse.ArgumentParser) -> None:
         metavar="DIR",
         help="where counterexamples are written (default oracle-failures)",
     )
-    oracle.add_argument(
-        "--timeout", type=positive_float, default=10.0, help="per-reply timeout for --cmd, s"
-    )
+    add_timeout_options(oracle)
     oracle.add_argument(
         "--stop-on-failure", action="store_true", help="stop at the first failing check"
     )
@@ -90,7 +88,8 @@ def _add_run_options(oracle: argparse.ArgumentParser) -> None:
         default=os.cpu_count() or 1,
         metavar="N",
         help="run the simulation checks in N processes (default: the number of CPUs; a "
-        "--cmd program is started once per process)",
+        "--cmd program is started anew for each check a process runs, once in all with "
+        "--jobs 1)",
     )
 
 
@@ -111,7 +110,11 @@ def run_oracle(args: argparse.Namespace) -> int:
     equations = None if args.equations is None else load_equations(args.equations)
     if args.cmd is not None:
         impl = Implementation.from_command(
-            args.cmd, timeout=args.timeout, promises=args.promises, equations=equations
+            args.cmd,
+            timeout=args.timeout,
+            startup_timeout=args.startup_timeout,
+            promises=args.promises,
+            equations=equations,
         )
     else:
         impl = Implementation.from_spec(args.planner, promises=args.promises, equations=equations)

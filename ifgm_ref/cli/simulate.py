@@ -7,7 +7,7 @@ import json
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from ifgm_ref.cli.common import non_negative_int, positive_float
+from ifgm_ref.cli.common import add_timeout_options, non_negative_int, positive_float
 from ifgm_ref.errors import ParameterError
 from ifgm_ref.noise import KINDS, NoiseLevels
 from ifgm_ref.params import SimParams
@@ -38,12 +38,7 @@ def add_simulate(sub: Subcommands) -> None:
         metavar="PROGRAM",
         help="run a program speaking the JSON-lines protocol instead (docs/oracle-protocol.md)",
     )
-    sim.add_argument(
-        "--timeout",
-        type=positive_float,
-        default=10.0,
-        help="per-reply timeout for --cmd, s (default 10)",
-    )
+    add_timeout_options(sim)
     sim.add_argument(
         "--param",
         action="append",
@@ -114,7 +109,9 @@ def run_simulate(args: argparse.Namespace) -> int:
         from ifgm_ref.transport.external import ExternalPlanner
 
         params = planner_params(None, args.param or [])
-        with ExternalPlanner(args.cmd, timeout=args.timeout) as external:
+        with ExternalPlanner(
+            args.cmd, timeout=args.timeout, startup_timeout=args.startup_timeout
+        ) as external:
             run = simulate(world, external, sim, params=params, progress=None)
     else:
         from ifgm_ref.transport.loading import load_planner

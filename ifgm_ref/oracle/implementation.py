@@ -18,6 +18,7 @@ from dataclasses import dataclass, field
 from ifgm_ref.errors import ImplementationError
 from ifgm_ref.noise import NoiseLevels
 from ifgm_ref.protocol import Planner
+from ifgm_ref.transport.external import TIMEOUT
 from ifgm_ref.transport.loading import load_planner_factory, resolve
 
 #: Every solvable world class of :mod:`ifgm_ref.oracle.strategies`.
@@ -169,17 +170,27 @@ class Implementation:
         cls,
         command: str | Sequence[str],
         *,
-        timeout: float = 10.0,
+        timeout: float = TIMEOUT,
+        startup_timeout: float | None = None,
         promises: Promises | str | None = None,
         equations: object | None = None,
     ) -> Implementation:
-        """A program speaking the JSON-lines protocol, started once (per process) and kept
-        for every episode; labelled ``cmd: COMMAND``. ``promises`` defaults to IFGM's."""
+        """A program speaking the JSON-lines protocol, started at the first episode and kept
+        for every later one (a worker process of :func:`~ifgm_ref.oracle.runner.check_planner`
+        starts it anew for each check it runs); labelled ``cmd: COMMAND``. ``promises``
+        defaults to IFGM's.
+
+        ``timeout`` is the wait for each reply, ``startup_timeout`` for the first reply of
+        each start of the program and its exit (default: 60 s, or ``timeout`` if longer), in
+        s; see
+        :class:`~ifgm_ref.transport.external.ExternalPlanner`. A timeout that is not a finite
+        number > 0 is a :class:`~ifgm_ref.errors.ParameterError` here.
+        """
         from ifgm_ref.transport.external import ExternalFactory
 
         if not isinstance(promises, Promises):
             promises = promises_of(promises or "ifgm")
-        factory = ExternalFactory(command, timeout=timeout)
+        factory = ExternalFactory(command, timeout=timeout, startup_timeout=startup_timeout)
         text = command if isinstance(command, str) else shlex.join(command)
         return cls(factory, f"cmd: {text}", promises, equations)
 

@@ -36,6 +36,7 @@ from ifgm_ref.oracle.runner import (
     run_check,
     with_noise,
 )
+from ifgm_ref.transport.external import STARTUP_TIMEOUT, TIMEOUT
 
 #: The test module whose items need an implementation.
 SUITE = "test_conformance.py"
@@ -89,12 +90,26 @@ def pytest_addoption(parser: pytest.Parser) -> None:
         metavar="DIR",
         help="where counterexamples are written (default oracle-failures)",
     )
+    _add_timeout_options(group)
+
+
+def _add_timeout_options(group: pytest.OptionGroup) -> None:
+    """``--ifgm-timeout`` and ``--ifgm-startup-timeout``: how long a program may take to reply
+    (:class:`~ifgm_ref.transport.external.ExternalPlanner`); checked when the session starts."""
     group.addoption(
         "--ifgm-timeout",
         type=float,
-        default=10.0,
+        default=TIMEOUT,
         metavar="SECONDS",
-        help="per-reply timeout for --ifgm-cmd programs (default 10 s)",
+        help=f"per-reply timeout for --ifgm-cmd programs (default {TIMEOUT:g} s)",
+    )
+    group.addoption(
+        "--ifgm-startup-timeout",
+        type=float,
+        default=None,
+        metavar="SECONDS",
+        help="timeout for an --ifgm-cmd program's first reply, start-up included, and its "
+        f"exit (default {STARTUP_TIMEOUT:g} s, or --ifgm-timeout if longer)",
     )
 
 
@@ -157,6 +172,7 @@ def _implementation(config: pytest.Config) -> Implementation:
         return Implementation.from_command(
             cmd,
             timeout=config.getoption("ifgm_timeout"),
+            startup_timeout=config.getoption("ifgm_startup_timeout"),
             promises=promises,
             equations=equations,
         )

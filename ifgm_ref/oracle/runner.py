@@ -433,7 +433,7 @@ def check_planner(
     jobs : int, default 1
         Run the simulation checks in this many processes (the verdicts do not depend on it);
         the planner factory must then pickle (a class, a module-level function, an
-        ``ExternalFactory``: a program under test is started once per worker).
+        ``ExternalFactory``: a program under test starts anew for each check in a worker).
     noise : NoiseLevels or str, optional
         Check under these noise levels (``"range=0.02,dropout=0.05"``), in any profile,
         instead of those promised (:mod:`ifgm_ref.oracle.robust`).

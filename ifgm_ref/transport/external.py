@@ -8,19 +8,23 @@ at the first :meth:`~ExternalPlanner.reset` and kept for every episode after it;
 status 0.
 
 The adapter never hangs: the program's stdout is read by a background thread into a queue,
-and every reply is awaited at most ``timeout`` seconds; its stderr is copied by another thread
-to ``log`` (if given), the last lines kept for error messages. Every way a program can fail --
-it cannot be started, exits, hangs, writes something that is not a protocol message, answers
-out of turn, exits non-zero at ``bye`` -- raises :class:`~ifgm_ref.errors.ImplementationError`
-saying what happened and at which message, and kills the program. A broken adapter stays
-broken: every later call raises the same error at once (:attr:`ExternalPlanner.failure`), so
-that the oracle never waits twice on a dead program.
+and every reply is awaited at most ``timeout`` seconds, except the first of each start of the
+program (its ``ready`` to the first ``reset``, start-up included), awaited at most
+``startup_timeout`` seconds, as is the program's exit after ``bye``; its stderr is copied by
+another thread to ``log`` (if given), the last lines kept for error messages. Every way a
+program can fail -- it cannot be started, exits, hangs, writes something that is not a
+protocol message, answers out of turn, exits non-zero at ``bye`` -- raises
+:class:`~ifgm_ref.errors.ImplementationError` saying what happened and at which message (and
+which timeout expired), and kills the program. A broken adapter stays broken: every later
+call raises the same error at once (:attr:`ExternalPlanner.failure`), so that the oracle
+never waits twice on a dead program.
 """
 
 from __future__ import annotations
 
 import collections
 import contextlib
+import math
 import os
 import queue
 import shlex
@@ -46,7 +50,28 @@ from ifgm_ref.transport.wire import (
     reset_message,
 )
 
-__all__ = ["STDERR_TAIL", "ExternalPlanner"]
+__all__ = [
+    "STARTUP_TIMEOUT",
+    "STDERR_TAIL",
+    "TIMEOUT",
+    "ExternalFactory",
+    "ExternalPlanner",
+    "timeouts",
+]
+
+#: The default per-reply timeout, s: what a healthy program may take to answer one message.
+#: With four oracles on two cores (load average up to 30), ``ifgm-ref serve --planner ifgm``
+#: answered each of 9.6 million messages within 1.7 s, and the oracle, given ``timeout=2``,
+#: never waited longer for any of 3.3 million (``benchmarks/bench_cmd_load.py``,
+#: ``benchmarks/README.md``): a margin of 5.
+TIMEOUT = 10.0
+#: The default start-up timeout, s: the wait for what a program does once per start, which
+#: the machine's load stretches most: its first reply (an interpreter's start, its imports,
+#: the first ``reset``) and its exit after ``bye`` (the interpreter's teardown). Under the
+#: same load ``ifgm-ref serve --planner ifgm``, which starts in 0.4 s on a quiet machine,
+#: took up to 11.5 s to start (258 starts), past the per-reply ``TIMEOUT``, and up to 5.9 s
+#: to exit (88 exits): a margin of 5 on both.
+STARTUP_TIMEOUT = 60.0
 
 #: How many of the program's last stderr lines an error message quotes: a Python traceback
 #: of a few frames fits, a chatty log does not drown the message.
@@ -58,6 +83,36 @@ DRAIN_WAIT = 1.0
 REAP_WAIT = 5.0
 
 _EOF = None  # what the stdout reader queues when the program closes its stdout
+#: How a message names each timeout, with the command-line option that sets it.
+PER_REPLY = "the per-reply timeout, --timeout"
+STARTUP = "the start-up timeout, --startup-timeout"
+
+
+def timeouts(timeout: float, startup_timeout: float | None) -> tuple[float, float]:
+    """Check the per-reply and start-up timeouts; return them, the start-up one defaulted.
+
+    Each must be a finite number > 0, in s; ``startup_timeout=None`` stands for the longer
+    of :data:`STARTUP_TIMEOUT` and ``timeout`` (a program given long per reply is not given
+    less to start).
+
+    >>> timeouts(10, None), timeouts(100.0, None), timeouts(2.0, 5)
+    ((10.0, 60.0), (100.0, 100.0), (2.0, 5.0))
+    >>> timeouts(1.0, 0)
+    Traceback (most recent call last):
+    ...
+    ifgm_ref.errors.ParameterError: `startup_timeout` must be a finite number > 0, got 0
+    """
+    per_reply = _seconds("timeout", timeout)
+    if startup_timeout is None:
+        return per_reply, max(STARTUP_TIMEOUT, per_reply)
+    return per_reply, _seconds("startup_timeout", startup_timeout)
+
+
+def _seconds(name: str, value: object) -> float:
+    """``value`` as a float if it is a finite number > 0, else a :class:`ParameterError`."""
+    if isinstance(value, bool) or not isinstance(value, int | float) or not 0 < value < math.inf:
+        raise ParameterError(f"`{name}` must be a finite number > 0, got {value!r}")
+    return float(value)
 
 
 class ExternalPlanner:
@@ -67,9 +122,13 @@ class ExternalPlanner:
     ----------
     command : str or sequence of str
         The program and its arguments; a string is split with :func:`shlex.split` (no shell).
-    timeout : float, default 10.0
-        Longest wait, in s, for each reply (the first ``ready`` includes the program's start)
-        and for the program's exit after ``bye``.
+    timeout : float, default :data:`TIMEOUT` (10 s)
+        Longest wait, in s, for each reply but the first (see ``startup_timeout``).
+    startup_timeout : float, optional
+        Longest wait, in s, for the first reply of each start of the program (its ``ready``
+        to the first ``reset``, which includes the program's start-up: an interpreter, its
+        imports) and for the program's exit after ``bye``. Default: :data:`STARTUP_TIMEOUT`
+        (60 s), or ``timeout`` if that is longer.
     name : str, optional
         The planner's name in results and reports; default: the command line.
     log : text stream, optional
@@ -97,7 +156,8 @@ class ExternalPlanner:
         self,
         command: str | Sequence[str],
         *,
-        timeout: float = 10.0,
+        timeout: float = TIMEOUT,
+        startup_timeout: float | None = None,
         name: str | None = None,
         log: TextIO | None = None,
         cwd: str | os.PathLike[str] | None = None,
@@ -107,10 +167,8 @@ class ExternalPlanner:
             raise ParameterError(
                 f"`command` must be a non-empty command line or list of strings, got {command!r}"
             )
-        if isinstance(timeout, bool) or not isinstance(timeout, int | float) or not timeout > 0:
-            raise ParameterError(f"`timeout` must be a number > 0, got {timeout!r}")
         self._argv = argv
-        self.timeout = float(timeout)
+        self.timeout, self.startup_timeout = timeouts(timeout, startup_timeout)
         self.name = shlex.join(argv) if name is None else name
         self._log = log
         self._cwd = cwd
@@ -127,15 +185,19 @@ class ExternalPlanner:
     def reset(self, start: Pose, goal: Point, params: EpisodeParams) -> None:
         """Start an episode: send ``reset`` (starting the program if needed), await ``ready``.
 
+        The program is started here if it does not run, and its ``ready`` is then awaited
+        ``startup_timeout`` s instead of ``timeout``.
+
         Raises
         ------
         ImplementationError
             If the program cannot be started, fails or answers anything but ``ready``.
         """
         self._raise_if_failed()
-        if self._process is None:
+        first = self._process is None
+        if first:
             self._start()
-        reply = self._exchange(reset_message(start, goal, params), "reset")
+        reply = self._exchange(reset_message(start, goal, params), "reset", startup=first)
         self._parse(parse_ready, reply, "reset")
 
     def step(self, observation: Observation) -> Command:
@@ -164,8 +226,8 @@ class ExternalPlanner:
         Raises
         ------
         ImplementationError
-            If the program does not exit within ``timeout`` (it is killed), exits with a
-            non-zero status, or wrote something it was not asked for.
+            If the program does not exit within ``startup_timeout`` (it is killed), exits with
+            a non-zero status, or wrote something it was not asked for.
         """
         process = self._process
         if process is None or self._failure is not None:
@@ -174,10 +236,11 @@ class ExternalPlanner:
         self._outbox.put(encode(bye_message()))
         self._outbox.put(_EOF)  # then close its stdin
         try:
-            status = process.wait(timeout=self.timeout)
+            status = process.wait(timeout=self.startup_timeout)
         except subprocess.TimeoutExpired:
             self._fail(
-                f"program did not exit within {self.timeout!r} s after bye (program killed)",
+                f"program did not exit within {self.startup_timeout!r} s after bye "
+                f"({STARTUP}, which bounds the exit too; program killed)",
                 tail=True,
             )
         self._drain()
@@ -226,7 +289,7 @@ class ExternalPlanner:
             state = f"running as pid {self._process.pid}"
         return (
             f"ExternalPlanner({list(self._argv)!r}, timeout={self.timeout!r}, "
-            f"name={self.name!r}) <{state}>"
+            f"startup_timeout={self.startup_timeout!r}, name={self.name!r}) <{state}>"
         )
 
     # --- the process -----------------------------------------------------------------------
@@ -282,14 +345,19 @@ class ExternalPlanner:
             thread.start()
         self._finalizer = weakref.finalize(self, _kill_process, process)
 
-    def _exchange(self, message: dict[str, Any], what: str) -> str:
-        """Send ``message`` and return the reply line, or fail saying what went wrong."""
+    def _exchange(self, message: dict[str, Any], what: str, *, startup: bool = False) -> str:
+        """Send ``message`` and return the reply line, or fail saying what went wrong.
+
+        The reply is awaited ``startup_timeout`` s if it is the program's first (``startup``),
+        else ``timeout`` s; a reply that does not come is reported naming that timeout.
+        """
         self._check_quiet(what)
         self._outbox.put(encode(message))
+        wait, which = (self.startup_timeout, STARTUP) if startup else (self.timeout, PER_REPLY)
         try:
-            line = self._replies.get(timeout=self.timeout)
+            line = self._replies.get(timeout=wait)
         except queue.Empty:
-            self._fail(f"no reply within {self.timeout!r} s to {what} (program killed)", tail=True)
+            self._fail(f"no reply within {wait!r} s to {what} ({which}; program killed)", tail=True)
         if line is _EOF:
             self._wait_for_exit(what)
         return line
@@ -444,21 +512,31 @@ class ExternalFactory:
     """A planner factory for the oracle: one :class:`ExternalPlanner`, started once and
     handed out for every episode (its program plays them one after another).
 
-    It holds only the command and the timeout until first called, so it can be copied into
-    another process.
+    It holds only the command and the timeouts (checked here, as :class:`ExternalPlanner`
+    checks them) until first called, so it can be copied into another process.
     """
 
     def __init__(
-        self, command: str | Sequence[str], *, timeout: float = 10.0, name: str | None = None
+        self,
+        command: str | Sequence[str],
+        *,
+        timeout: float = TIMEOUT,
+        startup_timeout: float | None = None,
+        name: str | None = None,
     ) -> None:
         self.command = command
-        self.timeout = timeout
+        self.timeout, self.startup_timeout = timeouts(timeout, startup_timeout)
         self.name = name
         self._planner: ExternalPlanner | None = None
 
     def __call__(self) -> ExternalPlanner:
         if self._planner is None:
-            self._planner = ExternalPlanner(self.command, timeout=self.timeout, name=self.name)
+            self._planner = ExternalPlanner(
+                self.command,
+                timeout=self.timeout,
+                startup_timeout=self.startup_timeout,
+                name=self.name,
+            )
         return self._planner
 
     def close(self) -> None:
