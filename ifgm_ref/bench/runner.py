@@ -1,12 +1,16 @@
 """Run the benchmark's tasks here, in a local process pool, or on a Dask cluster.
 
-One task per world (:func:`ifgm_ref.bench.tasks.run_world`). With ``jobs=1`` the tasks run in
-this process; with more, in a ``concurrent.futures.ProcessPoolExecutor``; with a scheduler
-address, on a Dask cluster through the ``concurrent.futures`` executor that
+:func:`map_tasks` calls one module-level function on every task of a list. With ``jobs=1``
+the tasks run in this process; with more, in a ``concurrent.futures.ProcessPoolExecutor``;
+with a scheduler address, on a Dask cluster through the ``concurrent.futures`` executor that
 ``distributed.Client.get_executor()`` provides (the optional extra ``ifgm-ref[dask]``; the
-workers need ``ifgm-ref`` installed). The rows come back in task order whatever order the
-tasks finish in, so the table does not depend on where it ran (only the CPU-timing column
-does).
+workers need ``ifgm-ref`` installed). The results come back in task order whatever order the
+tasks finish in, so a table does not depend on where it ran. An interrupted run (Ctrl-C, or a
+task that raises) cancels the tasks not yet started rather than waiting for them.
+
+The benchmark (:func:`run_bench`) has one task per world (:func:`ifgm_ref.bench.tasks.run_world`;
+only its CPU-timing column depends on where it ran); the soak
+(:func:`ifgm_ref.bench.soak.run_soak`) has one per drawn world too.
 """
 
 from __future__ import annotations
@@ -14,11 +18,15 @@ from __future__ import annotations
 import concurrent.futures as cf
 import contextlib
 from collections.abc import Callable, Iterator, Sequence
+from typing import Any, TypeVar
 
 from tqdm import tqdm
 
 from ifgm_ref.bench.tasks import NOISE_FREE, Condition, Row, WorldSpec, run_world
 from ifgm_ref.errors import ParameterError
+
+#: What a task's function returns.
+R = TypeVar("R")
 
 
 @contextlib.contextmanager
@@ -29,7 +37,8 @@ def _executor(jobs: int, scheduler: str | None) -> Iterator[cf.Executor | None]:
             from distributed import Client
         except ImportError:
             raise ParameterError(
-                "--scheduler needs Dask's distributed package: pip install 'ifgm-ref[dask]'"
+                "running on a Dask scheduler needs Dask's distributed package: pip install "
+                "'ifgm-ref[dask]'"
             ) from None
         with Client(scheduler) as client:
             executor = client.get_executor()
@@ -42,6 +51,56 @@ def _executor(jobs: int, scheduler: str | None) -> Iterator[cf.Executor | None]:
             yield pool
     else:
         yield None
+
+
+def map_tasks(
+    function: Callable[..., R],
+    tasks: Sequence[tuple[Any, ...]],
+    *,
+    jobs: int = 1,
+    scheduler: str | None = None,
+    progress: bool | None = None,
+    desc: str = "bench",
+    unit: str = "world",
+    on_result: Callable[[R], None] | None = None,
+) -> list[R]:
+    """``function(*task)`` for every task: the results in ``tasks`` order.
+
+    Parameters
+    ----------
+    function : a module-level function (the workers import it by name).
+    tasks : the arguments of each call, picklable.
+    jobs : local worker processes (1: run in this process); ignored with ``scheduler``.
+    scheduler : a Dask scheduler address (``tcp://host:8786``) to run the tasks on.
+    progress : show a progress bar with an ETA on stderr (``None``: only on a terminal).
+    desc, unit : the progress bar's label and the unit of a task.
+    on_result : called with each result as it arrives (in completion order).
+    """
+    if jobs < 1:
+        raise ParameterError(f"jobs must be at least 1, got {jobs}")
+    results: dict[int, R] = {}
+    disable = None if progress is None else not progress
+    with (
+        tqdm(total=len(tasks), unit=unit, desc=desc, disable=disable) as bar,
+        _executor(jobs, scheduler) as executor,
+    ):
+        futures: dict[cf.Future[R], int] = {}
+        if executor is None:
+            done: Iterator[tuple[int, R]] = ((k, function(*task)) for k, task in enumerate(tasks))
+        else:
+            futures = {executor.submit(function, *task): k for k, task in enumerate(tasks)}
+            done = ((futures[f], f.result()) for f in cf.as_completed(futures))
+        try:
+            for k, result in done:
+                results[k] = result
+                if on_result is not None:
+                    on_result(result)
+                bar.update()
+        except BaseException:
+            for future in futures:
+                future.cancel()  # those not started yet: the executor then waits for the rest
+            raise
+    return [results[k] for k in range(len(tasks))]
 
 
 def run_bench(
@@ -72,29 +131,9 @@ def run_bench(
     progress : show a progress bar with an ETA on stderr (``None``: only on a terminal).
     on_rows : called with each world's rows as they arrive (in completion order).
     """
-    if jobs < 1:
-        raise ParameterError(f"jobs must be at least 1, got {jobs}")
     names, noises = tuple(planners), tuple(conditions)
-    results: list[list[Row] | None] = [None] * len(specs)
-    disable = None if progress is None else not progress
-    with (
-        tqdm(total=len(specs), unit="world", desc="bench", disable=disable) as bar,
-        _executor(jobs, scheduler) as executor,
-    ):
-        if executor is None:
-            done: Iterator[tuple[int, list[Row]]] = (
-                (k, run_world(spec, names, max_time, noises, noise_seed))
-                for k, spec in enumerate(specs)
-            )
-        else:
-            futures = {
-                executor.submit(run_world, spec, names, max_time, noises, noise_seed): k
-                for k, spec in enumerate(specs)
-            }
-            done = ((futures[f], f.result()) for f in cf.as_completed(futures))
-        for k, rows in done:
-            results[k] = rows
-            if on_rows is not None:
-                on_rows(rows)
-            bar.update()
-    return [row for rows in results if rows is not None for row in rows]
+    tasks = [(spec, names, max_time, noises, noise_seed) for spec in specs]
+    results = map_tasks(
+        run_world, tasks, jobs=jobs, scheduler=scheduler, progress=progress, on_result=on_rows
+    )
+    return [row for rows in results for row in rows]
