@@ -90,7 +90,6 @@ from ifgm_ref.oracle.metamorphic import (
     scaled_recording,
 )
 from ifgm_ref.oracle.recording import RecordingPlanner, replay
-from ifgm_ref.oracle.robust import rigid_motion_unmeasurable
 from ifgm_ref.oracle.strategies import (
     SOLVABLE_CLASSES,
     any_solvable_worlds,
@@ -482,7 +481,6 @@ CHECKS: dict[str, Check] = {
             lambda impl: st.tuples(_promised_worlds(impl), placements()),
             _invariance_test,
             _always,
-            noisy_applies=rigid_motion_unmeasurable,
         ),
         Check(
             "scale_invariant",
