@@ -22,14 +22,20 @@ from typing import Any
 
 import pytest
 
+from ifgm_ref.convergence import time_bound
 from ifgm_ref.oracle.checks import CHECKS, Kind
 from ifgm_ref.oracle.implementation import Implementation
+from ifgm_ref.oracle.invariance import HEADING_TOL, SPEED_TOL, answer_errors
+from ifgm_ref.oracle.metamorphic import moved_recording
+from ifgm_ref.oracle.recording import RecordingPlanner
 from ifgm_ref.oracle.runner import Status, check_planner
 from ifgm_ref.oracle.vectors import QUANTITIES
+from ifgm_ref.params import SimParams
 from ifgm_ref.planners import make_planner
 from ifgm_ref.scenarios import resolve_world
 from ifgm_ref.simulator import Run, simulate
 from ifgm_ref.transport.external import ExternalPlanner
+from tests.test_invariance import long_mixed_example
 
 ROOT = Path(__file__).resolve().parent.parent
 PORT = ROOT / "examples" / "c"
@@ -374,6 +380,33 @@ def test_the_c_iba_passes_the_quick_profile(build: Path) -> None:
             assert result.message.startswith("stop_reason='goal_unreachable'"), result.line()
             continue
         assert result.status in {Status.PASSED, Status.NOT_APPLICABLE}, result.line()
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("build_name", ["build", "float_build"])
+def test_the_c_ifgm_answers_the_moved_problem_where_it_was_rejected(
+    request: pytest.FixtureRequest, build_name: str
+) -> None:
+    """Issue 24: the closed-loop ``rigid_motion_invariant`` rejected the C IFGM in a mixed world
+    where it circles for 9,502 steps (``long_mixed_example``: 0.28 ft off at 161 s, a tie
+    tipped by rounding). The open-loop check replays its exchange moved: the double build
+    answers within 1e-12, the float build within the check's tolerances (a few minutes)."""
+    world, (angle, shift) = long_mixed_example()
+    program = [str(_builds(request, build_name) / "ifgm_json"), "--planner", "ifgm"]
+    impl = Implementation.from_command(program, timeout=30.0, promises="ifgm")
+    try:
+        recorder = RecordingPlanner(impl.factory())
+        run = simulate(world, recorder, SimParams(max_time=time_bound(world)))
+        assert (run.result.stop_reason, run.result.steps) == ("time_limit", 9502)  # the premise
+        expected = moved_recording(recorder.recording(), angle, shift)
+        errors = list(answer_errors(impl, expected, "the C port"))
+    finally:
+        impl.close()
+    assert len(errors) == 9502
+    assert all(e.expected.stop == e.answered.stop for e in errors)
+    limit = (1e-12, 1e-12) if build_name == "build" else (HEADING_TOL, SPEED_TOL)
+    assert max(e.heading for e in errors) <= limit[0]
+    assert max(e.speed for e in errors) <= limit[1]
 
 
 # --- the built-in worlds ----------------------------------------------------------------------

@@ -1,9 +1,9 @@
 """The ``scale_invariant`` check and the scaling it rests on (:mod:`ifgm_ref.oracle.metamorphic`).
 
 The scaled problem scales every length and nothing else; the reference planners pass the
-check (IFGM not yet: its eq. (4) gap weight is a number divided by a length, see
-``test_reference_planners_are_scale_invariant``); a planner with one absolute margin is
-caught on a world where the reference is exact to the bit.
+check; a planner with one absolute margin is caught on a world where the reference is exact
+to the bit, and with a rounded scale on the open-loop replay (``tests/test_invariance.py``
+tests the replay itself).
 """
 
 from __future__ import annotations
@@ -130,7 +130,8 @@ def test_an_absolute_margin_is_caught_where_the_reference_is_exact() -> None:
     for k in (2.0, 0.3048):
         broken = _one(Implementation(AbsoluteStandoff, "absolute-standoff"), world, k)
         assert broken.status is Status.FAILED, broken.line()
-    assert broken.message.startswith("scaled by k=0.3048, the run ended")
+    assert broken.message.startswith("scaled by k=0.3048, the original run's step")
+    assert "replayed open loop) was answered with heading" in broken.message
     exact = _one(Implementation(AbsoluteStandoff, "absolute-standoff"), world, 2.0)
     assert "(a power of two: exact), the run differs from the original times k at step" in (
         exact.message

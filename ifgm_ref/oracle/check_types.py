@@ -3,8 +3,8 @@
 A :class:`Check` draws an example with a Hypothesis strategy and runs its test, which raises
 :class:`CheckFailed` when the implementation breaks the property; a :class:`Recorder` counts
 the examples and keeps the :class:`Evidence` of the last failure for the report. Under noise a
-check is absolute (the same test on noisy examples), statistical (it has a ``sample``: its
-misses are counted, :mod:`ifgm_ref.oracle.robust`), or does not apply (``noisy_applies``).
+check is absolute (the same test on noisy examples) or statistical (it has a ``sample``: its
+misses are counted, :mod:`ifgm_ref.oracle.robust`).
 The checks themselves are registered in :data:`ifgm_ref.oracle.checks.CHECKS`.
 """
 
@@ -17,7 +17,6 @@ from typing import Any
 
 from hypothesis import strategies as st
 
-from ifgm_ref.noise import NoiseLevels
 from ifgm_ref.oracle.implementation import Implementation
 from ifgm_ref.simulator import Run
 from ifgm_ref.world import World
@@ -63,19 +62,13 @@ class Recorder:
     summary: str = ""
 
 
-def _applies_under_any_noise(levels: NoiseLevels) -> str | None:
-    return None
-
-
 @dataclass(frozen=True)
 class Check:
     """One property: its name, its sentence, its example strategy and its test, and whether
     it applies to an implementation.
 
     Under noise, ``sample`` (if any) makes the check statistical: it builds one example from
-    seeded draws (a world generator of :mod:`ifgm_ref.worldgen.classes`); and
-    ``noisy_applies`` says why the property means nothing at some noise levels (``None``: it
-    applies).
+    seeded draws (a world generator of :mod:`ifgm_ref.worldgen.classes`).
     """
 
     name: str
@@ -85,4 +78,3 @@ class Check:
     test: Callable[[Implementation, Any, Recorder], None]
     applies: Callable[[Implementation], str | None]
     sample: Callable[[Draw], Any] | None = None
-    noisy_applies: Callable[[NoiseLevels], str | None] = _applies_under_any_noise

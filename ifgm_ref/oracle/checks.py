@@ -17,14 +17,20 @@ check                             property (applies to)
 ``reports_unreachable``           with the goal enclosed, the planner stops with
                                   ``goal_unreachable`` within the bound (Bug1, Bug2, DistBug,
                                   IBA, IFGM)
-``rigid_motion_invariant``        rotating and translating the whole problem moves the
-                                  trajectory the same way, within :data:`INVARIANCE_STEPS` steps
-                                  (after :data:`GENERIC_OFFSET` breaks exact symmetries),
-                                  with the same stop reason
+``rigid_motion_invariant``        rotating and translating the whole problem (after
+                                  :data:`GENERIC_OFFSET` breaks exact symmetries) moves every
+                                  answer the same way: handed the original run's observations
+                                  moved, open loop, the planner answers each step with the
+                                  recorded heading turned by the angle, within
+                                  :data:`HEADING_TOL`, the same speed within :data:`SPEED_TOL`,
+                                  and the same stop (:mod:`ifgm_ref.oracle.invariance`)
 ``scale_invariant``               scaling every length of the problem by ``k`` (world, robot,
-                                  sensor, goal tolerance) scales the trajectory by ``k``: bit
-                                  for bit with the same branches for a power of two, the same
-                                  stop and path length within :data:`SCALE_PATH_TOL` otherwise
+                                  sensor, goal tolerance) scales the trajectory by ``k``: for a
+                                  power of two, the scaled run is the original times ``k`` bit
+                                  for bit, branches and stop included; otherwise, handed the
+                                  original run's observations scaled, open loop, the planner
+                                  answers the same headings and stops and ``k`` times the
+                                  speeds, within :data:`HEADING_TOL` and :data:`SPEED_TOL`
 ``ignores_unseen_obstacles``      an obstacle the sensor never sees does not change the
                                   trajectory at all (decisions depend on percepts only)
 ``passes_wide_gaps``              through a wall pierced by one gap wider than ``d_th`` + 1 ft,
@@ -66,9 +72,24 @@ from ifgm_ref.oracle.equation_checks import (
     equation_checks,
 )
 from ifgm_ref.oracle.implementation import Implementation
-from ifgm_ref.oracle.metamorphic import is_power_of_two, scale_params, scale_sim, scale_world
+from ifgm_ref.oracle.invariance import (
+    EXACT_SCALES,
+    GENERIC_OFFSET,
+    HEADING_TOL,
+    ROUNDED_SCALES,
+    SPEED_TOL,
+    compare_answers,
+    generic,
+)
+from ifgm_ref.oracle.metamorphic import (
+    is_power_of_two,
+    moved_recording,
+    scale_params,
+    scale_sim,
+    scale_world,
+    scaled_recording,
+)
 from ifgm_ref.oracle.recording import RecordingPlanner, replay
-from ifgm_ref.oracle.robust import rigid_motion_unmeasurable
 from ifgm_ref.oracle.strategies import (
     SOLVABLE_CLASSES,
     any_solvable_worlds,
@@ -79,7 +100,6 @@ from ifgm_ref.oracle.strategies import (
 from ifgm_ref.paper import traces
 from ifgm_ref.params import SimParams
 from ifgm_ref.planners.tuning import ParamInfo
-from ifgm_ref.pose import Point
 from ifgm_ref.protocol import Command, Planner
 from ifgm_ref.shapes import circle
 from ifgm_ref.simulator import Run, StopReason, TraceStep, simulate
@@ -92,11 +112,11 @@ __all__ = [
     "EXACT_SCALES",
     "FIRST_TURN",
     "GENERIC_OFFSET",
-    "INVARIANCE_STEPS",
+    "HEADING_TOL",
     "NO_EQUATIONS",
     "NO_EQUATIONS_PROGRAM",
     "ROUNDED_SCALES",
-    "SCALE_PATH_TOL",
+    "SPEED_TOL",
     "Check",
     "CheckFailed",
     "Evidence",
@@ -106,42 +126,9 @@ __all__ = [
     "scale_test",
 ]
 
-#: The moved run may lag or lead the original by this many steps. Rotating the problem rounds
-#: every coordinate differently (1e-16; 1e-7 in a float32 port), and a decision that sits on a
-#: tie can tip: measured, a wall-following robot's heading aligns exactly with the
-#: perpendicular of a wall, two rays return equal ranges, and the rounding picks the other
-#: ray, one angle increment (1.8 degrees) off for one step, 0.004 ft, damped afterwards; a
-#: turn starts or ends a step early or late (a float32 port in a symmetric world: 0.157 rad,
-#: one step of turning; in an H world: 0.05 ft). So positions may differ by this many steps of
-#: travel (``speed * dt`` each: 0.26 ft, a quarter of the radius, for the paper's robot),
-#: headings by this many steps of turning (``max_turn_rate * dt`` each: 0.31 rad), and the
-#: runs' lengths by this many steps. A frame or sign error moves the robot by feet.
-INVARIANCE_STEPS = 2
-#: Before the invariance check the goal moves this far (ft) off the drawn start-goal line. An
-#: exactly symmetric problem (an obstacle centred on the line: shrinking finds them) is a tie
-#: that the planner breaks by a fixed rule, left or right; the rounding of rotated
-#: coordinates (1e-16) can tip such a tie either way, which no implementation can avoid. A
-#: 0.01 ft offset breaks every exact symmetry by far more than the rounding.
-GENERIC_OFFSET = 0.01
 #: ``passes_wide_gaps``: a commanded heading this far off the goal bearing (rad, 5 degrees)
 #: is the robot's first turn, which must be towards the gap (Case-1 steers at it).
 FIRST_TURN = math.radians(5.0)
-#: ``scale_invariant``: the factors drawn. Powers of two first (failures shrink to 2): scaling
-#: by them is exact in floating point, so the scaled run must be the original times ``k`` bit
-#: for bit. Then a unit conversion (ft to m), the 0.22 m radius of a small ground robot
-#: (BARN's Jackal) over the paper's 1 ft, and an odd factor: every scaled number is rounded.
-EXACT_SCALES = (2.0, 0.5, 4.0, 0.25, 8.0)
-#: See :data:`EXACT_SCALES`.
-ROUNDED_SCALES = (0.3048, 0.22, 3.7)
-#: ``scale_invariant`` with a rounded ``k``: the path length divided by ``k`` may differ from
-#: the original's by this fraction. Rounding the scaled problem (1e-16 relative) tips a tie
-#: now and then, as rotating it does (:data:`INVARIANCE_STEPS`): a wall-follower takes the
-#: neighbouring ray for a step. Measured on the reference planners (3-8 worlds per class and
-#: planner, k in ``ROUNDED_SCALES``): at most 1.6e-3 (Bug1, a 3468-step mixed world), 6.8e-4
-#: (APF), 2e-5 (Bug2, DistBug, IBA), 7e-14 (FGM). A length constant that does not scale
-#: changes the path by far more; the powers of two catch small ones exactly.
-SCALE_PATH_TOL = 0.01
-
 # -- simulation helpers ------------------------------------------------------------------------
 
 
@@ -235,52 +222,18 @@ def _poses(trace: Sequence[TraceStep]) -> NDArray[np.float64]:
     return np.array([(s.x, s.y, s.theta) for s in trace])
 
 
-def _generic(world: World) -> World:
-    """``world`` with the goal moved :data:`GENERIC_OFFSET` ft to the left of the start-goal
-    line, so that no obstacle lies exactly symmetric about it."""
-    sx, sy = world.start.position
-    gx, gy = world.goal
-    d = math.hypot(gx - sx, gy - sy)
-    goal = Point(gx - GENERIC_OFFSET * (gy - sy) / d, gy + GENERIC_OFFSET * (gx - sx) / d)
-    return replace(world, goal=goal)
-
-
 def _invariance_test(
     impl: Implementation, example: tuple[World, tuple[float, tuple[float, float]]], rec: Recorder
 ) -> None:
-    world, (angle, shift) = _generic(example[0]), example[1]
-    moved = placed(world, angle, shift)
-    first = episode(impl, world, rec)
-    second = episode(impl, moved, rec)
-    rec.evidence = Evidence([world, moved], [first, second], time_bound(world))
-    c, s = math.cos(angle), math.sin(angle)
-    a, b = _poses(first.trace), _poses(second.trace)
-    n = min(len(a), len(b))
-    expected = np.column_stack(
-        (c * a[:n, 0] - s * a[:n, 1] + shift[0], s * a[:n, 0] + c * a[:n, 1] + shift[1])
-    )
-    robot, dt = world.robot, SimParams().dt
-    position_tol = INVARIANCE_STEPS * robot.speed * dt
-    heading_tol = INVARIANCE_STEPS * robot.max_turn_rate * dt
-    position_error = np.hypot(*(b[:n, :2] - expected).T)
-    heading_error = np.abs(np.angle(np.exp(1j * (b[:n, 2] - a[:n, 2] - angle))))
-    bad = np.flatnonzero((position_error > position_tol) | (heading_error > heading_tol))
+    """Run ``example``'s world, recording the exchange; replay it moved by the example's rigid
+    motion (:mod:`ifgm_ref.oracle.invariance`)."""
+    world, (angle, shift) = generic(example[0]), example[1]
+    recorder = RecordingPlanner(impl.factory())
+    first = episode(impl, world, rec, planner=recorder)
+    rec.evidence = Evidence([world, placed(world, angle, shift)], [first], time_bound(world))
     where = f"{_where(impl, world)}, moved by {angle:.6f} rad and {_xy(shift)}"
-    if len(bad):
-        k = int(bad[0])
-        raise CheckFailed(
-            f"moved trajectory at t={first.trace[k].t:.1f} s is {position_error[k]:.3g} ft and "
-            f"{heading_error[k]:.3g} rad off the original one moved, but should be within "
-            f"{position_tol:.3g} ft and {heading_tol:.3g} rad [{where}]"
-        )
-    if first.result.stop_reason != second.result.stop_reason or (
-        abs(len(a) - len(b)) > INVARIANCE_STEPS
-    ):
-        raise CheckFailed(
-            f"moved run ended {second.result.stop_reason!r} after {len(b) - 1} steps, but should "
-            f"end like the original, {first.result.stop_reason!r} after {len(a) - 1} steps "
-            f"[{where}]"
-        )
+    expected = moved_recording(recorder.recording(), angle, shift)
+    compare_answers(impl, expected, "moved", where, rec)
 
 
 def _scale_examples(impl: Implementation) -> st.SearchStrategy[tuple[World, float]]:
@@ -305,51 +258,54 @@ def scale_test(
     params: dict[str, object] | None = None,
     infos: Sequence[ParamInfo] = (),
 ) -> None:
-    """Run ``example``'s world and the same world scaled by its ``k``; compare.
+    """Run ``example``'s world and compare with the same world scaled by its ``k``: for a
+    power of two, run the scaled world too and compare bit for bit; otherwise replay the
+    recorded exchange scaled, open loop (:mod:`ifgm_ref.oracle.invariance`).
 
     ``params`` (planner parameters by name, none by default) are scaled by their units in
-    ``infos`` (:func:`ifgm_ref.oracle.metamorphic.scale_params`). Both runs get the original
-    world's time bound and ``dt``; the goal tolerance scales.
+    ``infos`` (:func:`ifgm_ref.oracle.metamorphic.scale_params`). Both problems get the
+    original world's time bound and ``dt``; the goal tolerance scales.
     """
-    world, k = _generic(example[0]), example[1]
+    world, k = generic(example[0]), example[1]
     scaled = scale_world(world, k)
     sim = SimParams(max_time=time_bound(world))
     scaled_params = None if params is None else scale_params(params, infos, k)
-    first = episode(impl, world, rec, sim=sim, params=params)
-    second = episode(impl, scaled, rec, sim=scale_sim(sim, k), params=scaled_params)
-    rec.evidence = Evidence([world, scaled], [first, second], sim.max_time)
-    a, b = first.result, second.result
     where = f"{_where(impl, world)}, scaled by k={k!r}"
     if is_power_of_two(k):
-        for n, (one, two) in enumerate(zip(first.trace, second.trace, strict=False)):
-            want, got = _scaled_step(one, k), _scaled_step(two, 1.0)  # times 1.0: exact
-            if want != got:
-                diff = ", ".join(
-                    f"{name}={g!r} (should be {w!r})"
-                    for name, w, g in zip(_STEP_FIELDS, want, got, strict=True)
-                    if w != g
-                )
-                raise CheckFailed(
-                    f"scaled by k={k!r} (a power of two: exact), the run differs from the "
-                    f"original times k at step {n} (t={one.t:.1f} s, original branch "
-                    f"{want[-1]!r}): {diff}; lengths should be exactly k times the "
-                    f"original's, angles and branches equal [{where}]"
-                )
-        if a.stop_reason != b.stop_reason or len(first.trace) != len(second.trace):
-            raise CheckFailed(
-                f"scaled by k={k!r} (a power of two: exact), the run ended "
-                f"{b.stop_reason!r} after {b.steps} steps, but should end like the original, "
-                f"{a.stop_reason!r} after {a.steps} steps [{where}]"
-            )
+        first = episode(impl, world, rec, sim=sim, params=params)
+        second = episode(impl, scaled, rec, sim=scale_sim(sim, k), params=scaled_params)
+        rec.evidence = Evidence([world, scaled], [first, second], sim.max_time)
+        _exactly_scaled(first, second, k, where)
         return
-    floor = world.robot.radius
-    error = abs(b.path_length / k - a.path_length) / max(a.path_length, floor)
-    if a.stop_reason != b.stop_reason or not error <= SCALE_PATH_TOL:
+    recorder = RecordingPlanner(impl.factory())
+    first = episode(impl, world, rec, planner=recorder, sim=sim, params=params)
+    rec.evidence = Evidence([world, scaled], [first], sim.max_time)
+    expected = scaled_recording(recorder.recording(), k, scaled_params)
+    compare_answers(impl, expected, f"scaled by k={k!r}", where, rec)
+
+
+def _exactly_scaled(first: Run, second: Run, k: float, where: str) -> None:
+    """Raise :class:`CheckFailed` unless ``second`` is ``first`` times ``k`` bit for bit."""
+    for n, (one, two) in enumerate(zip(first.trace, second.trace, strict=False)):
+        want, got = _scaled_step(one, k), _scaled_step(two, 1.0)  # times 1.0: exact
+        if want != got:
+            diff = ", ".join(
+                f"{name}={g!r} (should be {w!r})"
+                for name, w, g in zip(_STEP_FIELDS, want, got, strict=True)
+                if w != g
+            )
+            raise CheckFailed(
+                f"scaled by k={k!r} (a power of two: exact), the run differs from the "
+                f"original times k at step {n} (t={one.t:.1f} s, original branch "
+                f"{want[-1]!r}): {diff}; lengths should be exactly k times the "
+                f"original's, angles and branches equal [{where}]"
+            )
+    a, b = first.result, second.result
+    if a.stop_reason != b.stop_reason or len(first.trace) != len(second.trace):
         raise CheckFailed(
-            f"scaled by k={k!r}, the run ended {b.stop_reason!r} after {b.steps} steps with "
-            f"path length / k = {b.path_length / k:.6g}, but should end like the original, "
-            f"{a.stop_reason!r} ({a.steps} steps), with path length {a.path_length:.6g} "
-            f"within {SCALE_PATH_TOL:g} relative (off by {error:.3g}) [{where}]"
+            f"scaled by k={k!r} (a power of two: exact), the run ended "
+            f"{b.stop_reason!r} after {b.steps} steps, but should end like the original, "
+            f"{a.stop_reason!r} after {a.steps} steps [{where}]"
         )
 
 
@@ -525,7 +481,6 @@ CHECKS: dict[str, Check] = {
             lambda impl: st.tuples(_promised_worlds(impl), placements()),
             _invariance_test,
             _always,
-            noisy_applies=rigid_motion_unmeasurable,
         ),
         Check(
             "scale_invariant",

@@ -1,4 +1,4 @@
-"""Metamorphic relations of a whole problem: the same problem in another unit of length.
+"""Metamorphic relations of a whole problem: the same problem moved, or in another unit.
 
 A planner whose every length is derived from the robot and the sensor
 (:mod:`ifgm_ref.planners.tuning`) cannot tell feet from metres: scale every length of the
@@ -16,6 +16,14 @@ that combines lengths only with lengths (and with dimensionless numbers) gives e
 times the unscaled result, bit for bit, as long as nothing overflows or underflows. Any
 absolute length constant (a ``1.0`` margin, a ``1e-6`` ft epsilon) breaks that.
 
+The planner's half of a relation (:func:`moved_recording`, :func:`scaled_recording`): what a
+planner was handed in one run and what it answered (a
+:class:`~ifgm_ref.oracle.recording.Recording`), transformed into what it must be handed and
+answer in the moved or scaled problem. In exact arithmetic the simulator hands the planner
+exactly these observations in the transformed problem (a scan is taken in the robot's frame,
+so a rigid motion leaves it as it is); the oracle replays them open loop
+(:mod:`ifgm_ref.oracle.invariance`).
+
 Sources: the units of the parameters, :class:`ifgm_ref.planners.tuning.Unit`; the world's
 blocks, :mod:`ifgm_ref.world` and :mod:`ifgm_ref.params`.
 """
@@ -23,23 +31,28 @@ blocks, :mod:`ifgm_ref.world` and :mod:`ifgm_ref.params`.
 from __future__ import annotations
 
 import math
-from collections.abc import Iterable, Mapping
+from collections.abc import Callable, Iterable, Mapping
 from dataclasses import replace
 
 from ifgm_ref.errors import ParameterError
+from ifgm_ref.oracle.recording import Recording
 from ifgm_ref.params import RobotParams, SensorParams, SimParams
 from ifgm_ref.planners.tuning import ParamInfo
 from ifgm_ref.pose import Point, Pose
+from ifgm_ref.protocol import Command, EpisodeParams, Observation
 from ifgm_ref.world import Bounds, Circle, Obstacle, Polygon, World
+from ifgm_ref.worldgen.classes import placed_point, placed_pose
 
 __all__ = [
     "is_power_of_two",
+    "moved_recording",
     "scale_obstacle",
     "scale_params",
     "scale_robot",
     "scale_sensor",
     "scale_sim",
     "scale_world",
+    "scaled_recording",
 ]
 
 
@@ -159,3 +172,111 @@ def scale_params(
             raise ParameterError(f"`{name}` must be a number to scale, got {value!r}")
         scaled[name] = value * k**power if power else value  # type: ignore[operator]
     return scaled
+
+
+def moved_recording(recording: Recording, angle: float, shift: tuple[float, float]) -> Recording:
+    """The exchange of ``recording``'s problem rotated by ``angle`` about the origin and shifted
+    by ``shift`` (ft), as :func:`~ifgm_ref.worldgen.classes.placed` moves a world.
+
+    Moved: the start, the goal, and every pose and goal handed to the planner
+    (:func:`~ifgm_ref.worldgen.classes.placed_pose`, ``placed_point``); every heading it
+    answered turned by ``angle``. Kept: times, scans (taken in the robot's frame), the episode
+    parameters, and every speed, behaviour, branch and stop it answered.
+
+    >>> from ifgm_ref.laserscan import LaserScan
+    >>> from ifgm_ref.protocol import EpisodeParams
+    >>> scan = LaserScan(-1.0, 1.0, 1.0, 0.0, 10.0, [3.0, 4.0, 5.0])
+    >>> seen = Observation(0.0, Pose(1.0, 0.0, 0.0), Point(5.0, 0.0), scan)
+    >>> was = Recording(Pose(1.0, 0.0, 0.0), Point(5.0, 0.0), EpisodeParams(),
+    ...                 ((seen, Command(0.25, 1.0)),))
+    >>> moved = moved_recording(was, math.pi / 2, (10.0, 0.0))
+    >>> (observation, command), = moved.steps
+    >>> observation.pose, observation.scan == scan, command.heading - math.pi / 2
+    (Pose(x=10.0, y=1.0, theta=1.5707963267948966), True, 0.25)
+    """
+
+    def move(observation: Observation) -> Observation:
+        pose = placed_pose(observation.pose, angle, shift)
+        return replace(observation, pose=pose, goal=placed_point(observation.goal, angle, shift))
+
+    return _transformed(
+        recording,
+        placed_pose(recording.start, angle, shift),
+        placed_point(recording.goal, angle, shift),
+        recording.params,
+        move,
+        lambda command: replace(command, heading=command.heading + angle),
+    )
+
+
+def scaled_recording(
+    recording: Recording, k: float, params: Mapping[str, object] | None = None
+) -> Recording:
+    """The exchange of ``recording``'s problem with every length scaled by ``k``, as
+    :func:`scale_world` and :func:`scale_sim` scale the problem.
+
+    Scaled: the start and goal positions and every pose position and goal handed to the
+    planner, every scan's ranges and range limits, the robot and the sensor
+    (:func:`scale_robot`, :func:`scale_sensor`), the goal tolerance, and every speed the
+    planner answered. Kept: times, headings, scan angles, ``dt``, and every heading,
+    behaviour, branch and stop it answered. ``params`` are the planner parameters in the
+    scaled unit (:func:`scale_params`); by default the recorded ones, kept.
+
+    >>> from ifgm_ref.laserscan import LaserScan
+    >>> from ifgm_ref.protocol import EpisodeParams
+    >>> scan = LaserScan(-1.0, 1.0, 1.0, 0.0, 10.0, [3.0, 4.0, float("inf")])
+    >>> seen = Observation(0.5, Pose(1.0, 2.0, 0.3), Point(5.0, 0.0), scan)
+    >>> was = Recording(Pose(1.0, 2.0, 0.3), Point(5.0, 0.0), EpisodeParams(),
+    ...                 ((seen, Command(0.25, 1.0)),))
+    >>> (observation, command), = scaled_recording(was, 2.0).steps
+    >>> observation.pose, list(observation.scan.ranges), observation.scan.range_max
+    (Pose(x=2.0, y=4.0, theta=0.3), [6.0, 8.0, inf], 20.0)
+    >>> command.heading, command.speed
+    (0.25, 2.0)
+    """
+    k = _factor(k)
+    episode = recording.params
+    handed = replace(
+        episode,
+        robot=scale_robot(episode.robot, k),
+        sensor=scale_sensor(episode.sensor, k),
+        params=dict(episode.params if params is None else params),
+        goal_tolerance=k * episode.goal_tolerance,
+    )
+
+    def scale(observation: Observation) -> Observation:
+        pose, goal, scan = observation.pose, observation.goal, observation.scan
+        return replace(
+            observation,
+            pose=Pose(k * pose.x, k * pose.y, pose.theta),
+            goal=Point(k * goal.x, k * goal.y),
+            scan=replace(
+                scan,
+                range_min=k * scan.range_min,
+                range_max=k * scan.range_max,
+                ranges=k * scan.ranges,
+            ),
+        )
+
+    return _transformed(
+        recording,
+        Pose(k * recording.start.x, k * recording.start.y, recording.start.theta),
+        Point(k * recording.goal.x, k * recording.goal.y),
+        handed,
+        scale,
+        lambda command: replace(command, speed=k * command.speed),
+    )
+
+
+def _transformed(
+    recording: Recording,
+    start: Pose,
+    goal: Point,
+    params: EpisodeParams,
+    observation: Callable[[Observation], Observation],
+    command: Callable[[Command], Command],
+) -> Recording:
+    """``recording`` reset with ``start``, ``goal`` and ``params``, each step's observation
+    mapped by ``observation`` and its command by ``command``."""
+    steps = tuple((observation(seen), command(said)) for seen, said in recording.steps)
+    return Recording(start, goal, params, steps)

@@ -13,13 +13,14 @@ check                           under noise
 ==============================  ===============================================================
 ``collision_free``              absolute: safety. One collision fails it
 ``deterministic``,              absolute: they hold bit for bit whatever the noise, given its
-``scale_invariant``,            seed. Every noise model is relative to the robot and the sensor
-``ignores_unseen_obstacles``    and draws a fixed count of numbers per step, so a world scaled
-                                (by a power of two: exactly) or with an obstacle the sensor
-                                never sees gets the same noise, scaled
-``rigid_motion_invariant``      not applicable (:func:`rigid_motion_unmeasurable`): noise
-                                amplifies rounding differences, and odometry noise does not
-                                move with the problem
+``ignores_unseen_obstacles``    seed. Every noise model is relative to the robot and the sensor
+                                and draws a fixed count of numbers per step, so a world with an
+                                obstacle the sensor never sees gets the same noise
+``rigid_motion_invariant``,     absolute, as without noise: the original run's exchange is
+``scale_invariant``             replayed moved or scaled, open loop
+                                (:mod:`ifgm_ref.oracle.invariance`), its observations noise and
+                                all, as drawn; a world scaled by a power of two, run closed
+                                loop, gets the same noise scaled, exactly
 ``converges_<class>``,          statistical: liveness. ``N`` worlds (the profile's examples)
 ``reports_unreachable``,        drawn from the check's generator, seeded, counted; passes when
 ``passes_wide_gaps``            the Wilson lower bound of the rate reaches
@@ -78,7 +79,6 @@ __all__ = [
     "SUCCESS_THRESHOLD",
     "noisy_example",
     "noisy_examples",
-    "rigid_motion_unmeasurable",
     "run_statistical",
     "statistical_verdict",
     "wilson_lower",
@@ -132,20 +132,6 @@ def noisy_examples(examples: st.SearchStrategy[Any], levels: NoiseLevels) -> st.
         return noisy_example(example, levels, seed)
 
     return noisy()
-
-
-def rigid_motion_unmeasurable(levels: NoiseLevels) -> str:
-    """Why ``rigid_motion_invariant`` means nothing under noise (at any ``levels``).
-
-    A rigid motion rounds every coordinate differently (1e-16), and a noisy run can amplify
-    that difference past the check's tolerance without any frame error: measured, Bug1
-    following a wall under 2 % range noise and 5 % dropouts (no odometry noise) was 1e-6 ft
-    off its translated twin after 48 s and 0.44 rad off after 68 s (noise-free, it passes).
-    And the odometry error walks in the world's frame, not the moved one
-    (:mod:`ifgm_ref.noise`): with it, the moved problem is not even the problem moved.
-    """
-    reason = "noise amplifies the rounding a rigid motion changes, past any tolerance"
-    return reason + ("; odometry noise errs in the world's frame" if levels.odometry else "")
 
 
 def statistical_verdict(successes: int, n: int) -> tuple[bool, str]:

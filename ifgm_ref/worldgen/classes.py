@@ -164,6 +164,21 @@ def placed_obstacle(obstacle: Obstacle, angle: float, shift: tuple[float, float]
     return Polygon(tuple(move(v) for v in obstacle.vertices))
 
 
+def placed_point(point: Sequence[float], angle: float, shift: tuple[float, float]) -> Point:
+    """``point`` rotated by ``angle`` about the origin, then shifted by ``shift`` (ft)."""
+    return _mover(angle, shift)(point)
+
+
+def placed_pose(pose: Pose, angle: float, shift: tuple[float, float]) -> Pose:
+    """``pose`` rotated by ``angle`` about the origin, then shifted by ``shift`` (ft): its
+    position moved as :func:`placed_point` moves it, its heading turned by ``angle``.
+
+    >>> placed_pose(Pose(1.0, 0.0, 3.0), math.pi / 2, (0.0, 0.0)).theta  # wrapped
+    -1.7123889803846897
+    """
+    return Pose(*placed_point(pose.position, angle, shift), wrap_angle(pose.theta + angle))
+
+
 def placed(world: World, angle: float, shift: tuple[float, float]) -> World:
     """``world`` rotated by ``angle`` about the origin, then shifted by ``shift`` (ft).
 
@@ -173,10 +188,9 @@ def placed(world: World, angle: float, shift: tuple[float, float]) -> World:
     >>> [round(v, 12) for v in (*moved.start, *moved.goal)]
     [1.0, 2.0, 1.570796326795, 1.0, 12.0]
     """
-    move = _mover(angle, shift)
     return World(
-        start=Pose(*move(world.start.position), wrap_angle(world.start.theta + angle)),
-        goal=move(world.goal),
+        start=placed_pose(world.start, angle, shift),
+        goal=placed_point(world.goal, angle, shift),
         obstacles=tuple(placed_obstacle(ob, angle, shift) for ob in world.obstacles),
         bounds=None,
         robot=world.robot,
