@@ -1,17 +1,20 @@
 """The lap rule: a robot that keeps coming back to one place, no nearer the goal.
 
 The simulator's second stall rule (:mod:`ifgm_ref.simulator` gives both rules, the reasons
-for the numbers and their measurement). The robot has *closed a lap* at a place when it comes
-back within ``rho`` of a position it had been at, after at least ``L`` of path. The rule fires
-at step ``n`` when the robot's centre ``p_n`` is within ``rho`` of ``K`` earlier positions
-``p_i1, ..., p_iK`` (oldest first) that close ``K`` laps in a row -- each at least ``L`` of
-path after the one before, and ``p_n`` at least ``L`` after ``p_iK`` -- and its best
-distance to the goal so far is no better than it was at ``p_i1`` by more than ``eps``:
+for the numbers and their measurement). The robot has *closed a lap* at a place when it
+comes back within ``rho`` of a position it had been at, after at least ``L`` of path,
+travelling the same way: its direction of travel there within 90 degrees of the direction it
+had then. The rule fires at step ``n`` when the robot's centre ``p_n`` is within ``rho`` of
+``K`` earlier positions ``p_i1, ..., p_iK`` (oldest first), each passed the way it travels
+now, that close ``K`` laps in a row -- each at least ``L`` of path after the one before, and
+``p_n`` at least ``L`` after ``p_iK`` -- and its best distance to the goal so far is no
+better than it was at ``p_i1`` by more than ``eps``:
 
     ``best(n) >= best(i1) - eps``,  ``best(k) = min(|p_j - goal| for j <= k)``.
 
-So the robot has been round the same loop (or out and back over the same ground) ``K`` times
-and the laps brought it no nearer the goal. The four thresholds:
+So the robot has been round the same loop ``K`` times and the laps brought it no nearer the
+goal. The direction of travel at a position is the step that reached it (from the last
+position logged); "the same way" is a positive dot product of the two steps. The thresholds:
 
 * ``rho``, :data:`LAP_RADIUS`: the size of a place, the robot's radius (as for the disc rule);
 * ``L``, :data:`LAP_LENGTH`: the shortest lap, the circumference of the robot's disc: the
@@ -21,11 +24,16 @@ and the laps brought it no nearer the goal. The four thresholds:
 * ``eps``, :data:`LAP_PROGRESS`: the progress that counts;
 * ``K``, :attr:`SimParams.stall_laps <ifgm_ref.params.SimParams.stall_laps>`, 2 by default.
 
+The direction keeps a way in and out of a dead end, passed again on the way back to a leaving
+point, from counting as laps: into a narrow slot and out again passes its places both ways,
+where a robot going round and round passes them one way each time.
+
 Positions are kept in a grid hash of cells of side ``rho`` (:class:`LapLog`): the positions
 within ``rho`` of a point lie in the 3 x 3 cells around its own, so one step costs the
 positions logged there, not the whole path. Every comparison is of lengths derived from the
-robot (``rho``, ``L``, ``eps``), squared distances and path lengths: with every length scaled
-by a power of two every comparison comes out the same, and the rule fires at the same step.
+robot (``rho``, ``L``, ``eps``), squared distances, path lengths and the sign of a dot
+product of steps: with every length scaled by a power of two every comparison comes out the
+same, and the rule fires at the same step.
 """
 
 from __future__ import annotations
@@ -79,10 +87,13 @@ class LapRule:
 
 @dataclass(slots=True)
 class _Visit:
-    """One logged position: where, the path length there and the best distance by then."""
+    """One logged position: where, the step that reached it (``dx``, ``dy``: 0 for the
+    first), the path length there and the best distance to the goal by then."""
 
     x: float
     y: float
+    dx: float
+    dy: float
     path: float
     best: float
 
@@ -115,7 +126,10 @@ class LapLog:
         if last is not None and last.x == x and last.y == y:
             return last
         here = distance(position, self.goal)
-        visit = _Visit(x, y, path, here if last is None else min(last.best, here))
+        if last is None:
+            visit = _Visit(x, y, 0.0, 0.0, path, here)
+        else:
+            visit = _Visit(x, y, x - last.x, y - last.y, path, min(last.best, here))
         self._cells[self._cell(x, y)].append(visit)
         self._last = visit
         return visit
@@ -126,9 +140,10 @@ class LapLog:
         module docstring's terms), each lap as late as it can start.
 
         Going back from ``visit``, each lap starts at the latest logged position within
-        ``radius`` of ``visit`` that lies at least ``length`` of path before the previous
-        one: the latest start of any chain of that many laps, so the best distance there is
-        the least any such chain gives.
+        ``radius`` of ``visit``, passed the same way (a positive dot product of the steps),
+        that lies at least ``length`` of path before the previous one: the latest start of
+        any chain of that many laps, so the best distance there is the least any such chain
+        gives.
         """
         r2, latest = self.radius * self.radius, visit.path - self.length
         i, j = self._cell(visit.x, visit.y)
@@ -139,7 +154,7 @@ class LapLog:
                     if v.path > latest:  # a cell's visits are in path order
                         break
                     dx, dy = v.x - visit.x, v.y - visit.y
-                    if dx * dx + dy * dy <= r2:
+                    if dx * dx + dy * dy <= r2 and v.dx * visit.dx + v.dy * visit.dy > 0.0:
                         near.append((v.path, v.best))
         near.sort()
         paths = [p for p, _ in near]

@@ -45,31 +45,34 @@ one point was 4.7 s, under 0.4 ``T`` (Bug1 at the corners of an H; IFGM's dead-e
 4.1 s); every episode that reached the goal runs exactly as without the rule, and each one
 that ran to the time limit (FGM and APF, trapped: 104, then 124 of the 944) stalls instead.
 
-The lap rule. A robot that goes round an obstacle for ever, or out and back over the same
-ground, never stays within ``r`` of one point, and the disc rule lets it run to the time
-limit (IFGM lapping a post, issue 24). The lap rule (:mod:`ifgm_ref.laps`) ends it when its
-centre is back within ``rho`` of a place for the third time, each visit at least ``L`` of
-path after the one before, and its best distance to the goal is no better than at the first
-of those visits by more than ``eps``: ``K = 2`` laps without progress
+The lap rule. A robot that goes round an obstacle for ever never stays within ``r`` of one
+point, and the disc rule lets it run to the time limit (IFGM lapping a post, issue 24). The
+lap rule (:mod:`ifgm_ref.laps`) ends it when its centre is back within ``rho`` of a place for
+the third time, each visit at least ``L`` of path after the one before and travelling the
+same way (within 90 degrees), and its best distance to the goal is no better than at the
+first of those visits by more than ``eps``: ``K = 2`` laps without progress
 (:attr:`SimParams.stall_laps <ifgm_ref.params.SimParams.stall_laps>`), with
 
     ``rho = r``, ``L = 2*pi*r``, ``eps = v*dt``: 1 ft, 6.28 ft and 0.13 ft for the paper's
     robot; 0.22 m, 1.38 m and 0.05 m for BARN's.
 
 All three are lengths derived from the robot and the time step (``proofs/scale.py`` proves
-them lengths), compared as squared distances and path lengths: with every length scaled by a
-power of two the rule fires at the same step. Why these numbers:
+them lengths), compared as squared distances, path lengths and signs of dot products: with
+every length scaled by a power of two the rule fires at the same step. Why these numbers:
 
 * Two laps, not one. Bug1 goes once round from its hit point H, then on to the point Q
   nearest the goal, and leaves there (section 2.1.1): on its way back to Q it passes where
-  its first lap went, no nearer the goal. One lap without progress is what a correct Bug1
-  does; it passes no place a third time. A robot that laps for ever closes its second lap
-  one lap later: the rule ends it in its third, as it comes back within ``rho`` of where the
-  first came nearest the goal.
+  its first lap went, no nearer the goal, so one lap without progress is what a correct
+  Bug1 does. A robot that laps for ever closes its second lap one lap later: the rule ends
+  it in its third, as it comes back within ``rho`` of where the first came nearest the goal.
+* The same way. Bug1's lap passes a place of the curve it follows once, and its return to
+  Q at most once more; a place passed both ways, in and out of a narrow dead end (or IFGM's
+  way into a U and out), is passed at most twice each way. So Bug1 passes no place a third
+  time the same way while it handles one obstacle; between two obstacles it leaves Q
+  straight towards the goal, and its best distance drops by that leg.
 * ``rho = r``: the centre of a robot that does not collide keeps ``r`` from every obstacle,
   so its centres on the two sides of an obstacle are more than ``2 r`` apart and no place
-  lies within ``r`` of both: passing an obstacle on one side and later on the other is not
-  one place visited twice.
+  lies within ``r`` of both.
 * ``L = 2*pi*r``: the centre keeps ``r`` from an obstacle, so the shortest lap round any
   obstacle, even a point, is ``2 pi r`` long; a shorter return to a place is one pass
   through it (a turn, a wiggle).

@@ -73,23 +73,33 @@ def lapper(k: float = 1.0) -> CirclingPlanner:
     return CirclingPlanner((10.0 * k, 0.0), 3.0 * k, None)
 
 
-def brute_force(positions: list[tuple[float, float]], goal: Point, rule: LapRule) -> list[bool]:
+def brute_force(
+    positions: list[tuple[float, float]], goal: Point, rule: LapRule, *, same_way: bool = True
+) -> list[bool]:
     """Where the lap rule with ``rule.laps == 2`` fires, step by step, by brute force over
     every pair of earlier positions (no grid, no chain of latest laps): some ``i`` and ``j``
-    within ``rho`` of ``p_n`` with ``s_i + L <= s_j <= s_n - L`` and ``best_i - best_n <=
-    eps``. Path lengths and distances are summed and taken as the simulator does."""
+    within ``rho`` of ``p_n``, each reached by a step at less than 90 degrees to the one that
+    reached ``p_n`` (a step on the spot repeats the last step that moved; the start has
+    none), with ``s_i + L <= s_j <= s_n - L`` and ``best_i - best_n <= eps``. Path lengths
+    and distances are summed and taken as the simulator does. ``same_way=False`` drops the
+    condition on the direction."""
     assert rule.laps == 2
     xy = np.array(positions)
     path = np.zeros(len(xy))
+    steps = np.zeros_like(xy)
     for n in range(1, len(xy)):
         path[n] = path[n - 1] + distance(positions[n - 1], positions[n])
+        moved = not np.array_equal(xy[n], xy[n - 1])
+        steps[n] = xy[n] - xy[n - 1] if moved else steps[n - 1]
     best = np.minimum.accumulate([distance(p, goal) for p in positions])
     fires = []
     for n in range(len(xy)):
         dx, dy = xy[:n, 0] - xy[n, 0], xy[:n, 1] - xy[n, 1]
-        near = np.flatnonzero(
-            (dx * dx + dy * dy <= rule.radius**2) & (path[:n] <= path[n] - rule.length)
-        )
+        close = dx * dx + dy * dy <= rule.radius * rule.radius
+        ahead = steps[:n, 0] * steps[n, 0] + steps[:n, 1] * steps[n, 1] > 0.0
+        if not same_way:
+            ahead[:] = True
+        near = np.flatnonzero(close & ahead & (path[:n] <= path[n] - rule.length))
         starts = near[best[near] - best[n] <= rule.progress]
         fires.append(bool(len(starts)) and path[starts].min() <= path[near].max() - rule.length)
     return fires
@@ -139,6 +149,48 @@ def test_a_bug1_like_lap_and_a_half_does_not_stall() -> None:
     assert one_lap.result.stop_reason == StopReason.STALLED
     laps = (one_lap.result.path_length - 7.0) / (2.0 * math.pi * 3.0)
     assert 1.0 < laps < 1.5, f"laps={laps}"  # on the way from H back to Q, before leaving
+
+
+class SlotPlanner:
+    """Drives along the x axis to ``x = depth`` and back to ``x = 0``, turning on the spot at
+    each end, ``passes`` times (in, out, in, ...), then heads for the goal: in and out of a
+    dead-end slot, and in and out again on the way back to a leaving point."""
+
+    name = "slot"
+
+    def __init__(self, depth: float, passes: int) -> None:
+        self.depth, self.passes = depth, passes
+        self.heading, self.done, self.speed = 0.0, 0, 0.0
+
+    def reset(self, start: Pose, goal: Point, params: EpisodeParams) -> None:
+        self.heading, self.done, self.speed = 0.0, 0, params.robot.speed
+
+    def step(self, observation: Observation) -> Command:
+        pose, goal = observation.pose, observation.goal
+        if self.done >= self.passes:
+            return Command(heading=math.atan2(goal.y - pose.y, goal.x - pose.x), speed=self.speed)
+        end = pose.x >= self.depth if self.heading == 0.0 else pose.x <= 0.0
+        if end:
+            self.heading, self.done = math.pi - self.heading, self.done + 1
+        facing = math.cos(pose.theta - self.heading) > 1.0 - 1e-9
+        return Command(heading=self.heading, speed=self.speed if facing else 0.0)
+
+
+def test_in_and_out_of_a_dead_end_twice_is_no_lap_but_going_on_is() -> None:
+    """A slot 10 ft deep, the goal off to its side: in, out, in, out, then away. Each place in
+    it is passed four times, no nearer the goal after the first, but only twice each way: no
+    stall. Without the condition on the direction the rule would fire; a fifth pass (the
+    third one way) does fire it."""
+    free = World(start=Pose(0.0, 0.0, 0.0), goal=Point(5.0, 20.0), name="slot")
+    rule = default_rule(free)
+    run = simulate(free, SlotPlanner(10.0, 4))
+    assert run.result.reached
+    assert run.trace == simulate(free, SlotPlanner(10.0, 4), NO_STALL).trace
+    positions = [(s.x, s.y) for s in run.trace]
+    assert any(brute_force(positions, free.goal, rule, same_way=False))
+    assert not any(brute_force(positions, free.goal, rule))
+    once_more = simulate(free, SlotPlanner(10.0, 5)).result
+    assert once_more.stop_reason == StopReason.STALLED and once_more.path_length > 40.0
 
 
 @pytest.mark.parametrize("world", ["tests/worlds/small_u.json", "u_trap", "h_block"])
