@@ -8,7 +8,7 @@ The decisions
 -------------
 The episodes of ``benchmarks/bench_decision.py``, recorded by its ``record``: each planner
 (IFGM, FGM, DistBug; IBA for information) in each of its ``WORLDS`` with the default robot
-and sensor, up to ``--max-time`` seconds, the stall rule off. They are written as protocol
+and sensor, up to ``--max-time`` seconds, the stall rules off. They are written as protocol
 lines (``ifgm_ref.transport.wire``): per episode a ``reset``, then each ``observe`` and the
 ``command`` the Python planner answered.
 

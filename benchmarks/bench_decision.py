@@ -12,7 +12,7 @@ observation and the command answered. So each planner is timed on its own decisi
 to the goal, meeting and avoiding obstacles, and (FGM in the U) trapped with every ray
 blocked, where FGM's arrays are largest (every return against every ray). The default limit
 lets every planner finish ``scenario1``; FGM spends the rest of it trapped in the U (the
-simulator's stall rule is off here, so that those decisions are recorded).
+simulator's stall rules are off here, so that those decisions are recorded).
 
 The wall-clock measurement
 --------------------------
@@ -197,7 +197,8 @@ def record(planner: str, world: str, max_time: float) -> Episode:
     """Run ``planner`` in the built-in ``world`` for at most ``max_time`` s, stalled or not,
     and keep it all."""
     recorder = RecordingPlanner(make_planner(planner))
-    simulate(resolve_world(world), recorder, SimParams(max_time=max_time, stall_time=None))
+    sim = SimParams(max_time=max_time, stall_time=None, stall_laps=None)
+    simulate(resolve_world(world), recorder, sim)
     return Episode(world, recorder.recording())
 
 

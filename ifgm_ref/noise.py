@@ -33,7 +33,7 @@ distance) and over a path of length ``D`` it reaches ``k sqrt(r D)`` per axis, a
 ``k sqrt(D / r)`` rad. The world frame is the planner's too: its goal stays where it is, and
 it finds it by its believed pose. The robot's heading controller knows only the believed
 heading: a command to face ``psi`` turns the robot towards the true heading ``psi - e_theta``.
-Collisions, the goal and the stall rule are judged on the true pose; traces record both.
+Collisions, the goal and the stall rules are judged on the true pose; traces record both.
 
 **Actuation** (the robot block, ``actuation_noise = s``, ``latency = k``): the command executed
 at step ``n`` is the one decided at step ``n - k`` (before the first, the robot stands still),

@@ -217,13 +217,20 @@ class SimParams:
         radius of where it was this many seconds before, for all of them (the stall rule of
         :mod:`ifgm_ref.simulator`). ``"auto"`` derives it from the robot and ``dt``
         (:data:`ifgm_ref.simulator.STALL_TIME`: 12 s for the paper's robot); ``None`` or 0
-        turns the rule off, so that a trapped robot runs to ``max_time``.
+        turns this rule off (the lap rule is switched by ``stall_laps``).
+    stall_laps : int or None, default 2
+        End the episode as ``stalled`` once the robot has come back to one place after this
+        many laps in a row with no better distance to the goal (the lap rule of
+        :mod:`ifgm_ref.simulator`, thresholds in :mod:`ifgm_ref.laps`); ``None`` or 0 turns
+        this rule off. With both rules off a robot that makes no progress runs to
+        ``max_time``.
     """
 
     dt: float = 0.1
     max_time: float = 600.0
     goal_tolerance: float = 0.5
     stall_time: float | Literal["auto"] | None = AUTO
+    stall_laps: int | None = 2
 
     def __post_init__(self) -> None:
         _require("dt", self.dt, positive=True)
@@ -235,6 +242,8 @@ class SimParams:
                     f"`stall_time` must be a number, {AUTO!r} or None, got {self.stall_time!r}"
                 )
             _require("stall_time", self.stall_time, non_negative=True)
+        if self.stall_laps is not None:
+            _count("stall_laps", self.stall_laps)
 
 
 def paper_ir(length_scale: float = 1.0) -> SensorParams:

@@ -12,7 +12,9 @@ parameter of every registered planner (:data:`ifgm_ref.planners.PLANNERS`), is
 
 proved by ``simplify(lhs - rhs) == 0`` with ``k`` and every symbol positive; the same for the
 simulator's default stall time (:data:`ifgm_ref.simulator.STALL_TIME`, a time, ``p = 0``),
-after which a robot that makes no progress ends its episode. A formula with an
+after which a robot that makes no progress ends its episode, and for the lap rule's
+thresholds (:mod:`ifgm_ref.laps`: the radius of a place, the shortest lap and the progress
+that counts, lengths, ``p = 1``). A formula with an
 absolute constant (``r + 1`` declared a length) leaves a remainder and fails. The formulas are
 read from the code, so a changed formula is re-proved. The oracle's ``scale_invariant`` check
 (:mod:`ifgm_ref.oracle.checks`) tests the consequence on whole episodes.
@@ -31,6 +33,7 @@ from collections.abc import Iterable, Mapping
 
 import sympy as sp
 
+from ifgm_ref.laps import LAP_LENGTH, LAP_PROGRESS, LAP_RADIUS
 from ifgm_ref.paper import traces
 from ifgm_ref.planners import PLANNERS
 from ifgm_ref.planners.tuning import LENGTH_SYMBOLS, SYMBOLS, ParamInfo, Unit, formula_expr
@@ -141,6 +144,13 @@ def build(
     # The simulator's stall time (a trapped robot's episode ends after it) is held to the
     # same rule: it must not depend on the unit either.
     prove_homogeneous(d, "simulator", ParamInfo("stall_time", STALL_TIME, Unit.TIME))
+    # So are the lap rule's place, lap and progress (lengths): it fires at the same step.
+    for name, formula in (
+        ("lap_radius", LAP_RADIUS),
+        ("lap_length", LAP_LENGTH),
+        ("lap_progress", LAP_PROGRESS),
+    ):
+        prove_homogeneous(d, "simulator", ParamInfo(name, formula, Unit.LENGTH))
     for planner, infos in planners.items():
         for info in infos:
             prove_homogeneous(d, planner, info)

@@ -115,11 +115,14 @@ EXPECTED_CLAIMS: dict[str, tuple[str, ...]] = {
         "library_fgm_matches_renamed_eq4",
     ),
     # One claim per parameter of every registered planner: read from the registry, so that a
-    # parameter cannot go unproved; the simulator's stall time before them.
+    # parameter cannot go unproved; the simulator's stall time and lap thresholds before them.
     "scale": (
         "min_commutes_with_scaling",
         "max_commutes_with_scaling",
         "simulator_stall_time_scales_as_length_power_0",
+        "simulator_lap_radius_scales_as_length_power_1",
+        "simulator_lap_length_scales_as_length_power_1",
+        "simulator_lap_progress_scales_as_length_power_1",
         *(
             f"{planner}_{p.name}_scales_as_length_power_{p.unit.length_power}"
             for planner, info in PLANNERS.items()

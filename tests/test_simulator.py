@@ -27,6 +27,8 @@ from ifgm_ref.world import Bounds, Polygon, World
 FREE = World(start=Pose(0.0, 0.0, 0.0), goal=Point(PAPER_FREE_DISTANCE_FT, 0.0), name="free")
 WALL = Polygon(((20.0, -5.0), (22.0, -5.0), (22.0, 5.0), (20.0, 5.0)))
 BLOCKED = World(start=Pose(0.0, 0.0, 0.0), goal=Point(40.0, 0.0), obstacles=(WALL,), name="wall")
+#: Both stall rules off: the disc rule and the lap rule.
+NO_STALL = SimParams(stall_time=None, stall_laps=None)
 
 
 class ScriptedPlanner:
@@ -148,12 +150,18 @@ def test_a_robot_that_spins_in_place_for_ever_stalls() -> None:
 
 def test_a_robot_rocking_within_its_diameter_stalls_and_one_rocking_wider_does_not() -> None:
     # Rocking over 1.5 ft, the robot stays within r = 1 ft of the middle of its beat, where it
-    # passes every few seconds: stalled. Over 2.5 ft it never stays within r of any point.
+    # passes every few seconds: stalled. Over 2.5 ft it never stays within r of any point, so
+    # the disc rule lets it rock on; the lap rule (out and back is a closed lap) ends it.
     run = simulate(FREE, RockingPlanner(reach=1.5))
     assert run.result.stop_reason == StopReason.STALLED and run.result.steps < 150
+    assert run.result.detail is not None and run.result.detail.startswith("disc rule")
     assert max(s.x for s in run.trace) > 1.5 and run.result.path_length > 6.0  # it did move
-    wider = simulate(FREE, RockingPlanner(reach=2.5), SimParams(max_time=60.0)).result
+    disc_only = SimParams(max_time=60.0, stall_laps=None)
+    wider = simulate(FREE, RockingPlanner(reach=2.5), disc_only).result
     assert wider.stop_reason == StopReason.TIME_LIMIT
+    lapped = simulate(FREE, RockingPlanner(reach=2.5), SimParams(max_time=60.0)).result
+    assert lapped.stop_reason == StopReason.STALLED and lapped.detail is not None
+    assert lapped.detail.startswith("lap rule") and lapped.path_length >= 2 * 2.0 * math.pi
 
 
 def test_a_stall_ends_stall_time_after_the_robot_last_left_the_disc() -> None:
@@ -182,18 +190,19 @@ def test_a_bad_stall_time_is_rejected(value: object) -> None:
 def test_ifgms_dead_end_turns_in_the_u_do_not_stall() -> None:
     """Section 4: IFGM turns in place at the base of the U, 45 degrees at a time (it stays
     about 3 s within r of one point, a quarter of the stall time); the episode is the one
-    without the stall rule, step for step."""
+    without the stall rules, step for step."""
     world = resolve_world("u_trap")
     run = simulate(world, IFGMPlanner())
     assert run.result.reached
     assert sum(s.branch == "dead_end_turn" and s.speed_cmd == 0.0 for s in run.trace) >= 10
-    unstalled = simulate(world, IFGMPlanner(), SimParams(stall_time=None))
+    unstalled = simulate(world, IFGMPlanner(), NO_STALL)
     assert run.trace == unstalled.trace and run.result == unstalled.result
 
 
 def test_bug1_round_a_big_obstacle_does_not_stall() -> None:
     """Bug1 goes right round a 40 ft box and back (section 2.1.1): for most of a minute no
-    nearer the goal than it has been, but always on the move."""
+    nearer the goal than it has been, but always on the move, and never twice round (the
+    lap rule waits for two laps without progress)."""
     world = World(
         start=Pose(0.0, 0.0, 0.0),
         goal=Point(70.0, 0.0),
@@ -210,7 +219,7 @@ def test_bug1_round_a_big_obstacle_does_not_stall() -> None:
             best, since = d, s.t
         longest = max(longest, s.t - since)
     assert longest > 5 * 12.0
-    unstalled = simulate(world, Bug1Planner(), SimParams(stall_time=None))
+    unstalled = simulate(world, Bug1Planner(), NO_STALL)
     assert run.trace == unstalled.trace and run.result == unstalled.result
 
 
