@@ -377,11 +377,14 @@ def test_distbug_free_range_counts_only_what_the_robot_can_travel() -> None:
 def test_step_length_beyond_the_sensor_reach_leaves_only_in_sight_of_the_goal() -> None:
     """F is at most ``range_max - encounter`` = 12.5 ft unless the goal is visible, so with
     Step above that the second leaving condition can never hold: on ``box``, whose edge is
-    never within ``range_max`` of the goal, DistBug goes round and gives up."""
+    never within ``range_max`` of the goal, DistBug's own rule never leaves, and the robot
+    gets round only by Bug1's round, leaving at Q (errata row 34)."""
     reach = SensorParams().range_max - STANDOFF - BoundaryParams.paper().hit_margin
-    for step, stop in [(reach - 0.5, StopReason.GOAL_REACHED), (reach + 0.5, GOAL_UNREACHABLE)]:
-        result = simulate(world("box"), DistBugPlanner(), params={"step_length": step}).result
-        assert result.stop_reason == stop, (step, result)
+    for step, leave in [(reach - 0.5, "leave_distbug"), (reach + 0.5, "leave_at_q")]:
+        run = simulate(world("box"), DistBugPlanner(), params={"step_length": step})
+        assert run.result.stop_reason == StopReason.GOAL_REACHED, (step, run.result)
+        leaves = {s.branch for s in run.trace} & {"leave_distbug", "leave_at_q"}
+        assert leaves == {leave}, step
 
 
 # -- an enclosed goal -------------------------------------------------------------------------

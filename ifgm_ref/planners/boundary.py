@@ -10,13 +10,18 @@ So a Bug planner here is a :class:`BoundaryPlanner` made of parts:
 
 * an :class:`EdgeFollower`, the *obstacle avoidance* behaviour (which side, since where, how
   far followed);
-* a :class:`LeaveRule`: Bug1's loop (:mod:`~ifgm_ref.planners.bug1`), Bug2's m-line
+* a :class:`LeaveRule`: none (Bug1, :mod:`~ifgm_ref.planners.bug1`), Bug2's m-line
   (:mod:`~ifgm_ref.planners.bug2`), DistBug's progress (:mod:`~ifgm_ref.planners.distbug`)
   or IBA's free path (:mod:`~ifgm_ref.planners.iba`);
 * a side choice: the Bug family's fixed one (:func:`bug_side`) or IBA's freer side;
+* a :class:`~ifgm_ref.planners.circuit.Circuit`, Bug1's round of the obstacle, which every
+  follower falls back on after a whole loop without leaving by its rule (errata row 34);
 * :func:`guard`, which never drives into a remembered obstacle.
 
-IFGM (:mod:`~ifgm_ref.planners.ifgm`) holds the same follower and IBA's rule.
+An obstacle is met where one stands in the corridor towards the goal and it is the nearest
+ahead (:meth:`~ifgm_ref.planners.sight.Sight.meets_obstacle`), not where the one just left
+is still the nearest. IFGM (:mod:`~ifgm_ref.planners.ifgm`) holds the same follower, IBA's
+rule and the round.
 """
 
 from __future__ import annotations
@@ -30,6 +35,7 @@ from ifgm_ref.laserscan import LaserScan
 from ifgm_ref.paper import traces
 from ifgm_ref.percepts.corridor import disc_travel
 from ifgm_ref.percepts.memory import PerceptMemory
+from ifgm_ref.planners.circuit import Circuit
 from ifgm_ref.planners.edge_following import FollowSide, follow_heading, turn_speed
 from ifgm_ref.planners.sight import Body, BoundaryParams, Sight
 from ifgm_ref.planners.tuning import Tuning, check_names
@@ -110,13 +116,6 @@ class EdgeFollower:
         self.travelled = 0.0
         self.side = side
 
-    def back_at_hit(self, here: Point, tuning: BoundaryParams) -> bool:
-        """Whether the robot is back at H (within ``return_radius``) after a loop of at least
-        ``min_loop``."""
-        return self.travelled >= tuning.min_loop and (
-            distance(here, self.hit_point) <= tuning.return_radius
-        )
-
     def heading(self, sight: Sight) -> float | None:
         """The heading that follows the nearest remembered edge, ``None`` if none is left."""
         pose, body = sight.pose, sight.body
@@ -132,9 +131,10 @@ class EdgeFollower:
 class LeaveRule:
     """When to leave the followed edge: the part of a Bug planner its variants disagree on.
 
-    The base rule never leaves, and reports the goal unreachable when the robot is back at
-    its hit point after a whole loop. A rule is reset with the episode and told of every hit
-    point (:meth:`on_hit`); :meth:`update` is called once at every later step of following.
+    The base rule never leaves (Bug1: the planner's round of the obstacle,
+    :mod:`~ifgm_ref.planners.circuit`, does). A rule is reset with the episode and told of
+    every hit point (:meth:`on_hit`); :meth:`update` is called once at every later step of
+    following.
     """
 
     #: The rule's own parameter classes.
@@ -142,13 +142,8 @@ class LeaveRule:
     #: The trace's branch label of a departure by this rule.
     leave_branch: ClassVar[str] = "leave"
 
-    def __init__(self) -> None:
-        #: A stop reason the rule found (Bug1's ``q_blocked``): the planner stops with it.
-        self.stop: str | None = None
-
     def reset(self, start: Pose, goal: Point, params: EpisodeParams) -> None:
         """A new episode from ``start`` to ``goal``."""
-        self.stop = None
 
     def on_hit(self, sight: Sight, follower: EdgeFollower) -> None:
         """An obstacle was met at ``follower.hit_point``."""
@@ -156,15 +151,6 @@ class LeaveRule:
     def update(self, sight: Sight, follower: EdgeFollower) -> bool:
         """Advance the rule by one step of following; whether to leave here."""
         return False
-
-    def on_loop_closed(self, sight: Sight, follower: EdgeFollower) -> str | None:
-        """Back at H after a whole loop: the branch to follow on with, or ``None`` when the
-        goal is unreachable."""
-        return None
-
-    def follow_branch(self) -> str:
-        """The trace's branch label of an ordinary following step."""
-        return "follow_edge"
 
 
 def guard(command: Command, sight: Sight) -> Command:
@@ -196,6 +182,17 @@ def guard(command: Command, sight: Sight) -> Command:
             if free >= speed * body.dt:
                 return command if k == 0 else replace(command, heading=heading, speed=speed)
     return replace(command, speed=0.0)
+
+
+def unreachable(sight: Sight, branch: str) -> Command:
+    """Stop where the robot stands: the goal cannot be reached (``branch`` says how it knows)."""
+    return Command(
+        sight.pose.theta,
+        0.0,
+        behaviour=Behaviour.OBSTACLE_AVOIDANCE,
+        branch=branch,
+        stop=GOAL_UNREACHABLE,
+    )
 
 
 def steer(heading: float, pose: Pose, body: Body, behaviour: Behaviour, branch: str) -> Command:
@@ -241,6 +238,7 @@ class BoundaryPlanner:
         self.body = Body.of(Point(0.0, 0.0), EpisodeParams(), tuning)
         self.memory = PerceptMemory(tuning.memory_horizon)
         self.follower = EdgeFollower()
+        self.circuit = Circuit()
 
     # -- protocol ---------------------------------------------------------------------------
     def reset(self, start: Pose, goal: Point, params: EpisodeParams) -> None:
@@ -252,48 +250,47 @@ class BoundaryPlanner:
         self.memory = PerceptMemory(tuning.memory_horizon)
         self.follower.reset(Point(start[0], start[1]))
         self.rule.reset(start, goal, params)
+        self.circuit.reset()
 
     def step(self, observation: Observation) -> Command:
-        """Decide (:meth:`decide`), then never drive into a remembered obstacle (:func:`guard`);
-        stop if the rule found the goal unreachable."""
+        """Decide (:meth:`decide`), then never drive into a remembered obstacle
+        (:func:`guard`)."""
         sight = self.observe(observation)
-        command = guard(self.decide(observation, sight), sight)
-        if self.rule.stop is None:
-            return command
-        return Command(
-            sight.pose.theta,
-            0.0,
-            behaviour=Behaviour.OBSTACLE_AVOIDANCE,
-            branch=self.rule.stop,
-            stop=GOAL_UNREACHABLE,
-        )
+        return guard(self.decide(observation, sight), sight)
 
     def decide(self, observation: Observation, sight: Sight) -> Command:
         """Move to goal or follow the edge (see the module docstring), given this step's
-        ``sight`` (:meth:`observe`)."""
-        follower, rule = self.follower, self.rule
+        ``sight`` (:meth:`observe`): the rule's leaving point, or else Bug1's after a whole
+        loop (:mod:`~ifgm_ref.planners.circuit`)."""
+        follower, rule, circuit = self.follower, self.rule, self.circuit
         here = observation.pose.position
         if not follower.following:
-            if not sight.goal_blocked():
+            if not sight.meets_obstacle():
                 return self.move_to_goal(sight, "move_to_goal")
             side = self.choose_side(observation.scan, sight.pose, sight.bearing)
             follower.start(here, side)
             rule.on_hit(sight, follower)
-        elif rule.update(sight, follower):
+            circuit.on_hit()
+            return self.follow(sight, "follow_edge")
+        circuit.note(sight, follower.travelled)
+        if rule.update(sight, follower):
             follower.following = False
             return self.move_to_goal(sight, rule.leave_branch)
-        elif follower.back_at_hit(here, self.body.tuning):
-            branch = rule.on_loop_closed(sight, follower)
-            if branch is None:
-                return Command(
-                    sight.pose.theta,
-                    0.0,
-                    behaviour=Behaviour.OBSTACLE_AVOIDANCE,
-                    branch="loop_closed",
-                    stop=GOAL_UNREACHABLE,
+        if circuit.returning:
+            heading = circuit.heading_to_q(sight)
+            if not circuit.at_q(sight):
+                return steer(
+                    heading, sight.pose, self.body, Behaviour.OBSTACLE_AVOIDANCE, "follow_to_q"
                 )
-            return self.follow(sight, branch)
-        return self.follow(sight, rule.follow_branch())
+            circuit.leave()
+            follower.following = False
+            return self.move_to_goal(sight, "leave_at_q")
+        back_at = circuit.closing(sight, follower.travelled)
+        if back_at is not None:
+            if not circuit.close(sight, back_at, follower.side):
+                return unreachable(sight, "goal_enclosed")
+            return self.follow(sight, "loop_closed")
+        return self.follow(sight, "follow_edge")
 
     # -- parts ------------------------------------------------------------------------------
     def observe(self, observation: Observation) -> Sight:

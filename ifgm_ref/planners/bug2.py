@@ -17,12 +17,17 @@ line (positive on its left). While following an obstacle hit at H it leaves at x
   sample (the line was crossed between two samples), with x's projection between S and T;
 * x is strictly nearer the goal than H: ``d(x, T) < d(H, T) - m_line_tolerance`` (the margin
   keeps the robot from "leaving" where it has just met the obstacle);
-* the way towards the goal is not blocked (``not goal_blocked``), as Lumelsky and Stepanov's
-  robot leaves only if it can move towards T.
+* the robot would not meet an obstacle at once (``not meets_obstacle``), as Lumelsky and
+  Stepanov's robot leaves only if it can move towards T. An obstacle in the way that is not
+  the nearest one, while the one followed lies behind, does not keep it: leaving, the robot
+  meets that one and follows it (errata row 34).
 
-Back at H without having left, the goal is unreachable (the skeleton's loop closure, stop
-reason ``goal_unreachable``). The bound ``D + sum(n_i * p_i) / 2`` (``n_i`` the number of
-times the m-line crosses obstacle i, ``p_i`` its perimeter) is checked by the tests.
+After a whole loop without having left, the robot falls back on Bug1's round
+(:mod:`~ifgm_ref.planners.circuit`): it goes on to the point nearest the goal and leaves
+there, or reports the goal unreachable (stop reason ``goal_unreachable``) if the loop shows
+that the obstacle stands between the robot and the goal. The bound ``D + sum(n_i * p_i) / 2``
+(``n_i`` the number of times the m-line crosses obstacle i, ``p_i`` its perimeter) is
+checked by the tests.
 """
 
 from __future__ import annotations
@@ -73,7 +78,7 @@ class Bug2Params(Tuning):
 
 
 class Bug2Rule(LeaveRule):
-    """Bug2's leaving rule: back on the m-line, nearer the goal than H, the goal way free.
+    """Bug2's leaving rule: back on the m-line, nearer the goal than H, no obstacle met there.
 
     Attributes
     ----------
@@ -113,7 +118,7 @@ class Bug2Rule(LeaveRule):
         self._side = self.m_line_offset(follower.hit_point)
 
     def update(self, sight: Sight, follower: EdgeFollower) -> bool:
-        """Leave on the m-line, strictly nearer the goal than H, the goal way free."""
+        """Leave on the m-line, strictly nearer the goal than H, meeting no obstacle there."""
         here = sight.pose.position
         offset = self.m_line_offset(here)
         crossed = offset * self._side < 0.0
@@ -123,7 +128,7 @@ class Bug2Rule(LeaveRule):
             return False
         if sight.goal_distance >= self.hit_distance - self.m_line_tolerance:
             return False
-        return not sight.goal_blocked()
+        return not sight.meets_obstacle()
 
     def m_line_offset(self, point: tuple[float, float]) -> float:
         """Signed distance of ``point`` to the m-line (0 when start and goal coincide)."""

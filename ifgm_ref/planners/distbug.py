@@ -17,8 +17,10 @@ hit point H, with x the robot's position and T the goal,
   than it has been on this obstacle, so the next hit point (if any) is nearer T than any
   point of this one and the algorithm terminates.
 
-Back at H without having left, the goal is unreachable (the skeleton's loop closure, stop
-reason ``goal_unreachable``). The rule is :class:`DistBugRule`; IBA's rule builds on it.
+After a whole loop without having left, the robot falls back on Bug1's round (the
+skeleton's :mod:`~ifgm_ref.planners.circuit`): on to the loop's point nearest the goal and
+leave there, or stop with ``goal_unreachable`` if the loop shows that the obstacle stands
+between the robot and the goal. The rule is :class:`DistBugRule`; IBA's rule builds on it.
 
 Our robot is a disc that sees 135 degrees ahead, so ``F`` is adapted, and says so:
 

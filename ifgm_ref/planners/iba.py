@@ -26,7 +26,8 @@ leaving rule too, which IBA improves on rather than drops: it also leaves when t
 promises ``step_length`` of progress beyond the best distance seen on this obstacle. That
 rule alone guarantees termination (Kamon and Rivlin); the free-path rule leaves earlier.
 
-Back at its hit point after a whole loop it reports the goal unreachable, as DistBug does.
+After a whole loop without leaving it falls back on Bug1's round, as DistBug does
+(:mod:`~ifgm_ref.planners.circuit`, errata row 34).
 """
 
 from __future__ import annotations

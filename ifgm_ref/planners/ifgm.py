@@ -39,13 +39,14 @@ import numpy as np
 from ifgm_ref.equations import eq1_gap_midpoint, eq2_gap_angle, eq3_goal_angle, eq4_final_heading
 from ifgm_ref.errors import ParameterError
 from ifgm_ref.flowchart import Atoms, Branch, decide
-from ifgm_ref.laserscan import LaserScan
+from ifgm_ref.laserscan import Beam, LaserScan
 from ifgm_ref.paper import traces
 from ifgm_ref.percepts.clusters import Gap, cluster_points, gaps_between
 from ifgm_ref.percepts.corridor import free_length
 from ifgm_ref.percepts.memory import PerceptMemory
 from ifgm_ref.percepts.points import scan_points, to_world
 from ifgm_ref.planners.boundary import EdgeFollower, guard, steer
+from ifgm_ref.planners.circuit import Circuit, CircuitPhase
 from ifgm_ref.planners.distbug import DistBugParams
 from ifgm_ref.planners.edge_following import FollowSide
 from ifgm_ref.planners.iba import IBAPlanner, IBARule, freer_side
@@ -126,6 +127,7 @@ class IFGMPlanner:
         self.memory = PerceptMemory(tuning.memory_horizon)
         self.follower = EdgeFollower()
         self.iba = IBARule()
+        self.circuit = Circuit()
         self.ifgm = IFGMParams.for_episode(episode)
         self.goal_tolerance = episode.goal_tolerance
         self.state = IFGMState()
@@ -190,6 +192,7 @@ class IFGMPlanner:
         self.follower = EdgeFollower()
         self.follower.reset(Point(start[0], start[1]))
         self.iba.reset(start, goal, params)
+        self.circuit.reset()
         p = IFGMParams.for_episode(params)
         r = params.robot.radius
         if p.d_th <= 2.0 * r:
@@ -246,12 +249,14 @@ class IFGMPlanner:
         view = observation.scan.window().limited(view_range)
         clusters = cluster_points(points if view is scan else scan_points(view), self.ifgm.jump)
         sight = Sight(pose, self.body, self.memory.points, self.goal_bearing(pose))
+        self.follower.track(pose.position)
         may_leave = False
         if self.state.mode is Mode.FOLLOWING:
             tracked = self._track(sight, self.state.followed)
             if tracked != self.state.followed:
                 self.state = replace(self.state, followed=tracked)
             self.iba.note(sight)
+            self.circuit.note(sight, self.follower.travelled)
             may_leave = self.may_leave(sight)
         return Percepts(
             sight, view, clusters, gaps_between(clusters), may_leave, self.ifgm, self.goal_tolerance
@@ -267,7 +272,18 @@ class IFGMPlanner:
     def may_leave(self, sight: Sight) -> bool:
         """IBA's leaving rules (errata row 24): a free path, or DistBug's progress rule --
         but not while following the wall round from outside after a dead end, where the
-        progress rule would lead straight back into the U or H (``tests/worlds/small_u``)."""
+        progress rule would lead straight back into the U or H (``tests/worlds/small_u``).
+        After a whole loop with neither, Bug1's round (:mod:`~ifgm_ref.planners.circuit`):
+        along the loop to the point Q nearest the goal, and leave there (errata row 34).
+        IFGM has no "goal unreachable": a loop that shows the goal cannot be reached is left
+        at its Q all the same."""
+        circuit = self.circuit
+        if circuit.returning:
+            if circuit.at_q(sight):
+                circuit.leave()
+                return True
+        elif (back_at := circuit.closing(sight, self.follower.travelled)) is not None:
+            circuit.close(sight, back_at, self.follower.side)
         progress = self.iba.progress(sight) and not self.state.escaped
         return self.iba.free_path_leads_on(sight) or progress
 
@@ -294,10 +310,11 @@ class IFGMPlanner:
             # Left by the progress rule, with an obstacle still ahead: meet it at IBA's short
             # encounter distance, not d_look (the followed one is still the nearest, and at
             # d_look the robot would go back to following it: tests/worlds/two_posts_in_line).
+            at_q = self.circuit.phase is CircuitPhase.LEFT_AT_Q
             self.state = replace(
                 self.state,
                 mode=Mode.MOVE_TO_GOAL,
-                short_look=not sight.path_free(),
+                short_look=at_q or not sight.path_free(),
                 escaped=False,
                 followed=None,
                 stack=(),
@@ -342,6 +359,7 @@ class IFGMPlanner:
         side = freer_side(percepts.view, sight.pose, sight.bearing)
         self.follower.start(sight.pose.position, side)
         self.iba.on_hit(sight, self.follower)
+        self.circuit.on_hit()
         self.state = replace(
             self.state,
             mode=Mode.FOLLOWING,
@@ -353,8 +371,10 @@ class IFGMPlanner:
         )
 
     def _follow(self, sight: Sight, branch: Branch) -> Command:
-        """Follow the edge with IBA; if the edge is forgotten, head for the goal instead."""
-        heading = self.follower.heading(sight)
+        """Follow the edge with IBA -- after a whole loop, retrace it to Q (Bug1's round,
+        errata row 34); if the edge is forgotten, head for the goal instead."""
+        circuit = self.circuit
+        heading = circuit.heading_to_q(sight) if circuit.returning else self.follower.heading(sight)
         if heading is None:  # the edge is forgotten: the obstacle is behind us
             self.state = replace(self.state, mode=Mode.MOVE_TO_GOAL)
             return steer(sight.bearing, sight.pose, self.body, Behaviour.MOVE_TO_GOAL, branch)
@@ -399,7 +419,16 @@ class IFGMPlanner:
             turn = replace(turn, escape_from=pose.position)  # free (or 180 degrees): go
             self.state = replace(self.state, mode=Mode.ESCAPING, turn=turn)
         assert turn.escape_from is not None
-        if distance(pose, turn.escape_from) < self.ifgm.d_look and ahead > self.body.encounter:
+        walls = self.side_walls(percepts.view)
+        walled = (turn.walled[0] or walls[0], turn.walled[1] or walls[1])
+        wall_ended = any(seen and not now for seen, now in zip(walled, walls, strict=True))
+        if walled != turn.walled:
+            self.state = replace(self.state, turn=replace(turn, walled=walled))
+        if (
+            distance(pose, turn.escape_from) < self.ifgm.d_look
+            and ahead > self.body.encounter
+            and not wall_ended
+        ):
             return Command(
                 target,
                 self.body.speed,
@@ -414,6 +443,22 @@ class IFGMPlanner:
             rel = wrap_angle(math.atan2(followed.y - pose.y, followed.x - pose.x) - pose.theta)
             self.follower.side = FollowSide.LEFT if rel > 0.0 else FollowSide.RIGHT
         return self._follow(sight, Branch.DEAD_END_TURN)
+
+    def side_walls(self, view: LaserScan) -> tuple[bool, bool]:
+        """Whether the left and the right beam of the view have a return within ``d_look``.
+
+        Section 5.2: driving out of a dead end, the robot "detects the side wall in 135
+        degrees FOV and finds the clear path in respective direction after reaching to the
+        end of wall". We read: the escape ends where a side beam that has seen a wall since
+        the robot started driving out sees none within ``d_look`` (errata row 34); the
+        robot then follows the wall it has passed the end of. Driving on to ``d_look``, it
+        could meet another obstacle first, follow that one, and come back into the dead end
+        for ever (``tests/worlds/rigid_motion_long_mixed.json``)."""
+        d_look = self.ifgm.d_look
+        return (
+            bool((view.ranges[view.beam_mask(Beam.LEFT)] <= d_look).any()),
+            bool((view.ranges[view.beam_mask(Beam.RIGHT)] <= d_look).any()),
+        )
 
     def _turn_command(self, target: float) -> Command:
         return Command(

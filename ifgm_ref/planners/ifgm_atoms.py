@@ -98,12 +98,15 @@ class Mode(StrEnum):
 @dataclass(frozen=True)
 class DeadEndTurn:
     """A dead-end turn under way: from heading ``start`` in ``steps`` 45-degree steps of
-    ``sign`` (+1 left); ``escape_from`` is where the robot started driving out, once it has."""
+    ``sign`` (+1 left); ``escape_from`` is where the robot started driving out, once it has;
+    ``walled``: whether the left and the right beam of the view have seen a wall (a return
+    within ``d_look``) since."""
 
     start: float
     sign: int
     steps: int
     escape_from: Point | None = None
+    walled: tuple[bool, bool] = (False, False)
 
 
 @dataclass(frozen=True)
@@ -245,7 +248,6 @@ def read(percepts: Percepts, state: IFGMState) -> Reading:
     gap_wide = gap is not None and gap.width > params.d_th
     free_ahead = sight.goal_free_length
     short_look = state.short_look and not free_ahead >= params.d_look  # in the open again
-    look = sight.body.encounter if short_look else params.d_look
     view = percepts.view
     front_near = bool((view.ranges[view.beam_mask(Beam.FRONT)] <= params.d_look).any())
     # Every ray returns within the view range (-inf too): the view ahead is closed.
@@ -256,7 +258,13 @@ def read(percepts: Percepts, state: IFGMState) -> Reading:
         at_goal=sight.goal_distance <= percepts.goal_tolerance,
         turning=state.mode in (Mode.DEAD_END_TURN, Mode.ESCAPING),
         avoiding=following,
-        blocked=free_ahead < min(look, sight.goal_distance),
+        # Looking short, an obstacle is met as IBA meets one (errata row 34): in the corridor
+        # within the encounter distance, and the nearest ahead -- not the one just left.
+        blocked=(
+            sight.meets_obstacle()
+            if short_look
+            else free_ahead < min(params.d_look, sight.goal_distance)
+        ),
         free=following and percepts.may_leave,
         close=nearest <= params.d_obs,
         # Case-1 needs a gap measured from afar (d_look): near, gaps look wider than they

@@ -17,7 +17,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ifgm_ref.laserscan import PAPER_HALF_FOV
-from ifgm_ref.percepts.corridor import Offsets, free_length, offsets
+from ifgm_ref.percepts.corridor import Offsets, disc_travel, free_length, offsets
 from ifgm_ref.planners.tuning import Tuning, Unit, derived
 from ifgm_ref.pose import Point, Pose, distance, wrap_angle
 from ifgm_ref.protocol import EpisodeParams
@@ -157,6 +157,8 @@ class Sight:
     (10.0, 4.0, False)
     >>> sight.goal_in_view(), sight.path_free()
     (True, False)
+    >>> sight.nearest_ahead(), sight.meets_obstacle()  # 4 ft ahead: beyond the encounter
+    (True, False)
     """
 
     def __init__(self, pose: Pose, body: Body, points: NDArray[np.float64], bearing: float) -> None:
@@ -201,6 +203,38 @@ class Sight:
         """Whether an obstacle stands in the corridor towards the goal, nearer than both the
         goal and the encounter distance ``standoff + hit_margin``."""
         return self.goal_free_length < min(self.body.encounter, self.goal_distance)
+
+    def nearest_ahead(self) -> bool:
+        """Whether the nearest remembered point lies ahead on the way to the goal: on the
+        goal's side of the line through the robot square to the goal's bearing (a point
+        exactly abeam is not ahead; with nothing remembered, nothing is)."""
+        d = self.point_distances
+        if len(d) == 0:
+            return False
+        i = int(d.argmin())
+        dx, dy = self.offsets
+        return bool(math.cos(self.bearing) * dx[i] + math.sin(self.bearing) * dy[i] > 0.0)
+
+    def goal_approachable(self) -> bool:
+        """Whether the robot's corridor-wide disc can move one step of travel
+        (``speed * dt``) straight towards the goal."""
+        pose, body = self.pose, self.body
+        travel = disc_travel(
+            self.points, (pose.x, pose.y), self.bearing, body.half_width, relative=self.offsets
+        )
+        return travel >= body.speed * body.dt
+
+    def meets_obstacle(self) -> bool:
+        """Whether the robot meets an obstacle here: one blocks the corridor towards the goal
+        (:meth:`goal_blocked`) and it is the one the follower would follow -- the nearest
+        remembered point lies ahead (:meth:`nearest_ahead`) -- or the robot cannot move
+        towards the goal at all (:meth:`goal_approachable`).
+
+        While the nearest obstacle lies behind or abeam (the one just left, with another
+        in the way), the robot moves on towards the one in the way until that one is the
+        nearest: a follower that met one obstacle and followed another could go round the
+        wrong one for ever (errata row 34)."""
+        return self.goal_blocked() and (self.nearest_ahead() or not self.goal_approachable())
 
     def goal_in_view(self) -> bool:
         """Whether the goal's bearing lies inside the view, :data:`IN_VIEW_MARGIN` from its
