@@ -14,10 +14,12 @@ from ifgm_ref.bench import barn
 from ifgm_ref.bench.tasks import WorldSpec, barn_specs, run_world
 from ifgm_ref.cli import main
 from ifgm_ref.errors import ParameterError, WorldError
+from ifgm_ref.planners import make_planner
+from ifgm_ref.simulator import simulate
 from ifgm_ref.world import Circle
 
 BARN = Path(__file__).parent / "worlds" / "barn"
-INDICES = [1, 2, 4]
+INDICES = [1, 2, 4, 245]
 
 
 def test_world_has_barns_task_robot_and_sensor() -> None:
@@ -118,7 +120,8 @@ def test_rows_carry_the_barn_columns() -> None:
 
 def test_cli_bench_barn(tmp_path: Path) -> None:
     out = tmp_path / "out"
-    argv = ["bench", "--barn", str(BARN), "--planners", "straight", "--jobs", "1"]
+    argv = ["bench", "--barn", str(BARN), "--barn-worlds", "1,2,4", "--planners", "straight"]
+    argv += ["--jobs", "1"]
     assert main([*argv, "--out", str(out)]) == 0
     with (out / "results.csv").open() as source:
         rows = list(csv.DictReader(source))
@@ -133,3 +136,15 @@ def test_cli_bench_barn(tmp_path: Path) -> None:
         "| straight | barn | 3 | 0.000 | 0.0% | 100.0% | 0.0% |" in (out / "summary.md").read_text()
     )
     assert main(["bench", "--sensor", "paper_ir", "--out", str(out)]) == 2  # BARN only
+
+
+def test_ifgm_crosses_the_clutter_it_used_to_circle_for_ever() -> None:
+    """Errata row 34: in BARN's world 245 IFGM went round the inside of the start box, saw no
+    remembered obstacle between itself and the goal 12 m away (it remembers returns only
+    within ``view_range``, 3.3 m for BARN's robot), took the goal for visible (DistBug's
+    ``F = d``, with the LiDAR's 30 m ``range_max``), left, met the same clutter and went
+    round again until BARN's 100 s ran out. ``F = d`` now needs the goal within
+    ``view_range``."""
+    world = barn.load_barn_world(BARN / "world_245.world")
+    result = simulate(world, make_planner("ifgm"), barn.SIM).result
+    assert result.reached and not result.collided, result

@@ -311,7 +311,8 @@ def test_a_misbehaving_program_is_reported_within_the_timeout(program: str, tmp_
         for world in ("two_posts_in_line", "post_before_u", "post_on_line", "small_u")
         for planner in ("ifgm", "iba")
     ]
-    + [("tilted_h", "ifgm"), ("mixed_u_h", "ifgm"), ("post_then_box", "ifgm")],
+    + [("tilted_h", "ifgm"), ("mixed_u_h", "ifgm"), ("post_then_box", "ifgm")]
+    + [("rigid_motion_long_mixed", "ifgm"), ("rigid_motion_long_mixed", "iba")],
 )
 def test_oracle_counterexamples_now_reach_the_goal(world: str, planner: str) -> None:
     w = load_world(WORLDS / f"{world}.json")

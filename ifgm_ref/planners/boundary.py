@@ -272,7 +272,7 @@ class BoundaryPlanner:
             rule.on_hit(sight, follower)
             circuit.on_hit()
             return self.follow(sight, "follow_edge")
-        circuit.note(sight, follower.travelled)
+        circuit.note(sight)
         if rule.update(sight, follower):
             follower.following = False
             return self.move_to_goal(sight, rule.leave_branch)
@@ -285,7 +285,7 @@ class BoundaryPlanner:
             circuit.leave()
             follower.following = False
             return self.move_to_goal(sight, "leave_at_q")
-        back_at = circuit.closing(sight, follower.travelled)
+        back_at = circuit.closing(sight)
         if back_at is not None:
             if not circuit.close(sight, back_at, follower.side):
                 return unreachable(sight, "goal_enclosed")

@@ -102,8 +102,9 @@ class CircuitPhase(StrEnum):
     LEFT_AT_Q = "left_at_q"
 
 
-#: The trail's columns: x, y, heading, distance to the goal, distance followed.
-_X, _Y, _HEADING, _GOAL_DISTANCE, _TRAVELLED = range(5)
+#: The trail's columns: x, y, heading, distance to the goal, distance driven, and 1 where the
+#: robot was following an edge (0 elsewhere).
+_X, _Y, _HEADING, _GOAL_DISTANCE, _TRAVELLED, _FOLLOWING = range(6)
 
 
 class Circuit:
@@ -128,8 +129,10 @@ class Circuit:
     def _start(self) -> None:
         self.q_point = Point(math.nan, math.nan)
         self.q_distance = math.inf
-        self._trail = np.empty((64, 5))
+        self._trail = np.empty((64, 6))
         self._laid = 0
+        self._travelled = 0.0  # the way driven since the round began
+        self._last: Point | None = None
         self._next = 0  # on to Q: the trail point steered for
         self._q_index = 0  # Q's trail point
 
@@ -151,11 +154,18 @@ class Circuit:
         self.phase = CircuitPhase.FIRST_PASS
         self._start()
 
-    def note(self, sight: Sight, travelled: float) -> None:
-        """On the first pass, lay this step's pose on the trail if it lies the trail's spacing
-        beyond the last point laid (``travelled``: the distance followed from H)."""
+    def note(self, sight: Sight, following: bool = True) -> None:
+        """On the first pass, count the way driven since the last call and lay this step's
+        pose on the trail if it lies the trail's spacing beyond the last point laid;
+        ``following``: whether the robot follows an edge here (only such points close a
+        loop: :meth:`closing`)."""
         if self.phase is not CircuitPhase.FIRST_PASS:
             return
+        here = sight.pose.position
+        if self._last is not None:
+            self._travelled += distance(self._last, here)
+        self._last = here
+        travelled = self._travelled
         n = self._laid
         spacing = TRAIL_SPACING_FRACTION * sight.body.tuning.return_radius
         if n and travelled < self._trail[n - 1, _TRAVELLED] + spacing:
@@ -163,25 +173,26 @@ class Circuit:
         if n == len(self._trail):
             self._trail = np.concatenate([self._trail, np.empty_like(self._trail)])
         pose = sight.pose
-        self._trail[n] = (pose.x, pose.y, pose.theta, sight.goal_distance, travelled)
+        self._trail[n] = (pose.x, pose.y, pose.theta, sight.goal_distance, travelled, following)
         self._laid = n + 1
 
-    def closing(self, sight: Sight, travelled: float) -> int | None:
-        """On the first pass, the trail point the robot is back at, if any: within
-        ``return_radius``, heading the same way (within :data:`SAME_WAY`), at least
-        ``min_loop`` followed since; of several, the earliest."""
+    def closing(self, sight: Sight) -> int | None:
+        """On the first pass, the trail point the robot is back at, if any: one laid while
+        following an edge, within ``return_radius``, heading the same way (within
+        :data:`SAME_WAY`), at least ``min_loop`` driven since; of several, the earliest."""
         if self.phase is not CircuitPhase.FIRST_PASS:
             return None
         tuning = sight.body.tuning
         trail = self._trail[: self._laid]
-        old = int(np.searchsorted(trail[:, _TRAVELLED], travelled - tuning.min_loop, "right"))
+        back = self._travelled - tuning.min_loop
+        old = int(np.searchsorted(trail[:, _TRAVELLED], back, "right"))
         if old == 0:
             return None
         pose = sight.pose
         x, y, heading = trail[:old, _X], trail[:old, _Y], trail[:old, _HEADING]
         near = np.hypot(x - pose.x, y - pose.y) <= tuning.return_radius
         same_way = np.cos(heading - pose.theta) > math.cos(SAME_WAY)
-        (back_at,) = (near & same_way).nonzero()
+        (back_at,) = (near & same_way & (trail[:old, _FOLLOWING] > 0.0)).nonzero()
         return int(back_at[0]) if len(back_at) else None
 
     def close(self, sight: Sight, at: int, side: FollowSide) -> bool:

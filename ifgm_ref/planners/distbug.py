@@ -28,8 +28,11 @@ Our robot is a disc that sees 135 degrees ahead, so ``F`` is adapted, and says s
   sensor cannot see towards it, and nothing is known to be free;
 * ``F = d(x, T)`` when the corridor towards the goal (as wide as the robot, see
   :attr:`~ifgm_ref.planners.sight.Sight.goal_free_length`) is free up to the
-  goal and the goal is within ``range_max``: T is visible;
-* otherwise ``F = min(free length, range_max) - (standoff + hit_margin)``, at least 0: the
+  goal and the goal is within ``view_range``: T is visible (the planners remember returns
+  only that far, so beyond it a corridor free of remembered points is not known to be
+  free; with BARN's 30 m LiDAR, ``range_max`` there let IFGM leave towards clutter it had
+  just gone round, for ever: errata row 34);
+* otherwise ``F = min(free length, view_range) - (standoff + hit_margin)``, at least 0: the
   distance the robot can move towards T before the skeleton's hit test (an obstacle nearer
   than ``standoff + hit_margin`` in the corridor) fires again. Without that subtraction a
   robot at the stand-off from a wall facing the goal sees ``F = standoff``, leaves when
@@ -122,10 +125,10 @@ class DistBugRule(LeaveRule):
             return 0.0
         d = sight.goal_distance
         free = sight.goal_free_length
-        range_max = sight.body.range_max
-        if free >= d and d <= range_max:
+        seen = sight.body.tuning.view_range  # the planner knows nothing beyond it
+        if free >= d and d <= seen:
             return d
-        return max(0.0, min(free, range_max) - sight.body.encounter)
+        return max(0.0, min(free, seen) - sight.body.encounter)
 
 
 @traces("distbug")

@@ -250,13 +250,13 @@ class IFGMPlanner:
         clusters = cluster_points(points if view is scan else scan_points(view), self.ifgm.jump)
         sight = Sight(pose, self.body, self.memory.points, self.goal_bearing(pose))
         self.follower.track(pose.position)
+        self.circuit.note(sight, following=self.state.mode is Mode.FOLLOWING)
         may_leave = False
         if self.state.mode is Mode.FOLLOWING:
             tracked = self._track(sight, self.state.followed)
             if tracked != self.state.followed:
                 self.state = replace(self.state, followed=tracked)
             self.iba.note(sight)
-            self.circuit.note(sight, self.follower.travelled)
             may_leave = self.may_leave(sight)
         return Percepts(
             sight, view, clusters, gaps_between(clusters), may_leave, self.ifgm, self.goal_tolerance
@@ -273,17 +273,25 @@ class IFGMPlanner:
         """IBA's leaving rules (errata row 24): a free path, or DistBug's progress rule --
         but not while following the wall round from outside after a dead end, where the
         progress rule would lead straight back into the U or H (``tests/worlds/small_u``).
-        After a whole loop with neither, Bug1's round (:mod:`~ifgm_ref.planners.circuit`):
-        along the loop to the point Q nearest the goal, and leave there (errata row 34).
-        IFGM has no "goal unreachable": a loop that shows the goal cannot be reached is left
-        at its Q all the same."""
+        Beside them, Bug1's round (:mod:`~ifgm_ref.planners.circuit`, errata row 34): one
+        round from the first obstacle met until the robot leaves at a Q, its trail laid in
+        every mode, so that it also closes when IFGM leaves an edge by IBA's rules, meets the
+        same obstacles again and goes the same way round (a lap without progress); once the
+        loop closes, only Q is left from: along the loop to the point Q nearest the goal, and
+        leave there. IFGM has no "goal unreachable": a loop that shows the goal cannot be
+        reached is left at its Q all the same."""
         circuit = self.circuit
         if circuit.returning:
-            if circuit.at_q(sight):
-                circuit.leave()
-                return True
-        elif (back_at := circuit.closing(sight, self.follower.travelled)) is not None:
-            circuit.close(sight, back_at, self.follower.side)
+            if not circuit.at_q(sight):
+                return False
+            circuit.leave()
+            return True
+        if (back_at := circuit.closing(sight)) is not None:
+            side = self.follower.side
+            if not circuit.close(sight, back_at, side):  # no way on this way round
+                other = FollowSide.LEFT if side is FollowSide.RIGHT else FollowSide.RIGHT
+                self.state = replace(self.state, turn_other_way=other)
+            return False
         progress = self.iba.progress(sight) and not self.state.escaped
         return self.iba.free_path_leads_on(sight) or progress
 
@@ -356,10 +364,11 @@ class IFGMPlanner:
     def _start_following(self, percepts: Percepts) -> None:
         """IBA takes over: follow the nearest obstacle on the freer side, nothing pre-empted."""
         sight = percepts.sight
-        side = freer_side(percepts.view, sight.pose, sight.bearing)
+        side = self.state.turn_other_way or freer_side(percepts.view, sight.pose, sight.bearing)
         self.follower.start(sight.pose.position, side)
         self.iba.on_hit(sight, self.follower)
-        self.circuit.on_hit()
+        if self.circuit.phase is not CircuitPhase.FIRST_PASS:
+            self.circuit.on_hit()
         self.state = replace(
             self.state,
             mode=Mode.FOLLOWING,
@@ -368,6 +377,7 @@ class IFGMPlanner:
             escaped=False,
             followed=nearest_remembered(sight, None, self.ifgm.jump),
             stack=(),
+            turn_other_way=None,
         )
 
     def _follow(self, sight: Sight, branch: Branch) -> Command:

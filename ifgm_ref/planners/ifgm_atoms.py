@@ -129,6 +129,9 @@ class IFGMState:
         Meeting obstacles at IBA's short encounter distance, Case-1 off (errata row 24).
     escaped : bool
         Following the wall round from outside after a dead end.
+    turn_other_way : FollowSide or None
+        After a round of Bug1's that found no way on (errata row 34): the side the next
+        round follows on, the other one than that round's; ``None`` otherwise.
     """
 
     mode: Mode = Mode.MOVE_TO_GOAL
@@ -138,6 +141,7 @@ class IFGMState:
     gap_mid: Point | None = None
     short_look: bool = False
     escaped: bool = False
+    turn_other_way: FollowSide | None = None
 
 
 @dataclass(frozen=True)
