@@ -9,7 +9,6 @@ tests the replay itself).
 from __future__ import annotations
 
 import math
-import time
 from dataclasses import replace
 
 import pytest
@@ -116,11 +115,9 @@ def test_powers_of_two() -> None:
     ],
 )
 def test_reference_planners_are_scale_invariant(planner: str) -> None:
-    started = time.perf_counter()
     result = run_check(CHECKS["scale_invariant"], Implementation.from_spec(planner), FEW)
     assert result.status is Status.PASSED, result.line()
     assert result.examples == 2 * FEW.max_examples
-    assert time.perf_counter() - started < 120.0
 
 
 def test_an_absolute_margin_is_caught_where_the_reference_is_exact() -> None:

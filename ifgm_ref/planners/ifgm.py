@@ -9,12 +9,15 @@ alone picks the branch, and this module carries it out:
 * *Case-1* (max gap > ``d_th``, nearest obstacle > ``d_obs``, obstacles on both sides):
   steer through the middle of the widest gap, eqs. (1)-(4);
 * *Case-2* and *too close*: avoid with IBA (:class:`~ifgm_ref.planners.iba.IBAPlanner`),
-  following the edge bidirectionally until a free path towards the goal appears;
+  following the edge bidirectionally until a free path towards the goal appears -- or, after
+  a lap without progress, Bug1's round: along the loop to its point nearest the goal, and
+  leave there (:mod:`~ifgm_ref.planners.circuit`, errata row 34);
 * *Case-3*: while avoiding, a nearer obstacle pre-empts the followed one; the followed one is
   pushed on a stack and resumed if it is met again (the recursion of section 4);
 * *dead end* (inside a U or an H): turn in place in 45-degree steps, 45, 90, 135, 180 degrees,
   until the corridor ahead is free as far as the paper's sensor sees (``view_range``); go that
-  way, then follow the wall round from outside with IBA and regenerate the path.
+  way to the end of the wall (section 5.2), then follow the wall round from outside with IBA
+  and regenerate the path.
 
 The planner is composed, not inherited: it holds IBA's parts (an
 :class:`~ifgm_ref.planners.boundary.EdgeFollower` and an :class:`~ifgm_ref.planners.iba.IBARule`)
