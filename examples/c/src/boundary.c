@@ -2,14 +2,11 @@
 #include "boundary.h"
 
 #include "equations.h"
-#include "tuning.h"
 
 const char IFGM_MOVE_TO_GOAL[] = "move_to_goal";
 const char IFGM_OBSTACLE_AVOIDANCE[] = "obstacle_avoidance";
 const char IFGM_GOAL_UNREACHABLE[] = "goal_unreachable";
 
-/* The goal counts as in view this far inside the view's edge (Sight.goal_in_view). */
-#define IN_VIEW_MARGIN (10 * (IFGM_PI / 180))
 /* Largest correction of the tangent heading towards or away from the edge. */
 #define MAX_CORRECTION (IFGM_PI / 3)
 /* The guard's search step round a blocked heading, and the steps each way. */
@@ -17,25 +14,6 @@ const char IFGM_GOAL_UNREACHABLE[] = "goal_unreachable";
 #define GUARD_STEPS 6
 /* The goal counts as dead ahead within this angle (freer_side). */
 #define GOAL_AHEAD ((ifgm_real)1e-6)
-
-int ifgm_body_init(ifgm_body *b, const ifgm_episode *e, const ifgm_tuning *given)
-{
-    int status = ifgm_resolve_tuning(&b->tuning, e, given);
-    if (status != IFGM_OK)
-        return status;
-    b->goal.x = e->goal[0];
-    b->goal.y = e->goal[1];
-    b->radius = e->radius;
-    b->speed = e->speed;
-    b->fov = e->fov;
-    b->range_max = e->range_max;
-    b->turn_limit = e->max_turn_rate * e->dt;
-    b->dt = e->dt;
-    b->standoff = b->radius + b->tuning.standoff_margin;
-    b->half_width = b->radius + b->tuning.corridor_margin;
-    b->encounter = b->standoff + b->tuning.hit_margin;
-    return IFGM_OK;
-}
 
 int ifgm_check_capacity(ifgm_rays *rays, const ifgm_episode *e, const ifgm_body *body)
 {
@@ -46,53 +24,6 @@ int ifgm_check_capacity(ifgm_rays *rays, const ifgm_episode *e, const ifgm_body 
         return IFGM_MEMORY_FULL;
     rays->n = -1;
     return ifgm_rays_for(rays, e->angle_min, e->angle_increment, e->rays);
-}
-
-void ifgm_sight_init(ifgm_sight *s, const ifgm_body *body, const ifgm_real pose[3],
-                     const ifgm_memory *memory, ifgm_real bearing)
-{
-    s->body = body;
-    s->pose[0] = pose[0];
-    s->pose[1] = pose[1];
-    s->pose[2] = pose[2];
-    s->x = memory->x + memory->start;
-    s->y = memory->y + memory->start;
-    s->n = memory->end - memory->start;
-    s->bearing = bearing;
-    s->goal_distance = hypot(body->goal.x - pose[0], body->goal.y - pose[1]);
-    s->free_length = (ifgm_real)NAN;
-}
-
-ifgm_real ifgm_goal_free_length(ifgm_sight *s)
-{
-    if (isnan(s->free_length))
-        s->free_length = ifgm_free_length(s->x, s->y, s->n, s->pose[0], s->pose[1], s->bearing,
-                                          s->body->half_width);
-    return s->free_length;
-}
-
-int ifgm_goal_blocked(ifgm_sight *s)
-{
-    ifgm_real reach = s->body->encounter < s->goal_distance ? s->body->encounter
-                                                             : s->goal_distance;
-    return ifgm_goal_free_length(s) < reach;
-}
-
-int ifgm_goal_in_view(const ifgm_sight *s)
-{
-    ifgm_real half = s->body->fov / 2;
-    if (half > IFGM_PAPER_HALF_FOV)
-        half = IFGM_PAPER_HALF_FOV;
-    return fabs(ifgm_wrap_angle(s->bearing - s->pose[2])) <= half - IN_VIEW_MARGIN;
-}
-
-int ifgm_path_free(ifgm_sight *s)
-{
-    if (!ifgm_goal_in_view(s))
-        return 0;
-    ifgm_real view = s->body->tuning.view_range;
-    ifgm_real needed = view < s->goal_distance ? view : s->goal_distance;
-    return ifgm_goal_free_length(s) >= needed;
 }
 
 void ifgm_follower_reset(ifgm_follower *f, const ifgm_real start[3])
@@ -114,20 +45,12 @@ void ifgm_follower_start(ifgm_follower *f, const ifgm_real here[3], ifgm_follow_
     f->side = side;
 }
 
-/* The robot is at `here`: add the way from the last position while following. */
-static void follower_track(ifgm_follower *f, const ifgm_real here[3])
+void ifgm_follower_track(ifgm_follower *f, const ifgm_real here[3])
 {
     if (f->following)
         f->travelled += hypot(here[0] - f->last.x, here[1] - f->last.y);
     f->last.x = here[0];
     f->last.y = here[1];
-}
-
-/* Back at the hit point (within return_radius) after a loop of at least min_loop. */
-static int back_at_hit(const ifgm_follower *f, const ifgm_real here[3], const ifgm_tuning *t)
-{
-    return f->travelled >= t->min_loop &&
-           hypot(here[0] - f->hit.x, here[1] - f->hit.y) <= t->return_radius;
 }
 
 int ifgm_follow_heading(const ifgm_follower *f, const ifgm_sight *s, ifgm_real *heading)
@@ -270,100 +193,4 @@ int ifgm_free_path_leads_on(const ifgm_progress *rule, ifgm_sight *s)
         return 0;
     ifgm_real free = ifgm_goal_free_length(s), view = s->body->tuning.view_range;
     return s->goal_distance - (free < view ? free : view) <= rule->d_min;
-}
-
-static int boundary_init(ifgm_boundary_planner *p, ifgm_rule rule, const ifgm_episode *e,
-                         const ifgm_tuning *tuning)
-{
-    int status = ifgm_body_init(&p->body, e, tuning);
-    if (status == IFGM_OK)
-        status = ifgm_check_capacity(&p->rays, e, &p->body);
-    if (status != IFGM_OK)
-        return status;
-    p->rule = rule;
-    p->progress.d_min = IFGM_INF;
-    p->progress.step_length = p->body.tuning.step_length;
-    ifgm_follower_reset(&p->follower, e->start);
-    ifgm_memory_clear(&p->memory, p->body.tuning.memory_horizon);
-    return IFGM_OK;
-}
-
-int distbug_init(distbug_planner *p, const ifgm_episode *e, const ifgm_tuning *tuning)
-{
-    return boundary_init(p, IFGM_RULE_DISTBUG, e, tuning);
-}
-
-int iba_init(iba_planner *p, const ifgm_episode *e, const ifgm_tuning *tuning)
-{
-    return boundary_init(p, IFGM_RULE_IBA, e, tuning);
-}
-
-/* Follow the nearest remembered edge; move to goal if the edge is forgotten. */
-static ifgm_command follow(ifgm_boundary_planner *p, const ifgm_sight *s, const char *branch)
-{
-    ifgm_real heading;
-    if (!ifgm_follow_heading(&p->follower, s, &heading)) {
-        p->follower.following = 0;
-        return ifgm_steer(s->bearing, s, IFGM_MOVE_TO_GOAL, "edge_lost");
-    }
-    return ifgm_steer(heading, s, IFGM_OBSTACLE_AVOIDANCE, branch);
-}
-
-/* Move to goal or follow the edge (BoundaryPlanner.decide). */
-static ifgm_command boundary_decide(ifgm_boundary_planner *p, const ifgm_observation *o,
-                                    ifgm_sight *s)
-{
-    ifgm_follower *f = &p->follower;
-    ifgm_progress *rule = &p->progress;
-    int iba = p->rule == IFGM_RULE_IBA;
-    if (!f->following) {
-        if (!ifgm_goal_blocked(s))
-            return ifgm_steer(s->bearing, s, IFGM_MOVE_TO_GOAL, "move_to_goal");
-        ifgm_follow_side side = iba ? ifgm_freer_side(o->ranges, o->n, o->range_max,
-                                                      p->rays.angle, p->rays.beam, s->pose,
-                                                      s->bearing)
-                                    : IFGM_FOLLOW_RIGHT; /* the Bug family turns left */
-        ifgm_follower_start(f, o->pose, side);
-        ifgm_real d_hit = hypot(p->body.goal.x - f->hit.x, p->body.goal.y - f->hit.y);
-        rule->d_min = (iba && rule->d_min < d_hit) ? rule->d_min : d_hit;
-        return follow(p, s, "follow_edge");
-    }
-    if (s->goal_distance < rule->d_min)
-        rule->d_min = s->goal_distance;
-    if (ifgm_progress_made(rule, s) || (iba && ifgm_free_path_leads_on(rule, s))) {
-        f->following = 0;
-        return ifgm_steer(s->bearing, s, IFGM_MOVE_TO_GOAL, iba ? "leave" : "leave_distbug");
-    }
-    if (back_at_hit(f, o->pose, &p->body.tuning)) {
-        ifgm_command stop = {s->pose[2], 0, IFGM_OBSTACLE_AVOIDANCE, "loop_closed",
-                             IFGM_GOAL_UNREACHABLE};
-        return stop;
-    }
-    return follow(p, s, "follow_edge");
-}
-
-static ifgm_command boundary_step(ifgm_boundary_planner *p, const ifgm_observation *o)
-{
-    if (ifgm_rays_for(&p->rays, o->angle_min, o->angle_increment, o->n) != IFGM_OK) {
-        ifgm_command stop = {o->pose[2], 0, IFGM_OBSTACLE_AVOIDANCE, "bad_scan", "bad_scan"};
-        return stop;
-    }
-    ifgm_scan_points_of(&p->points, o->ranges, o->n, o->range_min, p->body.tuning.view_range,
-                        p->rays.angle, p->rays.cos, p->rays.sin);
-    ifgm_memory_add(&p->memory, o->t, o->pose, &p->points);
-    follower_track(&p->follower, o->pose);
-    ifgm_sight s;
-    ifgm_sight_init(&s, &p->body, o->pose, &p->memory,
-                    atan2(p->body.goal.y - o->pose[1], p->body.goal.x - o->pose[0]));
-    return ifgm_guard(boundary_decide(p, o, &s), &s);
-}
-
-ifgm_command distbug_step(distbug_planner *p, const ifgm_observation *o)
-{
-    return boundary_step(p, o);
-}
-
-ifgm_command iba_step(iba_planner *p, const ifgm_observation *o)
-{
-    return boundary_step(p, o);
 }

@@ -48,6 +48,7 @@ int ifgm_init(ifgm_planner *p, const ifgm_episode *e, const ifgm_tuning *tuning)
     p->iba.d_min = IFGM_INF;
     p->iba.step_length = p->body.tuning.step_length;
     ifgm_follower_reset(&p->follower, e->start);
+    ifgm_circuit_reset(&p->circuit);
     ifgm_memory_clear(&p->memory, p->body.tuning.memory_horizon);
     /* Within the tolerance plus one step of travel the robot drives onto the goal. */
     p->goal_tolerance = e->goal_tolerance + e->speed * e->dt;
@@ -86,9 +87,31 @@ static const ifgm_scan_points *view_points(const ifgm_planner *p)
     return p->rays.view_n != p->rays.n ? &p->view_points : &p->points;
 }
 
-/* Remember the scan; work out the 135-degree view, its obstacles and gaps; while
- * following, track the followed point and ask IBA's leaving rules. Returns 0 on a scan the
- * build cannot hold. */
+/* IBA's leaving rules (errata row 24): a free path, or DistBug's progress rule -- but not
+ * while following the wall round from outside after a dead end. After a whole loop with
+ * neither, Bug1's round (circuit.h): along the loop to Q, and leave there (errata row 34).
+ * IFGM has no "goal unreachable": a loop that shows the goal cannot be reached is left at
+ * its Q all the same (IFGMPlanner.may_leave). */
+static int leaving(ifgm_planner *p, ifgm_sight *s)
+{
+    ifgm_circuit *circuit = &p->circuit;
+    if (ifgm_circuit_returning(circuit)) {
+        if (ifgm_circuit_at_q(circuit, s)) {
+            ifgm_circuit_leave(circuit);
+            return 1;
+        }
+    } else {
+        int back_at = ifgm_circuit_closing(circuit, s, p->follower.travelled);
+        if (back_at >= 0)
+            ifgm_circuit_close(circuit, s, back_at, p->follower.side);
+    }
+    int progress = ifgm_progress_made(&p->iba, s) && !p->state.escaped;
+    return ifgm_free_path_leads_on(&p->iba, s) || progress;
+}
+
+/* Remember the scan; work out the 135-degree view, its obstacles and gaps; count the way
+ * followed; while following, track the followed point, lay Bug1's trail and ask the leaving
+ * rules. Returns 0 on a scan the build cannot hold. */
 static int perceive(ifgm_planner *p, const ifgm_observation *o, ifgm_sight *s, int *may_leave)
 {
     if (ifgm_rays_for(&p->rays, o->angle_min, o->angle_increment, o->n) != IFGM_OK ||
@@ -110,6 +133,7 @@ static int perceive(ifgm_planner *p, const ifgm_observation *o, ifgm_sight *s, i
     p->n_clusters = ifgm_cluster_points(view, p->body.tuning.jump, p->clusters);
     p->n_gaps = ifgm_gaps_between(view, p->clusters, p->n_clusters, p->gaps);
     ifgm_sight_init(s, &p->body, o->pose, &p->memory, goal_bearing(p, o->pose));
+    ifgm_follower_track(&p->follower, o->pose);
     *may_leave = 0;
     if (p->state.mode == IFGM_MODE_FOLLOWING) {
         ifgm_state *st = &p->state;
@@ -122,9 +146,8 @@ static int perceive(ifgm_planner *p, const ifgm_observation *o, ifgm_sight *s, i
             st->followed = tracked;
         if (s->goal_distance < p->iba.d_min)
             p->iba.d_min = s->goal_distance;
-        /* A free path, or DistBug's progress -- not while escaping round a dead end. */
-        int progress = ifgm_progress_made(&p->iba, s) && !st->escaped;
-        *may_leave = ifgm_free_path_leads_on(&p->iba, s) || progress;
+        ifgm_circuit_note(&p->circuit, s, p->follower.travelled);
+        *may_leave = leaving(p, s);
     }
     return 1;
 }
@@ -219,7 +242,6 @@ static reading read(const ifgm_planner *p, ifgm_sight *s, int may_leave)
     int gap_wide = r.gap && r.gap->width > t->d_th;
     ifgm_real free_ahead = ifgm_goal_free_length(s);
     r.short_look = st->short_look && !(free_ahead >= t->d_look); /* in the open again */
-    ifgm_real look = r.short_look ? p->body.encounter : t->d_look;
     int front_near = 0, enclosed = 1;
     for (int j = 0; j < p->rays.view_n; j++) {
         ifgm_real range = p->view_ranges[j];
@@ -231,7 +253,11 @@ static reading read(const ifgm_planner *p, ifgm_sight *s, int may_leave)
     r.a.at_goal = s->goal_distance <= p->goal_tolerance;
     r.a.turning = st->mode == IFGM_MODE_DEAD_END_TURN || st->mode == IFGM_MODE_ESCAPING;
     r.a.avoiding = following;
-    r.a.blocked = free_ahead < (look < s->goal_distance ? look : s->goal_distance);
+    /* Looking short, an obstacle is met as IBA meets one (errata row 34): in the corridor
+     * within the encounter distance, and the nearest ahead -- not the one just left. */
+    r.a.blocked = r.short_look ? ifgm_meets_obstacle(s)
+                               : free_ahead < (t->d_look < s->goal_distance ? t->d_look
+                                                                            : s->goal_distance);
     r.a.free = following && may_leave;
     r.a.close = nearest <= t->d_obs;
     r.a.wide = gap_wide && !r.short_look; /* Case-1 needs a gap measured from afar */
@@ -275,11 +301,14 @@ static ifgm_follow_side view_freer_side(const ifgm_planner *p, const ifgm_sight 
                            p->rays.view_angle, p->rays.view_beam, s->pose, s->bearing);
 }
 
-/* Follow the edge with IBA; if the edge is forgotten, head for the goal instead. */
+/* Follow the edge with IBA -- after a whole loop, retrace it to Q (Bug1's round, errata
+ * row 34); if the edge is forgotten, head for the goal instead. */
 static ifgm_command follow(ifgm_planner *p, const ifgm_sight *s, ifgm_branch branch)
 {
     ifgm_real heading;
-    if (!ifgm_follow_heading(&p->follower, s, &heading)) {
+    if (ifgm_circuit_returning(&p->circuit))
+        heading = ifgm_circuit_heading_to_q(&p->circuit, s);
+    else if (!ifgm_follow_heading(&p->follower, s, &heading)) {
         p->state.mode = IFGM_MODE_MOVE_TO_GOAL;
         return ifgm_steer(s->bearing, s, IFGM_MOVE_TO_GOAL, BRANCH_NAMES[branch]);
     }
@@ -293,6 +322,7 @@ static void start_following(ifgm_planner *p, const ifgm_sight *s)
     ifgm_real d_hit = hypot(p->body.goal.x - s->pose[0], p->body.goal.y - s->pose[1]);
     if (d_hit < p->iba.d_min) /* one yardstick for the episode (errata row 31) */
         p->iba.d_min = d_hit;
+    ifgm_circuit_on_hit(&p->circuit);
     ifgm_state *st = &p->state;
     st->mode = IFGM_MODE_FOLLOWING;
     st->has_turn = st->has_escape_from = 0;
@@ -338,6 +368,15 @@ static ifgm_real dead_end_target(const ifgm_state *st)
     return ifgm_wrap_angle(st->turn_start + (st->turn_sign * st->turn_steps) * DEAD_END_STEP);
 }
 
+/* Whether a ray of the view's `beam` returns within d_look (IFGMPlanner.side_walls). */
+static int side_wall(const ifgm_planner *p, ifgm_beam beam)
+{
+    for (int j = 0; j < p->rays.view_n; j++)
+        if (p->rays.view_beam[j] == beam && p->view_ranges[j] <= p->body.tuning.d_look)
+            return 1;
+    return 0;
+}
+
 /* Turn in 45-degree steps until the way ahead is free; then go that way; once out, follow
  * the nearest wall round from outside (section 4, dead end; errata row 32). */
 static ifgm_command dead_end(ifgm_planner *p, const ifgm_sight *s)
@@ -347,6 +386,7 @@ static ifgm_command dead_end(ifgm_planner *p, const ifgm_sight *s)
     if (!st->has_turn) { /* entering the dead end: turn towards the freer beam */
         st->has_turn = 1;
         st->has_escape_from = 0;
+        st->walled[0] = st->walled[1] = 0;
         st->turn_start = s->pose[2];
         st->turn_sign = view_freer_side(p, s) == IFGM_FOLLOW_RIGHT ? 1 : -1;
         st->turn_steps = 1;
@@ -368,8 +408,16 @@ static ifgm_command dead_end(ifgm_planner *p, const ifgm_sight *s)
         st->escape_from.y = s->pose[1];
         st->mode = IFGM_MODE_ESCAPING;
     }
+    /* The escape ends at the end of the wall: where a side beam that has seen a wall since
+     * the robot started driving out sees none within d_look (section 5.2; errata row 34). */
+    int wall_ended = 0;
+    for (int k = 0; k < 2; k++) {
+        int now = side_wall(p, k ? IFGM_BEAM_RIGHT : IFGM_BEAM_LEFT);
+        st->walled[k] |= now;
+        wall_ended |= st->walled[k] && !now;
+    }
     ifgm_real out = hypot(st->escape_from.x - s->pose[0], st->escape_from.y - s->pose[1]);
-    if (out < b->tuning.d_look && ahead > b->encounter)
+    if (out < b->tuning.d_look && ahead > b->encounter && !wall_ended)
         return command_of(target, b->speed, IFGM_DEAD_END_TURN);
     start_following(p, s);
     st->escaped = 1;
@@ -412,10 +460,10 @@ static ifgm_command act(ifgm_planner *p, ifgm_sight *s, const reading *r, ifgm_b
         st->mode = IFGM_MODE_MOVE_TO_GOAL;
         return ifgm_steer(s->bearing, s, IFGM_MOVE_TO_GOAL, BRANCH_NAMES[branch]);
     case IFGM_PATH_REGENERATED:
-        /* Left by the progress rule with an obstacle still ahead: meet it at IBA's short
-         * encounter distance, not d_look (errata row 24). */
+        /* Left by the progress rule with an obstacle still ahead, or at Bug1's Q: meet it
+         * at IBA's short encounter distance, not d_look (errata rows 24 and 34). */
         st->mode = IFGM_MODE_MOVE_TO_GOAL;
-        st->short_look = !ifgm_path_free(s);
+        st->short_look = p->circuit.phase == IFGM_CIRCUIT_LEFT_AT_Q || !ifgm_path_free(s);
         st->escaped = 0;
         st->has_followed = 0;
         st->stack_n = 0;

@@ -1,7 +1,7 @@
 /* IFGM, the Intelligent Follow the Gap Method (section 4 and Figure 3 of the paper), in C99
- * with no heap: the caller owns the planner struct (1.3 MB in the default build, 58 KiB in a
- * float build sized for the paper's sensor, most of it the remembered points: keep it in
- * static storage).
+ * with no heap: the caller owns the planner struct (1.3 MB in the default build, 80 KiB in a
+ * float build sized for the paper's sensor, most of it the remembered points and Bug1's
+ * trail, circuit.h: keep it in static storage).
  *
  *     static ifgm_planner planner;
  *     if (ifgm_init(&planner, &episode, &tuning) != IFGM_OK) ...   // at every reset
@@ -52,8 +52,8 @@ typedef enum {
 /* The branch's name ("case1_gap", ...). */
 const char *ifgm_branch_name(ifgm_branch branch);
 
-/* Everything IFGM carries from one step to the next besides IBA's follower and rule
- * (IFGMState). A flag says whether each optional point is set. */
+/* Everything IFGM carries from one step to the next besides IBA's follower and rule and
+ * Bug1's round (IFGMState). A flag says whether each optional point is set. */
 typedef struct {
     ifgm_mode mode;
     int has_turn; /* a dead-end turn: from heading turn_start, turn_steps steps of turn_sign */
@@ -61,6 +61,8 @@ typedef struct {
     int turn_sign, turn_steps;
     int has_escape_from; /* where the robot started driving out of the dead end */
     ifgm_point escape_from;
+    int walled[2]; /* whether the view's left and right beam have seen a wall (a return within
+                      d_look) since the robot started driving out (DeadEndTurn.walled) */
     int has_followed; /* the followed obstacle's point, tracked along its edge */
     ifgm_point followed;
     int stack_n; /* Case-3: the pre-empted obstacles and their sides, last pushed on top */
@@ -76,6 +78,7 @@ typedef struct {
     ifgm_body body;
     ifgm_progress iba;
     ifgm_follower follower;
+    ifgm_circuit circuit; /* Bug1's round after a whole loop without leaving (errata row 34) */
     ifgm_state state;
     ifgm_real goal_tolerance; /* the episode's, plus one step of travel */
     ifgm_branch last_branch;

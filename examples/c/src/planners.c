@@ -3,7 +3,7 @@
 
 #include <string.h>
 
-#include "boundary.h"
+#include "boundary_planner.h"
 #include "fgm.h"
 #include "ifgm.h"
 
