@@ -72,6 +72,10 @@ typedef struct {
     ifgm_point gap_mid;
     int short_look; /* meeting obstacles at IBA's short encounter distance (errata row 24) */
     int escaped;    /* following the wall round from outside after a dead end */
+    /* After a round of Bug1's that found no way on (errata row 34): the side the next round
+     * follows on, the other one than that round's. */
+    int has_turn_other_way;
+    ifgm_follow_side turn_other_way;
 } ifgm_state;
 
 typedef struct {
