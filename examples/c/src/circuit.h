@@ -21,9 +21,10 @@
  * The trail has a fixed capacity, IFGM_MAX_TRAIL points (the reference's grows without
  * bound). Once it is full no more points are laid: the loop can still close on the points
  * laid, and Q is the nearest of them. The port differs from the reference only on a first
- * pass longer than IFGM_MAX_TRAIL * return_radius / 2 before its loop closes: 512 ft for
- * the paper's robot (return_radius = r = 1 ft), where the oracle's standard profile laid at
- * most 167 points (examples/c/README.md). */
+ * pass longer than IFGM_MAX_TRAIL * return_radius / 2 of way driven before its loop closes:
+ * 512 ft for the paper's robot (return_radius = r = 1 ft), where the oracle's standard
+ * profile laid at most 300 points (IFGM, whose first pass spans its leaves;
+ * examples/c/README.md). */
 #ifndef IFGM_CIRCUIT_H
 #define IFGM_CIRCUIT_H
 

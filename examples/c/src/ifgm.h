@@ -1,5 +1,5 @@
 /* IFGM, the Intelligent Follow the Gap Method (section 4 and Figure 3 of the paper), in C99
- * with no heap: the caller owns the planner struct (1.3 MB in the default build, 80 KiB in a
+ * with no heap: the caller owns the planner struct (1.3 MB in the default build, 83 KiB in a
  * float build sized for the paper's sensor, most of it the remembered points and Bug1's
  * trail, circuit.h: keep it in static storage).
  *
