@@ -17,11 +17,13 @@ import os
 import shutil
 import subprocess
 import sys
+from itertools import pairwise
 from pathlib import Path
 from typing import Any
 
 import pytest
 
+from ifgm_ref.bench import barn
 from ifgm_ref.convergence import time_bound
 from ifgm_ref.oracle.checks import CHECKS, Kind
 from ifgm_ref.oracle.implementation import Implementation
@@ -33,12 +35,18 @@ from ifgm_ref.oracle.vectors import QUANTITIES
 from ifgm_ref.params import SimParams
 from ifgm_ref.planners import make_planner
 from ifgm_ref.planners.boundary import GOAL_UNREACHABLE
-from ifgm_ref.planners.circuit import Circuit
+from ifgm_ref.planners.circuit import Circuit, CircuitPhase
+from ifgm_ref.planners.distbug import DistBugRule
+from ifgm_ref.planners.edge_following import FollowSide
+from ifgm_ref.planners.ifgm import IFGMPlanner
+from ifgm_ref.planners.ifgm_atoms import Percepts
+from ifgm_ref.planners.sight import Sight
 from ifgm_ref.pose import Point
 from ifgm_ref.scenarios import resolve_world
 from ifgm_ref.simulator import Run, simulate
 from ifgm_ref.transport.external import ExternalPlanner
 from ifgm_ref.world import World
+from ifgm_ref.worldgen.classes import random_world
 from tests.test_invariance import _enclosure, long_mixed_example
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -65,10 +73,12 @@ pytestmark = pytest.mark.skipif(
 )
 
 
-def _build(directory: Path, target: str) -> Path:
-    """Build the port with ``make TARGET`` into ``directory``; the programs' directory."""
+def _build(directory: Path, target: str, *variables: str) -> Path:
+    """Build the port with ``make TARGET`` (and make's ``variables``, ``NAME=VALUE``) into
+    ``directory``; the programs' directory."""
+    make = ["make", "-s", "--no-print-directory", "-C", str(PORT), f"BUILD={directory}"]
     subprocess.run(
-        ["make", "-s", "--no-print-directory", "-C", str(PORT), f"BUILD={directory}", target],
+        [*make, *variables, target],
         check=True,
         capture_output=True,
         text=True,
@@ -449,7 +459,7 @@ def test_the_c_planner_drives_as_the_python_one(build: Path, planner: str, world
 
 
 #: A ``step_length`` beyond what DistBug's free range can promise out of sight of the goal,
-#: ft: F is at most ``range_max - encounter``, 12.5 ft for the paper's robot
+#: ft: F is at most ``view_range - encounter``, 12.5 ft for the paper's robot
 #: (test_bug_planners.py), so in ``box`` its own rule never leaves.
 BEYOND_REACH = 13.0
 #: Runs in which the reference goes through Bug1's round (errata row 34; none of WORLDS
@@ -495,6 +505,127 @@ def test_the_c_planner_goes_round_as_the_python_one(
     command = [str(build / "ifgm_json"), "--planner", planner]
     with ExternalPlanner(command, name=planner) as external:
         ours = simulate(_round_world(world), external, params=params)
+    _same_runs(ours, reference)
+
+
+#: A generated world (``random_world(class, seed)``) in which the reference IFGM's round of
+#: Bug1's goes on across edges it leaves by IBA's rules and closes on the trail laid across
+#: them (errata row 34): the only one among seeds 7000-7199 of every class.
+SPANNING_WORLD = ("mixed", 7107)
+
+
+def test_the_c_ifgm_closes_a_round_across_its_leaves_as_the_python_one(
+    build: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """IFGM's round spans its leaves (errata row 34): it starts where IFGM first meets an
+    obstacle and goes on, its trail laid in every mode and counted by the circuit's own
+    odometer, while IFGM leaves edges by IBA's rules and meets obstacles again, until the
+    loop closes on a point laid while following. In :data:`SPANNING_WORLD` the C IFGM does
+    so step for step as the Python one, closed loop as above."""
+    events: list[str] = []  # the reference's: obstacles met on a first pass, loops closed
+    start_following, close = IFGMPlanner._start_following, Circuit.close
+
+    def noting_start(planner: IFGMPlanner, percepts: Percepts) -> None:
+        if planner.circuit.phase is CircuitPhase.FIRST_PASS:
+            events.append("met again")
+        start_following(planner, percepts)
+
+    def noting_close(circuit: Circuit, sight: Sight, at: int, side: FollowSide) -> bool:
+        events.append("closed")
+        return close(circuit, sight, at, side)
+
+    monkeypatch.setattr(IFGMPlanner, "_start_following", noting_start)
+    monkeypatch.setattr(Circuit, "close", noting_close)
+    world = random_world(*SPANNING_WORLD)
+    sim = SimParams(max_time=time_bound(world))
+    reference = simulate(world, make_planner("ifgm"), sim)
+    # The premise: the first round (every event before the first closing is its own) met an
+    # obstacle again before its loop closed, and IFGM got there.
+    assert reference.result.reached and "closed" in events, (reference.result, events)
+    assert "met again" in events[: events.index("closed")], events
+    with ExternalPlanner([str(build / "ifgm_json"), "--planner", "ifgm"], name="ifgm") as external:
+        ours = simulate(world, external, sim)
+    _same_runs(ours, reference)
+
+
+def test_the_c_ifgm_turns_the_other_way_as_the_python_one(
+    build: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """A round whose loop shows no way on (:meth:`Circuit.close` returns false) makes IFGM's
+    next round follow the other side (``IFGMState.turn_other_way``, errata row 34). Round the
+    enclosed goal the reference's rounds close, each on the other side than the one before,
+    until the simulator's lap rule stops the run; the C IFGM does the same step for step."""
+    closings: list[tuple[bool, FollowSide]] = []  # the reference's: (way on, side followed)
+    close = Circuit.close
+
+    def noting_close(circuit: Circuit, sight: Sight, at: int, side: FollowSide) -> bool:
+        way_on = close(circuit, sight, at, side)
+        closings.append((way_on, side))
+        return way_on
+
+    monkeypatch.setattr(Circuit, "close", noting_close)
+    world = _enclosure()
+    sim = SimParams(max_time=time_bound(world))
+    reference = simulate(world, make_planner("ifgm"), sim)
+    # The premise: two rounds or more, none with a way on, their sides alternating.
+    assert len(closings) >= 2 and not any(way_on for way_on, _ in closings), closings
+    assert all(a is not b for (_, a), (_, b) in pairwise(closings)), closings
+    with ExternalPlanner([str(build / "ifgm_json"), "--planner", "ifgm"], name="ifgm") as external:
+        ours = simulate(world, external, sim)
+    _same_runs(ours, reference)
+
+
+#: BARN's sensor, 720 rays every 0.05 s, fills ``memory_horizon / dt + 2`` = 162 scans with
+#: 116,640 points, more than the default ``IFGM_MAX_POINTS`` (65,536).
+BARN_MAX_POINTS = 131072
+
+
+@pytest.fixture(scope="module")
+def barn_build(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """The normal build with room for the memory of BARN's sensor."""
+    flags = f"CFLAGS=-O2 -DIFGM_MAX_POINTS={BARN_MAX_POINTS}"
+    return _build(tmp_path_factory.mktemp("c-port"), "all", flags)
+
+
+@pytest.mark.parametrize(
+    "planner",
+    [
+        "ifgm",
+        pytest.param("iba", marks=pytest.mark.slow),
+        pytest.param("distbug", marks=pytest.mark.slow),
+    ],
+)
+def test_the_c_planner_takes_the_goal_for_visible_only_within_view_range(
+    barn_build: Path, planner: str, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """DistBug's ``F = d`` (the goal visible), in DistBug's, IBA's and IFGM's leaving rule,
+    needs the goal within ``view_range``, the farthest the planners remember (errata row 34):
+    in BARN's world 245, with the LiDAR's 30 m ``range_max`` and ``view_range`` = 3.3 m, the
+    C planner drives as the Python one, closed loop as above (IFGM about 6 s, IBA and
+    DistBug 2 to 3 s each, so under ``-m slow``)."""
+    beyond_view: list[float] = []  # the reference's: d where F = d held up to range_max only
+    free_range = DistBugRule.free_range
+
+    def noting(sight: Sight) -> float:
+        d = sight.goal_distance
+        seen = sight.body.tuning.view_range
+        if (
+            sight.goal_in_view()
+            and sight.goal_free_length >= d
+            and seen < d <= sight.body.range_max
+        ):
+            beyond_view.append(d)
+        return free_range(sight)
+
+    monkeypatch.setattr(DistBugRule, "free_range", staticmethod(noting))
+    world = barn.load_barn_world(ROOT / "tests" / "worlds" / "barn" / "world_245.world")
+    reference = simulate(world, make_planner(planner), barn.SIM)
+    # The premise: the rule was asked with the goal free and in range but beyond view_range,
+    # where F = d up to range_max would have let the robot leave; the reference arrives.
+    assert reference.result.reached and beyond_view, (reference.result, len(beyond_view))
+    command = [str(barn_build / "ifgm_json"), "--planner", planner]
+    with ExternalPlanner(command, name=planner) as external:
+        ours = simulate(world, external, barn.SIM)
     _same_runs(ours, reference)
 
 

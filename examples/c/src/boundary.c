@@ -174,10 +174,10 @@ ifgm_real ifgm_free_range(ifgm_sight *s)
     if (!ifgm_goal_in_view(s))
         return 0;
     ifgm_real d = s->goal_distance, free = ifgm_goal_free_length(s);
-    ifgm_real range_max = s->body->range_max;
-    if (free >= d && d <= range_max)
+    ifgm_real seen = s->body->tuning.view_range; /* the planner knows nothing beyond it */
+    if (free >= d && d <= seen)
         return d;
-    ifgm_real room = (free < range_max ? free : range_max) - s->body->encounter;
+    ifgm_real room = (free < seen ? free : seen) - s->body->encounter;
     return room > 0 ? room : 0;
 }
 

@@ -57,7 +57,10 @@ typedef struct {
     ifgm_real d_min, step_length;
 } ifgm_progress;
 
-/* F: how far the robot can move towards the goal, as the sensor tells. */
+/* F: how far the robot can move towards the goal, as the sensor tells (DistBugRule.
+ * free_range): 0 with the goal out of view; d when its corridor is free up to the goal and
+ * the goal lies within view_range, the farthest the planners remember; otherwise
+ * min(free length, view_range) - encounter, at least 0. */
 ifgm_real ifgm_free_range(ifgm_sight *sight);
 /* d - F <= 0 or d - F <= d_min - Step. */
 int ifgm_progress_made(const ifgm_progress *rule, ifgm_sight *sight);

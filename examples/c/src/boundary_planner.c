@@ -68,7 +68,7 @@ static ifgm_command boundary_decide(ifgm_boundary_planner *p, const ifgm_observa
         ifgm_circuit_on_hit(circuit);
         return follow(p, s, "follow_edge");
     }
-    ifgm_circuit_note(circuit, s, f->travelled);
+    ifgm_circuit_note(circuit, s, 1);
     if (s->goal_distance < rule->d_min)
         rule->d_min = s->goal_distance;
     if (ifgm_progress_made(rule, s) || (iba && ifgm_free_path_leads_on(rule, s))) {
@@ -83,7 +83,7 @@ static ifgm_command boundary_decide(ifgm_boundary_planner *p, const ifgm_observa
         f->following = 0;
         return ifgm_steer(s->bearing, s, IFGM_MOVE_TO_GOAL, "leave_at_q");
     }
-    int back_at = ifgm_circuit_closing(circuit, s, f->travelled);
+    int back_at = ifgm_circuit_closing(circuit, s);
     if (back_at >= 0) {
         if (!ifgm_circuit_close(circuit, s, back_at, f->side))
             return unreachable(s, "goal_enclosed");

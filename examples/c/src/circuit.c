@@ -15,6 +15,8 @@ static void start(ifgm_circuit *c)
 {
     c->q_point.x = c->q_point.y = (ifgm_real)NAN;
     c->q_distance = IFGM_INF;
+    c->travelled = 0;
+    c->has_last = 0;
     c->laid = c->next = c->q_index = 0;
 }
 
@@ -32,10 +34,16 @@ void ifgm_circuit_on_hit(ifgm_circuit *c)
     start(c);
 }
 
-void ifgm_circuit_note(ifgm_circuit *c, const ifgm_sight *s, ifgm_real travelled)
+void ifgm_circuit_note(ifgm_circuit *c, const ifgm_sight *s, int following)
 {
     if (c->phase != IFGM_CIRCUIT_FIRST_PASS)
         return;
+    if (c->has_last)
+        c->travelled += hypot(s->pose[0] - c->last.x, s->pose[1] - c->last.y);
+    c->has_last = 1;
+    c->last.x = s->pose[0];
+    c->last.y = s->pose[1];
+    ifgm_real travelled = c->travelled;
     int n = c->laid;
     ifgm_real spacing = TRAIL_SPACING_FRACTION * s->body->tuning.return_radius;
     if (n && travelled < c->trail[n - 1].travelled + spacing)
@@ -48,22 +56,23 @@ void ifgm_circuit_note(ifgm_circuit *c, const ifgm_sight *s, ifgm_real travelled
     p->heading = s->pose[2];
     p->goal_distance = s->goal_distance;
     p->travelled = travelled;
+    p->following = following != 0;
     c->laid = n + 1;
 }
 
-int ifgm_circuit_closing(const ifgm_circuit *c, const ifgm_sight *s, ifgm_real travelled)
+int ifgm_circuit_closing(const ifgm_circuit *c, const ifgm_sight *s)
 {
     if (c->phase != IFGM_CIRCUIT_FIRST_PASS)
         return -1;
     const ifgm_tuning *t = &s->body->tuning;
-    ifgm_real old = travelled - t->min_loop, reach = t->return_radius;
+    ifgm_real old = c->travelled - t->min_loop, reach = t->return_radius;
     ifgm_real far2 = 4 * reach * reach, same_way = cos(SAME_WAY);
-    /* The trail's distances followed rise: the points at least min_loop behind come first. */
+    /* The trail's distances driven rise: the points at least min_loop behind come first. */
     for (int i = 0; i < c->laid && c->trail[i].travelled <= old; i++) {
         const ifgm_trail_point *p = &c->trail[i];
         ifgm_real dx = p->x - s->pose[0], dy = p->y - s->pose[1];
         /* Twice return_radius away is beyond it whatever the rounding: skip the hypot. */
-        if (dx * dx + dy * dy <= far2 && hypot(dx, dy) <= reach &&
+        if (p->following && dx * dx + dy * dy <= far2 && hypot(dx, dy) <= reach &&
             cos(p->heading - s->pose[2]) > same_way)
             return i;
     }

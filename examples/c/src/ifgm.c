@@ -88,30 +88,39 @@ static const ifgm_scan_points *view_points(const ifgm_planner *p)
 }
 
 /* IBA's leaving rules (errata row 24): a free path, or DistBug's progress rule -- but not
- * while following the wall round from outside after a dead end. After a whole loop with
- * neither, Bug1's round (circuit.h): along the loop to Q, and leave there (errata row 34).
- * IFGM has no "goal unreachable": a loop that shows the goal cannot be reached is left at
- * its Q all the same (IFGMPlanner.may_leave). */
+ * while following the wall round from outside after a dead end. Beside them, Bug1's round
+ * (circuit.h; errata row 34): one round from the first obstacle met until the robot leaves
+ * at a Q, its trail laid in every mode, so that it also closes when IFGM leaves an edge by
+ * IBA's rules, meets the same obstacles again and goes the same way round; once the loop
+ * closes, only Q is left from. IFGM has no "goal unreachable": a loop that shows the goal
+ * cannot be reached is left at its Q all the same, and the next round follows the other
+ * side (IFGMPlanner.may_leave). */
 static int leaving(ifgm_planner *p, ifgm_sight *s)
 {
     ifgm_circuit *circuit = &p->circuit;
     if (ifgm_circuit_returning(circuit)) {
-        if (ifgm_circuit_at_q(circuit, s)) {
-            ifgm_circuit_leave(circuit);
-            return 1;
+        if (!ifgm_circuit_at_q(circuit, s))
+            return 0;
+        ifgm_circuit_leave(circuit);
+        return 1;
+    }
+    int back_at = ifgm_circuit_closing(circuit, s);
+    if (back_at >= 0) {
+        ifgm_follow_side side = p->follower.side;
+        if (!ifgm_circuit_close(circuit, s, back_at, side)) { /* no way on this way round */
+            p->state.has_turn_other_way = 1;
+            p->state.turn_other_way =
+                side == IFGM_FOLLOW_RIGHT ? IFGM_FOLLOW_LEFT : IFGM_FOLLOW_RIGHT;
         }
-    } else {
-        int back_at = ifgm_circuit_closing(circuit, s, p->follower.travelled);
-        if (back_at >= 0)
-            ifgm_circuit_close(circuit, s, back_at, p->follower.side);
+        return 0;
     }
     int progress = ifgm_progress_made(&p->iba, s) && !p->state.escaped;
     return ifgm_free_path_leads_on(&p->iba, s) || progress;
 }
 
 /* Remember the scan; work out the 135-degree view, its obstacles and gaps; count the way
- * followed; while following, track the followed point, lay Bug1's trail and ask the leaving
- * rules. Returns 0 on a scan the build cannot hold. */
+ * followed; lay Bug1's trail (in every mode); while following, track the followed point and
+ * ask the leaving rules. Returns 0 on a scan the build cannot hold. */
 static int perceive(ifgm_planner *p, const ifgm_observation *o, ifgm_sight *s, int *may_leave)
 {
     if (ifgm_rays_for(&p->rays, o->angle_min, o->angle_increment, o->n) != IFGM_OK ||
@@ -134,6 +143,7 @@ static int perceive(ifgm_planner *p, const ifgm_observation *o, ifgm_sight *s, i
     p->n_gaps = ifgm_gaps_between(view, p->clusters, p->n_clusters, p->gaps);
     ifgm_sight_init(s, &p->body, o->pose, &p->memory, goal_bearing(p, o->pose));
     ifgm_follower_track(&p->follower, o->pose);
+    ifgm_circuit_note(&p->circuit, s, p->state.mode == IFGM_MODE_FOLLOWING);
     *may_leave = 0;
     if (p->state.mode == IFGM_MODE_FOLLOWING) {
         ifgm_state *st = &p->state;
@@ -146,7 +156,6 @@ static int perceive(ifgm_planner *p, const ifgm_observation *o, ifgm_sight *s, i
             st->followed = tracked;
         if (s->goal_distance < p->iba.d_min)
             p->iba.d_min = s->goal_distance;
-        ifgm_circuit_note(&p->circuit, s, p->follower.travelled);
         *may_leave = leaving(p, s);
     }
     return 1;
@@ -315,20 +324,25 @@ static ifgm_command follow(ifgm_planner *p, const ifgm_sight *s, ifgm_branch bra
     return ifgm_steer(heading, s, IFGM_OBSTACLE_AVOIDANCE, BRANCH_NAMES[branch]);
 }
 
-/* IBA takes over: follow the nearest obstacle on the freer side, nothing pre-empted. */
+/* IBA takes over: follow the nearest obstacle on the freer side -- or on the other side
+ * than a round that found no way on -- nothing pre-empted. A round of Bug1's already on
+ * its first pass goes on: it spans the edges IFGM leaves by IBA's rules (errata row 34). */
 static void start_following(ifgm_planner *p, const ifgm_sight *s)
 {
-    ifgm_follower_start(&p->follower, s->pose, view_freer_side(p, s));
+    ifgm_state *st = &p->state;
+    ifgm_follow_side side = st->has_turn_other_way ? st->turn_other_way : view_freer_side(p, s);
+    ifgm_follower_start(&p->follower, s->pose, side);
     ifgm_real d_hit = hypot(p->body.goal.x - s->pose[0], p->body.goal.y - s->pose[1]);
     if (d_hit < p->iba.d_min) /* one yardstick for the episode (errata row 31) */
         p->iba.d_min = d_hit;
-    ifgm_circuit_on_hit(&p->circuit);
-    ifgm_state *st = &p->state;
+    if (p->circuit.phase != IFGM_CIRCUIT_FIRST_PASS)
+        ifgm_circuit_on_hit(&p->circuit);
     st->mode = IFGM_MODE_FOLLOWING;
     st->has_turn = st->has_escape_from = 0;
     st->short_look = st->escaped = 0;
     st->has_followed = nearest_remembered(p, s, 0, &st->followed);
     st->stack_n = 0;
+    st->has_turn_other_way = 0;
 }
 
 /* Case-3 recursion: once the pre-empting obstacle is no longer the nearest, resume the one

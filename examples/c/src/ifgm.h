@@ -1,5 +1,5 @@
 /* IFGM, the Intelligent Follow the Gap Method (section 4 and Figure 3 of the paper), in C99
- * with no heap: the caller owns the planner struct (1.3 MB in the default build, 80 KiB in a
+ * with no heap: the caller owns the planner struct (1.3 MB in the default build, 83 KiB in a
  * float build sized for the paper's sensor, most of it the remembered points and Bug1's
  * trail, circuit.h: keep it in static storage).
  *
@@ -72,6 +72,10 @@ typedef struct {
     ifgm_point gap_mid;
     int short_look; /* meeting obstacles at IBA's short encounter distance (errata row 24) */
     int escaped;    /* following the wall round from outside after a dead end */
+    /* After a round of Bug1's that found no way on (errata row 34): the side the next round
+     * follows on, the other one than that round's. */
+    int has_turn_other_way;
+    ifgm_follow_side turn_other_way;
 } ifgm_state;
 
 typedef struct {
