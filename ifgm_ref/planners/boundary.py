@@ -39,7 +39,7 @@ from ifgm_ref.planners.circuit import Circuit
 from ifgm_ref.planners.edge_following import FollowSide, follow_heading, turn_speed
 from ifgm_ref.planners.sight import Body, BoundaryParams, Sight
 from ifgm_ref.planners.tuning import Tuning, check_names
-from ifgm_ref.pose import Point, Pose, distance, wrap_angle
+from ifgm_ref.pose import Point, Pose, wrap_angle
 from ifgm_ref.protocol import Behaviour, Command, EpisodeParams, Observation
 
 __all__ = [
@@ -77,7 +77,7 @@ def bug_side(scan: LaserScan, pose: Pose, goal_bearing: float) -> FollowSide:
 
 class EdgeFollower:
     """*Obstacle avoidance* (section 2.1): keep the nearest remembered edge on :attr:`side`
-    at the stand-off, counting the distance followed since the hit point.
+    at the stand-off.
 
     Attributes
     ----------
@@ -87,33 +87,21 @@ class EdgeFollower:
         The side the edge is kept on.
     hit_point : Point
         H, where the robot met the obstacle.
-    travelled : float
-        The distance followed since H.
     """
 
     def __init__(self) -> None:
         self.following = False
         self.side = FollowSide.RIGHT
         self.hit_point = Point(0.0, 0.0)
-        self.travelled = 0.0
-        self._last = Point(0.0, 0.0)
 
-    def reset(self, start: Point) -> None:
-        """Not following, at ``start``."""
+    def reset(self) -> None:
+        """Not following."""
         self.following = False
-        self._last = Point(start[0], start[1])
-
-    def track(self, here: Point) -> None:
-        """The robot is at ``here``: add the way from the last position while following."""
-        if self.following:
-            self.travelled += distance(self._last, here)
-        self._last = here
 
     def start(self, here: Point, side: FollowSide) -> None:
         """Start following on ``side`` from the hit point ``here``."""
         self.following = True
         self.hit_point = here
-        self.travelled = 0.0
         self.side = side
 
     def heading(self, sight: Sight) -> float | None:
@@ -248,7 +236,7 @@ class BoundaryPlanner:
         tuning = BoundaryParams.for_episode(params)
         self.body = Body.of(goal, params, tuning)
         self.memory = PerceptMemory(tuning.memory_horizon)
-        self.follower.reset(Point(start[0], start[1]))
+        self.follower.reset()
         self.rule.reset(start, goal, params)
         self.circuit.reset()
 
@@ -294,11 +282,10 @@ class BoundaryPlanner:
 
     # -- parts ------------------------------------------------------------------------------
     def observe(self, observation: Observation) -> Sight:
-        """Remember the scan, as far as the paper's sensor sees (``view_range``), and count
-        the distance followed; return this step's sight of the goal."""
+        """Remember the scan, as far as the paper's sensor sees (``view_range``); return this
+        step's sight of the goal."""
         scan = observation.scan.limited(self.body.tuning.view_range)
         self.memory.add(observation.t, observation.pose, scan)
-        self.follower.track(observation.pose.position)
         return Sight(
             observation.pose, self.body, self.memory.points, self.goal_bearing(observation.pose)
         )

@@ -193,7 +193,7 @@ class IFGMPlanner:
         self.body = Body.of(goal, params, tuning)
         self.memory = PerceptMemory(tuning.memory_horizon)
         self.follower = EdgeFollower()
-        self.follower.reset(Point(start[0], start[1]))
+        self.follower.reset()
         self.iba.reset(start, goal, params)
         self.circuit.reset()
         p = IFGMParams.for_episode(params)
@@ -252,7 +252,6 @@ class IFGMPlanner:
         view = observation.scan.window().limited(view_range)
         clusters = cluster_points(points if view is scan else scan_points(view), self.ifgm.jump)
         sight = Sight(pose, self.body, self.memory.points, self.goal_bearing(pose))
-        self.follower.track(pose.position)
         self.circuit.note(sight, following=self.state.mode is Mode.FOLLOWING)
         may_leave = False
         if self.state.mode is Mode.FOLLOWING:

@@ -26,14 +26,11 @@ int ifgm_check_capacity(ifgm_rays *rays, const ifgm_episode *e, const ifgm_body 
     return ifgm_rays_for(rays, e->angle_min, e->angle_increment, e->rays);
 }
 
-void ifgm_follower_reset(ifgm_follower *f, const ifgm_real start[3])
+void ifgm_follower_reset(ifgm_follower *f)
 {
     f->following = 0;
     f->side = IFGM_FOLLOW_RIGHT;
     f->hit.x = f->hit.y = 0;
-    f->travelled = 0;
-    f->last.x = start[0];
-    f->last.y = start[1];
 }
 
 void ifgm_follower_start(ifgm_follower *f, const ifgm_real here[3], ifgm_follow_side side)
@@ -41,16 +38,7 @@ void ifgm_follower_start(ifgm_follower *f, const ifgm_real here[3], ifgm_follow_
     f->following = 1;
     f->hit.x = here[0];
     f->hit.y = here[1];
-    f->travelled = 0;
     f->side = side;
-}
-
-void ifgm_follower_track(ifgm_follower *f, const ifgm_real here[3])
-{
-    if (f->following)
-        f->travelled += hypot(here[0] - f->last.x, here[1] - f->last.y);
-    f->last.x = here[0];
-    f->last.y = here[1];
 }
 
 int ifgm_follow_heading(const ifgm_follower *f, const ifgm_sight *s, ifgm_real *heading)

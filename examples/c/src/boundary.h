@@ -21,13 +21,10 @@ extern const char IFGM_GOAL_UNREACHABLE[];    /* "goal_unreachable" */
 typedef struct {
     int following;
     ifgm_follow_side side;
-    ifgm_point hit, last;
-    ifgm_real travelled; /* followed since the hit point */
+    ifgm_point hit;
 } ifgm_follower;
 
-void ifgm_follower_reset(ifgm_follower *f, const ifgm_real start[3]);
-/* The robot is at `here`: add the way from the last position while following. */
-void ifgm_follower_track(ifgm_follower *f, const ifgm_real here[3]);
+void ifgm_follower_reset(ifgm_follower *f);
 /* Start following on `side` at the hit point `here`. */
 void ifgm_follower_start(ifgm_follower *f, const ifgm_real here[3], ifgm_follow_side side);
 /* The heading that follows the nearest remembered edge; 0 if nothing is remembered. */

@@ -12,7 +12,7 @@ static int boundary_init(ifgm_boundary_planner *p, ifgm_rule rule, const ifgm_ep
     p->rule = rule;
     p->progress.d_min = IFGM_INF;
     p->progress.step_length = p->body.tuning.step_length;
-    ifgm_follower_reset(&p->follower, e->start);
+    ifgm_follower_reset(&p->follower);
     ifgm_circuit_reset(&p->circuit);
     ifgm_memory_clear(&p->memory, p->body.tuning.memory_horizon);
     return IFGM_OK;
@@ -101,7 +101,6 @@ static ifgm_command boundary_step(ifgm_boundary_planner *p, const ifgm_observati
     ifgm_scan_points_of(&p->points, o->ranges, o->n, o->range_min, p->body.tuning.view_range,
                         p->rays.angle, p->rays.cos, p->rays.sin);
     ifgm_memory_add(&p->memory, o->t, o->pose, &p->points);
-    ifgm_follower_track(&p->follower, o->pose);
     ifgm_sight s;
     ifgm_sight_init(&s, &p->body, o->pose, &p->memory,
                     atan2(p->body.goal.y - o->pose[1], p->body.goal.x - o->pose[0]));

@@ -47,7 +47,7 @@ int ifgm_init(ifgm_planner *p, const ifgm_episode *e, const ifgm_tuning *tuning)
         return IFGM_BAD_PARAMETER;
     p->iba.d_min = IFGM_INF;
     p->iba.step_length = p->body.tuning.step_length;
-    ifgm_follower_reset(&p->follower, e->start);
+    ifgm_follower_reset(&p->follower);
     ifgm_circuit_reset(&p->circuit);
     ifgm_memory_clear(&p->memory, p->body.tuning.memory_horizon);
     /* Within the tolerance plus one step of travel the robot drives onto the goal. */
@@ -142,7 +142,6 @@ static int perceive(ifgm_planner *p, const ifgm_observation *o, ifgm_sight *s, i
     p->n_clusters = ifgm_cluster_points(view, p->body.tuning.jump, p->clusters);
     p->n_gaps = ifgm_gaps_between(view, p->clusters, p->n_clusters, p->gaps);
     ifgm_sight_init(s, &p->body, o->pose, &p->memory, goal_bearing(p, o->pose));
-    ifgm_follower_track(&p->follower, o->pose);
     ifgm_circuit_note(&p->circuit, s, p->state.mode == IFGM_MODE_FOLLOWING);
     *may_leave = 0;
     if (p->state.mode == IFGM_MODE_FOLLOWING) {
