@@ -80,18 +80,18 @@ every length scaled by a power of two the rule fires at the same step. Why these
   (the samples fall elsewhere, the follower settles); less progress than a step does not
   count.
 
-Measured with ``python benchmarks/bench_stall.py`` (issue 24) as the disc rule was, on 1,024
-episodes: every planner in every built-in world, 20 generated worlds per class (seed 0),
-BARN's three sample worlds and the ten worlds of ``tests/worlds``, run with the lap rule off
-and each trace replayed through the rule. No episode that reached the goal (756) closes two
-laps the same way at all, whatever ``eps``: none would with ``rho`` up to ``1.5 r`` (at
-``2 r`` one would, Bug1 in barn-004) or ``L`` anywhere from ``pi r`` to ``4 pi r``. One lap
-would not do: with ``K = 1`` the rule would end 63 of Bug1's 125 arrivals (those that go on
-to Q the way they went round). Run again with the rule on, every arrival runs step for step
-as before, the one run that reached the time limit (IFGM in
-``tests/worlds/ifgm_h_post_livelock.json``) stalls after 42 s instead of 287 s, and no other
-stop changes. In issue 24's uniform open draws (``random_world("open", s)``, ``s`` = 5000 to
-5039, every planner) the same: every arrival as before, and IFGM's two livelocks stall after
+Measured with ``python benchmarks/bench_stall.py`` (issue 24) as the disc rule was, with the
+planners before Bug1's round (errata row 34), on 1,024 episodes: every planner in every
+built-in world, 20 generated worlds per class (seed 0), BARN's three sample worlds and the ten
+worlds of ``tests/worlds``, run with the lap rule off and each trace replayed through the rule.
+No episode that reached the goal (756) closes two laps the same way at all, whatever ``eps``:
+none would with ``rho`` up to ``1.5 r`` (at ``2 r`` one would, Bug1 in barn-004) or ``L``
+anywhere from ``pi r`` to ``4 pi r``. One lap would not do: with ``K = 1`` the rule would end
+63 of Bug1's 125 arrivals (those that go on to Q the way they went round). Run again with the
+rule on, every arrival runs step for step as before, the one run that reached the time limit
+(IFGM in ``tests/worlds/ifgm_h_post_livelock.json``) stalls after 42 s instead of 287 s, and no
+other stop changes. In issue 24's uniform open draws (``random_world("open", s)``, ``s`` = 5000
+to 5039, every planner) the same: every arrival as before, and IFGM's two livelocks stall after
 42 and 60 s instead of 196 and 254 s (with ``eps = 0`` after 60 and 110 s: the lapping robot
 still creeps nearer the goal by less than a step a lap).
 

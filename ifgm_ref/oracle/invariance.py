@@ -11,18 +11,18 @@ with the transformed recorded one (:func:`compare_answers`). A scale by a power 
 exact and is still run closed loop, bit for bit (``scale_test``).
 
 **Why open loop** (issue 24). The invariance checks used to run the moved or scaled problem
-itself and compare the two trajectories, within two steps of travel and turning (moved) or
-1 % of the path length (scaled). That rejects faithful runs: the simulator rounds the moved
-problem's scans differently (1e-16), a decision that sits on a tie (two rays with equal
-ranges, as a round obstacle gives) tips, the runs part by a ray for a step, and on a long run
-such partings add up. The C IFGM, circling for 9,502 steps in a generated mixed world
-(``tests/worlds/rigid_motion_long_mixed.json``), was 0.28 ft and 0.31 rad off its moved twin
-at 161 s; the reference IFGM circling a post for 287 s parted beyond the tolerance in each of
-three placements tried, at 0.8, 77 and 86 s. Comparing only up to the first tie, found with a
-control run (the problem under another tiny motion), does not help: the control meets other
-ties than the moved run -- the last of those three placements is a shift by 0.001 ft, and as
-a control it would have cleared the moved run of the second up to 86 s, 85 s past its
-parting.
+itself and compare the two trajectories, within two steps of travel and turning (moved) or 1 %
+of the path length (scaled). That rejects faithful runs: the simulator rounds the moved
+problem's scans differently (1e-16), a decision that sits on a tie (two rays with equal ranges,
+as a round obstacle gives) tips, the runs part by a ray for a step, and on a long run such
+partings add up. The C IFGM, circling for 9,502 steps in a generated mixed world
+(``tests/worlds/rigid_motion_long_mixed.json``; since Bug1's round, errata row 34, it arrives
+there in 900), was 0.28 ft and 0.31 rad off its moved twin at 161 s; the reference IFGM
+circling a post for 287 s parted beyond the tolerance in each of three placements tried, at
+0.8, 77 and 86 s. Comparing only up to the first tie, found with a control run (the problem
+under another tiny motion), does not help: the control meets other ties than the moved run --
+the last of those three placements is a shift by 0.001 ft, and as a control it would have
+cleared the moved run of the second up to 86 s, 85 s past its parting.
 
 Replayed open loop, every observation the planner is handed is exactly what the simulator
 would hand it in the transformed problem in exact arithmetic: a rigid motion moves poses and
@@ -70,7 +70,8 @@ __all__ = [
 #: An answer's heading may differ from the transformed recorded one by this much (rad, 5.7
 #: degrees). An implementation in double answers within 1e-12: measured, the reference IFGM,
 #: its faithful variants and the C port, 20 drawn worlds per check (runs of up to 9,044
-#: steps) and the 9,502-step mixed world, at most 5.1e-14 rad; the other reference planners
+#: steps) and the 9,502-step mixed world (the planners before errata row 34), at most
+#: 5.1e-14 rad; the other reference planners
 #: at most 1.8e-13 (APF). A float32 port rounds the moved or scaled numbers differently (1e-7
 #: relative) and now and then takes a neighbouring discrete choice that lies within that
 #: rounding -- the next ray (1.8 degrees, 0.031 rad), the next remembered point of the edge
