@@ -34,6 +34,7 @@ from ifgm_ref.pose import distance
 from ifgm_ref.shapes import rectangle
 from ifgm_ref.world import Polygon, World
 from ifgm_ref.worldgen.classes import random_world
+from tests.planner_doubles import CRASHES
 
 #: Chord error of the inflated curves at the default 8 chords per quarter, per ft of radius.
 CHORD = 1.0 - math.cos(math.pi / 32)
@@ -211,18 +212,8 @@ def test_no_planner_beats_the_optimal_path(world_class: str, index: int) -> None
             assert row.path_ratio >= 1.0, row
 
 
-class _Crashes:
-    name = "crashes"
-
-    def reset(self, *args: object) -> None:
-        pass
-
-    def step(self, observation: object) -> None:
-        raise RuntimeError("boom")
-
-
 def test_a_crashing_planner_is_a_row_not_the_end() -> None:
-    rows = run_world(WorldSpec.generated("open", 0, 0), (f"{__name__}:_Crashes", "ifgm"))
+    rows = run_world(WorldSpec.generated("open", 0, 0), (CRASHES, "ifgm"))
     assert rows[0].stop_reason == ERROR and rows[0].detail == "RuntimeError: boom"
     assert not rows[0].reached and rows[1].reached
 

@@ -43,6 +43,7 @@ from ifgm_ref.simulator import Result, simulate
 from ifgm_ref.stats import wilson_interval
 from ifgm_ref.worldfile import load_world, save_world
 from ifgm_ref.worldgen.classes import random_world
+from tests.planner_doubles import CRASHES
 
 SCRIPT = Path(__file__).resolve().parent.parent / "benchmarks" / "bench_soak.py"
 CLASSES = list(SOAK_CLASSES)
@@ -182,18 +183,8 @@ def test_a_dask_cluster_gives_the_same_rows(rows: list[SoakRow]) -> None:
     assert remote == chosen
 
 
-class _Crashes:
-    name = "crashes"
-
-    def reset(self, *args: object) -> None:
-        pass
-
-    def step(self, observation: object) -> None:
-        raise RuntimeError("boom")
-
-
 def test_a_crashing_planner_is_a_failure_not_the_end() -> None:
-    crashed, fine = run_soak((f"{__name__}:_Crashes", "fgm"), ["open"], [1], progress=False)
+    crashed, fine = run_soak((CRASHES, "fgm"), ["open"], [1], progress=False)
     assert (crashed.stop_reason, crashed.detail, crashed.reached) == (
         ERROR, "RuntimeError: boom", False,
     )  # fmt: skip
