@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import inspect
 import itertools
 import math
 import re
@@ -117,13 +118,17 @@ def test_paper_panels_keep_plain_labels_in_order_of_appearance() -> None:
 
 
 def test_animation_writes_a_gif_of_at_most_max_frames(tmp_path: Path) -> None:
+    """One frame a step up to the cap, then the cap (the default cap is ``MAX_FRAMES``;
+    small caps here keep the rendering short)."""
+    assert inspect.signature(animate_run).parameters["max_frames"].default == MAX_FRAMES
     world = resolve_world("box")
     run = simulate(world, IFGMPlanner())
-    path = tmp_path / "run.gif"
-    frames = animate_run(world, run.trace, run.result, path, progress=False)
-    with Image.open(path) as gif:
-        assert gif.n_frames == frames
-    assert frames == min(len(run.trace), MAX_FRAMES)
+    for trace, cap in ((run.trace, 7), (run.trace[:5], 7)):
+        path = tmp_path / "run.gif"
+        frames = animate_run(world, trace, run.result, path, max_frames=cap, progress=False)
+        with Image.open(path) as gif:
+            assert gif.n_frames == frames
+        assert frames == min(len(trace), cap)
 
 
 def test_animation_counts_its_frames_on_stderr(
