@@ -18,6 +18,8 @@ from types import ModuleType
 
 import pytest
 
+from tests.built_once import built_once
+
 BENCHMARKS = Path(__file__).resolve().parent.parent / "benchmarks"
 #: The issue's bounds for IFGM's decision, bytes.
 STACK_LIMIT = 4 * 1024
@@ -46,9 +48,11 @@ def bench() -> ModuleType:
 @pytest.fixture(scope="module")
 def build(bench: ModuleType, tmp_path_factory: pytest.TempPathFactory) -> Path:
     """The port built with GCC's frame sizes and call graph, in a temporary folder."""
-    folder = tmp_path_factory.mktemp("port")
-    bench.make(f"{folder}/ifgm_bench", BUILD=str(folder), VARIANT=bench.STACK_FLAGS)
-    return folder
+
+    def make(folder: Path) -> None:
+        bench.make(f"{folder}/ifgm_bench", BUILD=str(folder), VARIANT=bench.STACK_FLAGS)
+
+    return built_once(tmp_path_factory, "c-port-stack", make)
 
 
 @pytest.mark.paper("s3.cheap", "s6.simpler_than_fgm")

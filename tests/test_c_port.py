@@ -47,6 +47,7 @@ from ifgm_ref.simulator import Run, simulate
 from ifgm_ref.transport.external import ExternalPlanner
 from ifgm_ref.world import World
 from ifgm_ref.worldgen.classes import random_world
+from tests.built_once import built_once
 from tests.test_invariance import _enclosure, long_mixed_example
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -73,49 +74,55 @@ pytestmark = pytest.mark.skipif(
 )
 
 
-def _build(directory: Path, target: str, *variables: str) -> Path:
-    """Build the port with ``make TARGET`` (and make's ``variables``, ``NAME=VALUE``) into
-    ``directory``; the programs' directory."""
-    make = ["make", "-s", "--no-print-directory", "-C", str(PORT), f"BUILD={directory}"]
-    subprocess.run(
-        [*make, *variables, target],
-        check=True,
-        capture_output=True,
-        text=True,
-        timeout=600,
-    )
+def _build(factory: pytest.TempPathFactory, name: str, target: str, *variables: str) -> Path:
+    """Build the port with ``make TARGET`` (and make's ``variables``, ``NAME=VALUE``) into the
+    run's temporary folder ``name``, once for all test workers; the programs' directory."""
+
+    def make(directory: Path) -> None:
+        command = ["make", "-s", "--no-print-directory", "-C", str(PORT), f"BUILD={directory}"]
+        subprocess.run(
+            [*command, *variables, target],
+            check=True,
+            capture_output=True,
+            text=True,
+            timeout=600,
+        )
+
+    directory = built_once(factory, name, make)
     return directory / {"all": "", "asan": "asan", "float": "float"}[target]
 
 
 @pytest.fixture(scope="module")
 def build(tmp_path_factory: pytest.TempPathFactory) -> Path:
     """The normal build (``make``), in a temporary directory: the worktree stays clean."""
-    return _build(tmp_path_factory.mktemp("c-port"), "all")
+    return _build(tmp_path_factory, "c-port", "all")
 
 
 @pytest.fixture(scope="module")
 def asan_build(tmp_path_factory: pytest.TempPathFactory) -> Path:
     """The sanitizer build (``make asan``): AddressSanitizer and UBSan."""
-    return _build(tmp_path_factory.mktemp("c-port"), "asan")
+    return _build(tmp_path_factory, "c-port-asan", "asan")
 
 
 @pytest.fixture(scope="module")
 def float_build(tmp_path_factory: pytest.TempPathFactory) -> Path:
     """The single-precision build (``make float``)."""
-    return _build(tmp_path_factory.mktemp("c-port"), "float")
+    return _build(tmp_path_factory, "c-port-float", "float")
 
 
 @pytest.fixture(scope="module")
 def vectors_file(tmp_path_factory: pytest.TempPathFactory) -> Path:
     """The conformance vectors, written by ``ifgm-ref vectors``."""
-    path = tmp_path_factory.mktemp("vectors") / "vectors.json"
-    subprocess.run(
-        [sys.executable, "-m", "ifgm_ref", "vectors", "--out", str(path)],
-        check=True,
-        capture_output=True,
-        timeout=120,
-    )
-    return path
+
+    def write(folder: Path) -> None:
+        subprocess.run(
+            [sys.executable, "-m", "ifgm_ref", "vectors", "--out", str(folder / "vectors.json")],
+            check=True,
+            capture_output=True,
+            timeout=120,
+        )
+
+    return built_once(tmp_path_factory, "vectors", write) / "vectors.json"
 
 
 def _builds(request: pytest.FixtureRequest, name: str) -> Path:
@@ -584,7 +591,7 @@ BARN_MAX_POINTS = 131072
 def barn_build(tmp_path_factory: pytest.TempPathFactory) -> Path:
     """The normal build with room for the memory of BARN's sensor."""
     flags = f"CFLAGS=-O2 -DIFGM_MAX_POINTS={BARN_MAX_POINTS}"
-    return _build(tmp_path_factory.mktemp("c-port"), "all", flags)
+    return _build(tmp_path_factory, "c-port-barn", "all", flags)
 
 
 @pytest.mark.parametrize(

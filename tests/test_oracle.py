@@ -39,14 +39,20 @@ WORLDS = Path(__file__).parent / "worlds"
 SIMULATION = [name for name, check in CHECKS.items() if check.kind is Kind.SIMULATION]
 #: Mutant hunting: the same 50 examples, but no shrinking (speed; the report is not needed).
 HUNT = Profile("hunt", 50, shrink=False)
-#: The checks a mutant is hunted with, cheapest first.
-HUNTING = [
-    "passes_wide_gaps",
-    "converges_symmetric",
-    "collision_free",
-    "converges_u",
-    "scale_invariant",
-]
+#: The quick-profile check that rejects each broken variant, the one aimed at what it breaks:
+#: a gap steered at wrongly fails to pass a wide gap, a robot that never leaves or never turns
+#: out of a dead end fails to arrive, a length that ignores the robot's size fails scaling.
+#: The test runs only that check (running the cheap checks first cost 20 s for one mutant).
+CAUGHT_BY = {
+    "absolute_standoff": "scale_invariant",
+    "gap_sign_flipped": "passes_wide_gaps",
+    "gap_world_frame": "passes_wide_gaps",
+    "ignores_d_obs": "collision_free",
+    "never_leaves": "converges_symmetric",
+    "no_dead_end_rule": "converges_u",
+    "point_robot": "collision_free",
+    "quadrant_blind": "converges_u",
+}
 
 
 def _serve(spec: str) -> list[str]:
@@ -156,25 +162,41 @@ def test_fgm_does_not_promise_u_worlds() -> None:
     assert result.status is Status.NOT_APPLICABLE
 
 
+def test_every_broken_variant_has_its_check() -> None:
+    assert sorted(CAUGHT_BY) == sorted(MUTANTS)
+    assert all(CHECKS[check].kind is Kind.SIMULATION for check in CAUGHT_BY.values())
+
+
 @pytest.mark.paper("t1.bug_point_robot")
 @pytest.mark.parametrize("mutant", sorted(MUTANTS))
 def test_broken_ifgm_variants_are_rejected_in_process(mutant: str) -> None:
     report = check_planner(
-        MUTANTS[mutant], profile=HUNT, checks=HUNTING, artifacts=None, stop_on_failure=True
+        MUTANTS[mutant], profile=HUNT, checks=[CAUGHT_BY[mutant]], artifacts=None
     )
     assert not report.ok, report.text()
     assert report.results[-1].status is Status.FAILED
 
 
+def test_the_checks_after_a_failure_are_skipped_on_request() -> None:
+    """``stop_on_failure``: a planner that fails every check is reported with its first check
+    only; without it, with every check."""
+    checks = ["converges_symmetric", "collision_free", "converges_u"]
+    for stop, ran in ((True, checks[:1]), (False, checks)):
+        report = check_planner(
+            MUTANTS["ignores_d_obs"], profile=HUNT, checks=checks, artifacts=None,
+            stop_on_failure=stop,
+        )  # fmt: skip
+        assert [(r.check, r.status) for r in report.results] == [(c, Status.FAILED) for c in ran]
+
+
 @pytest.mark.parametrize("mutant", ["gap_sign_flipped", "point_robot", "never_leaves"])
 def test_broken_ifgm_variants_are_rejected_through_serve(mutant: str) -> None:
     spec = f"ifgm_ref.oracle.mutants:{MUTANTS[mutant].__name__}"
-    inside = check_planner(spec, profile=HUNT, checks=HUNTING, artifacts=None, stop_on_failure=True)
+    checks = [CAUGHT_BY[mutant]]
+    inside = check_planner(spec, profile=HUNT, checks=checks, artifacts=None)
     impl = Implementation.from_command(_serve(spec), timeout=30.0)
     try:
-        outside = check_planner(
-            impl, profile=HUNT, checks=HUNTING, artifacts=None, stop_on_failure=True
-        )
+        outside = check_planner(impl, profile=HUNT, checks=checks, artifacts=None)
     finally:
         impl.close()
     assert not outside.ok
