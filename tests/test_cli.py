@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import os
 import re
 import subprocess
 import sys
@@ -10,6 +11,7 @@ from pathlib import Path
 
 import pytest
 
+from ifgm_ref.cli import EXIT_BROKEN_PIPE
 from ifgm_ref.planners.ifgm import IFGMPlanner
 from ifgm_ref.scenarios import BUILTIN_WORLDS
 from ifgm_ref.simulator import Result, simulate
@@ -220,3 +222,23 @@ def test_require_goal_fails_a_run_that_misses_the_goal(planner: str, status: int
     assert done.returncode == status
     assert json.loads(done.stdout)["reached"] == (status == 0)
     assert run_cli("simulate", "box", "--planner", planner, "--json").returncode == 0
+
+
+@pytest.mark.parametrize("args", [["planners"], ["vectors", "--out", "/dev/stdout"]])
+def test_a_reader_that_left_ends_the_command_quietly(args: list[str]) -> None:
+    """``ifgm-ref planners | head``: no ``[Errno 32] Broken pipe``, and the status a shell
+    reports for a tool stopped by a closed pipe (128 + SIGPIPE)."""
+    read, write = os.pipe()
+    os.close(read)  # the reader is gone before the first line
+    try:
+        done = subprocess.run(
+            [sys.executable, "-m", "ifgm_ref", *args],
+            stdout=write,
+            stderr=subprocess.PIPE,
+            text=True,
+            timeout=120,
+            check=False,
+        )
+    finally:
+        os.close(write)
+    assert (done.returncode, done.stderr) == (EXIT_BROKEN_PIPE, "")

@@ -1,7 +1,9 @@
 """The ``ifgm-ref`` command line.
 
 Every error that bad input can cause is reported as one line on stderr
-(``ifgm-ref: error: ...``) with exit status 2, never as a traceback.
+(``ifgm-ref: error: ...``) with exit status 2, never as a traceback. Output piped to a reader
+that stops reading (``ifgm-ref planners | head -1``) ends the command quietly with status 141
+(128 + SIGPIPE), as a shell reports it for any Unix tool the closed pipe stopped.
 
 One module per subcommand or group of them, each adding its parser (``add_NAME``) and
 running it (``run_NAME``): :mod:`.simulate`; :mod:`.listings` (``worlds``, ``planners``);
@@ -12,6 +14,7 @@ running it (``run_NAME``): :mod:`.simulate`; :mod:`.listings` (``worlds``, ``pla
 from __future__ import annotations
 
 import argparse
+import os
 import sys
 from collections.abc import Sequence
 
@@ -25,7 +28,10 @@ from ifgm_ref.cli.serve import add_serve
 from ifgm_ref.cli.simulate import add_simulate
 from ifgm_ref.errors import IfgmRefError
 
-__all__ = ["build_parser", "main"]
+__all__ = ["EXIT_BROKEN_PIPE", "build_parser", "main"]
+
+#: Exit status when the reader of the output went away: 128 + SIGPIPE (13).
+EXIT_BROKEN_PIPE = 141
 
 #: The subcommands in the order ``ifgm-ref --help`` lists them.
 SUBCOMMANDS = (
@@ -64,6 +70,12 @@ def main(argv: Sequence[str] | None = None) -> int:
     args.argv = list(sys.argv[1:] if argv is None else argv)
     try:
         return int(args.func(args))
+    except BrokenPipeError:
+        # Only our own output can raise it here (the transport's pipes are written in threads
+        # that take it as the program's end). Point stdout at nothing, so that the flush at
+        # exit does not raise it again.
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        return EXIT_BROKEN_PIPE
     except IfgmRefError as err:
         print(f"ifgm-ref: error: {err}", file=sys.stderr)
         return EXIT_USAGE
