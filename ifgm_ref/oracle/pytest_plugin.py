@@ -30,10 +30,10 @@ from ifgm_ref.oracle.runner import (
     PROFILES,
     CheckResult,
     Profile,
-    Status,
     noise_tags,
     profile_named,
     run_check,
+    tally,
     with_noise,
 )
 from ifgm_ref.transport.external import STARTUP_TIMEOUT, TIMEOUT
@@ -238,11 +238,7 @@ def pytest_terminal_summary(terminalreporter: Any, exitstatus: int, config: pyte
     if _KEY not in config.stash or not config.stash[_KEY].results:
         return
     results = config.stash[_KEY].results
-    ran = [r for r in results if r.status is not Status.NOT_APPLICABLE]
     terminalreporter.write_sep("-", "ifgm-ref oracle")
     for result in results:
         terminalreporter.write_line(result.line())
-    terminalreporter.write_line(
-        f"{config.stash[_KEY].implementation.label}: {len(ran)} properties checked, "
-        f"{sum(r.examples for r in ran)} examples, {sum(r.worlds for r in ran)} worlds"
-    )
+    terminalreporter.write_line(f"{config.stash[_KEY].implementation.label}: {tally(results)}")

@@ -127,7 +127,6 @@ class Report:
 
     def summary(self) -> str:
         """How much was checked and what came of it, in one line."""
-        ran = [r for r in self.results if r.status is not Status.NOT_APPLICABLE]
         counts: dict[str, int] = {}
         for r in self.results:
             counts[r.status] = counts.get(r.status, 0) + 1
@@ -135,15 +134,31 @@ class Report:
         how = f"profile {self.profile}"
         if self.noise is not None:
             how += f", noise {self.noise} checked, {self.promised} promised"
-        return (
-            f"{self.implementation} ({how}): {len(ran)} properties checked, "
-            f"{sum(r.examples for r in ran)} examples, {sum(r.worlds for r in ran)} worlds: "
-            f"{verdicts}"
-        )
+        return f"{self.implementation} ({how}): {tally(self.results)}: {verdicts}"
 
     def text(self) -> str:
         """Every result's line, then the summary."""
         return "\n".join([*(r.line() for r in self.results), self.summary()])
+
+
+def tally(results: Iterable[CheckResult]) -> str:
+    """How much the checks that applied checked, in words.
+
+    >>> tally([CheckResult("deterministic", Status.PASSED, 1, 1)])
+    '1 property checked, 1 example, 1 world'
+    >>> tally([CheckResult("a", Status.PASSED, 50, 50), CheckResult("b", Status.FAILED, 2, 2)])
+    '2 properties checked, 52 examples, 52 worlds'
+    """
+    ran = [r for r in results if r.status is not Status.NOT_APPLICABLE]
+    examples, worlds = sum(r.examples for r in ran), sum(r.worlds for r in ran)
+    return (
+        f"{_counted(len(ran), 'property', 'properties')} checked, "
+        f"{_counted(examples, 'example')}, {_counted(worlds, 'world')}"
+    )
+
+
+def _counted(n: int, one: str, many: str | None = None) -> str:
+    return f"{n} {one if n == 1 else many or one + 's'}"
 
 
 def _slug(text: str) -> str:
@@ -529,5 +544,6 @@ __all__ = [
     "noise_tags",
     "profile_named",
     "run_check",
+    "tally",
     "with_noise",
 ]
