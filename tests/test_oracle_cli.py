@@ -264,17 +264,38 @@ def test_simulate_names_the_startup_timeout_that_expired(tmp_path: Path) -> None
     ) in done.stderr
 
 
-def test_oracle_reports_an_error_naming_the_startup_timeout(tmp_path: Path) -> None:
+def test_oracle_names_the_startup_timeout_in_one_line(tmp_path: Path) -> None:
     args = ["--check", "converges_open", "--jobs", "1", "--timeout", "10"]
     args += ["--startup-timeout", "1", "--artifacts", str(tmp_path / "found")]
     done = run_cli("oracle", "--cmd", _slow_start(tmp_path, 60.0), *args)
-    assert done.returncode == 1
-    lines = done.stdout.splitlines()
-    assert lines[0].startswith("ERROR               converges_open")
-    assert lines[1].endswith(
+    assert done.returncode == 2 and done.stdout == ""
+    assert len(done.stderr.splitlines()) == 1
+    assert done.stderr.startswith("ifgm-ref: error: ")
+    assert done.stderr.rstrip().endswith(
         "no reply within 1.0 s to reset "
         "(the start-up timeout, --startup-timeout; program killed); no stderr output"
     )
+
+
+@pytest.mark.parametrize(
+    ("program", "message"),
+    [
+        ("no-such-program-xyz", "cannot start program 'no-such-program-xyz'"),
+        ("GARBAGE", "reply to reset is not JSON: 'garbage'"),
+    ],
+)
+def test_a_program_that_cannot_be_checked_is_one_line_not_an_error_per_check(
+    tmp_path: Path, program: str, message: str
+) -> None:
+    """A program that cannot start or answers ``reset`` with garbage: bad input (exit 2), said
+    once, not "11 properties checked ... 11 error"."""
+    if program == "GARBAGE":
+        script = tmp_path / "garbage.py"
+        script.write_text("import sys\nfor line in sys.stdin:\n    print('garbage', flush=True)\n")
+        program = shlex.join([sys.executable, str(script)])
+    done = run_cli("oracle", "--cmd", program, "--artifacts", str(tmp_path / "found"))
+    assert done.returncode == 2 and done.stdout == ""
+    assert len(done.stderr.splitlines()) == 1 and message in done.stderr
 
 
 @pytest.mark.parametrize(

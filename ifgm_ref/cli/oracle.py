@@ -116,6 +116,7 @@ def run_oracle(args: argparse.Namespace) -> int:
             promises=args.promises,
             equations=equations,
         )
+        impl.answers_reset()  # a program that cannot start is bad input, not 11 errors
     else:
         impl = Implementation.from_spec(args.planner, promises=args.promises, equations=equations)
     try:

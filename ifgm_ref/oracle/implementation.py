@@ -17,7 +17,8 @@ from dataclasses import dataclass, field
 
 from ifgm_ref.errors import ImplementationError
 from ifgm_ref.noise import NoiseLevels
-from ifgm_ref.protocol import Planner
+from ifgm_ref.pose import Point, Pose
+from ifgm_ref.protocol import EpisodeParams, Planner
 from ifgm_ref.transport.external import TIMEOUT
 from ifgm_ref.transport.loading import load_planner_factory, resolve
 
@@ -162,6 +163,23 @@ class Implementation:
         close = getattr(self.factory, "close", None)
         if close is not None:
             close()
+
+    def answers_reset(self) -> None:
+        """Start a planner and reset it once on an empty problem (the origin, heading 0, the
+        goal 10 robot radii ahead), then close it: a program that cannot start, or does not
+        answer ``reset`` with ``ready``, is bad input, said once, before any check.
+
+        Raises
+        ------
+        ImplementationError
+            The program's failure, as the transport words it.
+        """
+        params = EpisodeParams()
+        planner = self.factory()
+        try:
+            planner.reset(Pose(0.0, 0.0, 0.0), Point(10 * params.robot.radius, 0.0), params)
+        finally:
+            self.close()
 
     @classmethod
     def from_command(
