@@ -242,3 +242,32 @@ def test_a_reader_that_left_ends_the_command_quietly(args: list[str]) -> None:
     finally:
         os.close(write)
     assert (done.returncode, done.stderr) == (EXIT_BROKEN_PIPE, "")
+
+
+def test_simulate_and_vectors_make_their_output_folders(tmp_path: Path) -> None:
+    """As ``figures --out`` does: missing folders of an output path are made."""
+    trace, plot = tmp_path / "a" / "trace.csv", tmp_path / "b" / "c" / "run.png"
+    done = run_cli(
+        "simulate", "post", "--planner", "ifgm", "--trace", str(trace), "--plot", str(plot)
+    )
+    assert done.returncode == 0, done.stderr
+    assert trace.read_text().startswith("t,x,y,theta") and plot.stat().st_size > 0
+    vectors = tmp_path / "d" / "vectors.json"
+    done = run_cli("vectors", "--out", str(vectors))
+    assert done.returncode == 0, done.stderr
+    assert json.loads(vectors.read_text())
+
+
+def test_an_output_folder_that_cannot_be_made_is_refused_before_the_run(tmp_path: Path) -> None:
+    """``--plot ok.png --animate blocked/x.gif``: one line naming the option, and no plot
+    written first."""
+    (tmp_path / "blocked").write_text("a file where the folder should be")
+    plot, gif = tmp_path / "ok.png", tmp_path / "blocked" / "x.gif"
+    done = run_cli(
+        "simulate", "post", "--planner", "ifgm", "--plot", str(plot), "--animate", str(gif)
+    )
+    assert done.returncode == 2 and done.stdout == ""
+    assert done.stderr.splitlines() == [
+        f"ifgm-ref: error: --animate {gif}: cannot make its folder {str(gif.parent)!r}: File exists"
+    ]
+    assert not plot.exists()

@@ -8,6 +8,8 @@ import sys
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+from ifgm_ref.cli.common import output_folder
+
 if TYPE_CHECKING:
     from ifgm_ref.cli.common import Subcommands
 
@@ -49,6 +51,7 @@ def run_vectors(args: argparse.Namespace) -> int:
     """Write the conformance vectors to ``args.out``."""
     from ifgm_ref.oracle.vectors import summarize, write_vectors
 
+    output_folder("--out", args.out)
     vectors = write_vectors(args.out)
     size = Path(args.out).stat().st_size
     print(f"wrote {summarize(vectors)} to {args.out} ({size} bytes)", file=sys.stderr)

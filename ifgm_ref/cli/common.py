@@ -3,8 +3,10 @@
 from __future__ import annotations
 
 import argparse
+from pathlib import Path
 from typing import TYPE_CHECKING, NoReturn
 
+from ifgm_ref.errors import ParameterError
 from ifgm_ref.transport.external import STARTUP_TIMEOUT, TIMEOUT
 
 #: Exit status of a usage error or of bad input, reported as one line on stderr.
@@ -92,3 +94,17 @@ def names(text: str) -> list[str]:
     if not found:
         raise argparse.ArgumentTypeError(f"expected comma-separated names, got {text!r}")
     return found
+
+
+def output_folder(option: str, name: str) -> None:
+    """Make the folder an output file ``name`` (given with ``option``) goes in, as
+    ``figures --out`` does, before any work: a folder that cannot be made is a
+    :class:`~ifgm_ref.errors.ParameterError` naming the option, not an errno after the run.
+    """
+    folder = Path(name).parent
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+    except OSError as err:
+        raise ParameterError(
+            f"{option} {name}: cannot make its folder {str(folder)!r}: {err.strerror or err}"
+        ) from None

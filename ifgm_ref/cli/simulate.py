@@ -7,7 +7,12 @@ import json
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from ifgm_ref.cli.common import add_timeout_options, non_negative_int, positive_float
+from ifgm_ref.cli.common import (
+    add_timeout_options,
+    non_negative_int,
+    output_folder,
+    positive_float,
+)
 from ifgm_ref.errors import ParameterError
 from ifgm_ref.noise import KINDS, NoiseLevels
 from ifgm_ref.params import SimParams
@@ -155,7 +160,8 @@ def _print_result(args: argparse.Namespace, run: Run) -> None:
 
 
 def check_outputs(args: argparse.Namespace) -> None:
-    """Refuse an output file type the run could not write, before the run."""
+    """Refuse an output file type the run could not write, and make the outputs' folders,
+    before the run."""
     for option, name, allowed in (
         ("--plot", args.plot, PLOT_SUFFIXES),
         ("--animate", args.animate, ANIMATION_SUFFIXES),
@@ -165,6 +171,13 @@ def check_outputs(args: argparse.Namespace) -> None:
                 f"{option} {name}: cannot write {Path(name).suffix or 'a file without suffix'}; "
                 f"use one of {', '.join(allowed)}"
             )
+    for option, name in (
+        ("--trace", args.trace),
+        ("--plot", args.plot),
+        ("--animate", args.animate),
+    ):
+        if name:
+            output_folder(option, name)
 
 
 def planner_params(planner: str | None, pairs: list[str]) -> dict[str, float]:
