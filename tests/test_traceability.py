@@ -131,3 +131,6 @@ def test_trace_matrix_command(tmp_path: Path) -> None:
     assert done.returncode == 1 and "out of date" in done.stderr
     assert run("--out", str(stale)).returncode == 0
     assert stale.read_text() == MATRIX.read_text()
+    fresh = tmp_path / "new" / "matrix.md"  # its folder is made, as every output's is
+    assert run("--out", str(fresh)).returncode == 0
+    assert fresh.read_text() == MATRIX.read_text()

@@ -94,6 +94,7 @@ def run_trace_matrix(args: argparse.Namespace) -> int:
             return 1
         print(f"{out} is current", file=sys.stderr)
         return 0
+    output_folder("--out", str(out))
     out.write_text(text, encoding="utf-8")
     print(f"wrote {out}", file=sys.stderr)
     return 0
