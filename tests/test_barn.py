@@ -132,9 +132,12 @@ def test_cli_bench_barn(tmp_path: Path) -> None:
     with (out / "summary.csv").open() as source:
         (summary,) = list(csv.DictReader(source))
     assert (summary["barn_score_mean"], summary["collision_rate"]) == ("0.0", "1.0")
-    assert (
-        "| straight | barn | 3 | 0.000 | 0.0% | 100.0% | 0.0% |" in (out / "summary.md").read_text()
-    )
+    summary_md = (out / "summary.md").read_text()
+    assert "| straight | barn | 3 | 0.000 | 0.0% | 100.0% | 0.0% |" in summary_md
+    # No shortest path in BARN's worlds: no such title, column or empty plot; lengths in metres.
+    assert summary_md.startswith("# Benchmark on BARN's worlds, with BARN's score\n")
+    assert "optimal" not in summary_md and not (out / "path_ratio.png").exists()
+    assert "| min clearance m |" in summary_md and " ft " not in summary_md
     assert main(["bench", "--sensor", "paper_ir", "--out", str(out)]) == 2  # BARN only
 
 

@@ -7,7 +7,8 @@ Files written by :func:`write_report` into the output folder:
 ``summary.csv``             one row per (planner, class): :class:`Summary`
 ``summary.md``              the run's settings and machine, the summary tables, the failures
 ``success_by_class.png``    success rate per class, one bar per planner
-``path_ratio.png``          path length / optimal of the successful episodes, per class
+``path_ratio.png``          path length / optimal of the successful episodes, per class (only
+                            when some episode has an optimal path: BARN's worlds have none)
 ``worlds/NAME.json``        every world some planner failed in, to replay with ``simulate``
 ``results.partial.csv``     the rows so far, as they arrive (removed when the run completes)
 ==========================  =================================================================
@@ -165,26 +166,48 @@ def _fmt(value: float | None, spec: str) -> str:
     return "-" if value is None else format(value, spec)
 
 
+def length_unit(rows: Sequence[Row]) -> str:
+    """The unit of the rows' lengths: ``m`` when every world is BARN's (metres), ``ft`` when
+    none is (the paper's worlds and the generated ones), else "world units"."""
+    barn = {r.barn_score is not None for r in rows}
+    if barn == {True}:
+        return "m"
+    return "ft" if barn <= {False} else "world units"
+
+
+def has_optimal(rows: Sequence[Row]) -> bool:
+    """Whether any row has a path / optimal (BARN's worlds have no optimal path computed)."""
+    return any(r.path_ratio is not None for r in rows)
+
+
 def summary_markdown(summaries: Sequence[Summary], rows: Sequence[Row], header: str) -> str:
-    """The Markdown summary: ``header`` (settings, machine), a table per class, failures."""
+    """The Markdown summary: ``header`` (settings, machine), a table per class, failures.
+
+    Clearances are labelled with :func:`length_unit`; the path / optimal columns are left out
+    when no row has one (:func:`has_optimal`).
+    """
     lines = [header.rstrip(), ""]
+    ratios = has_optimal(rows)
     classes = list(dict.fromkeys(s.world_class for s in summaries))
     for world_class in classes:
         mine = [s for s in summaries if s.world_class == world_class]
+        columns = ["planner", "success", "collisions", "errors"]
+        columns += ["path/optimal median", "p90"] if ratios else []
+        columns += ["time median s", "turning median rad"]
+        columns += [f"min clearance {length_unit(rows)}", "decisions/CPU s"]
         lines += [
             f"## {world_class} ({mine[0].worlds} worlds)",
             "",
-            "| planner | success | collisions | errors | path/optimal median | p90 | "
-            "time median s | turning median rad | min clearance ft | decisions/CPU s |",
-            "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|",
+            "| " + " | ".join(columns) + " |",
+            "|---|" + "---:|" * (len(columns) - 1),
         ]
-        lines += [
-            f"| {s.planner} | {s.success_rate:.1%} | {s.collisions} | {s.errors} | "
-            f"{_fmt(s.path_ratio_median, '.3f')} | {_fmt(s.path_ratio_p90, '.3f')} | "
-            f"{_fmt(s.time_median_s, '.1f')} | {_fmt(s.heading_change_median, '.2f')} | "
-            f"{_fmt(s.min_clearance_min, '.3f')} | {_fmt(s.decisions_per_cpu_s_median, ',.0f')} |"
-            for s in mine
-        ]
+        for s in mine:
+            cells = [s.planner, f"{s.success_rate:.1%}", str(s.collisions), str(s.errors)]
+            if ratios:
+                cells += [_fmt(s.path_ratio_median, ".3f"), _fmt(s.path_ratio_p90, ".3f")]
+            cells += [_fmt(s.time_median_s, ".1f"), _fmt(s.heading_change_median, ".2f")]
+            cells += [_fmt(s.min_clearance_min, ".3f"), _fmt(s.decisions_per_cpu_s_median, ",.0f")]
+            lines.append("| " + " | ".join(cells) + " |")
         lines.append("")
     barn = [s for s in summaries if s.barn_score_mean is not None and s.world_class != ALL]
     if barn:
@@ -322,7 +345,10 @@ def write_report(
     write_csv(files["summary"], Summary.columns(), summaries)
     files["markdown"].write_text(summary_markdown(summaries, rows, header))
     plot_success(summaries, files["success"])
-    plot_path_ratio(rows, files["ratio"])
+    if has_optimal(rows):
+        plot_path_ratio(rows, files["ratio"])
+    else:
+        del files["ratio"]  # no axes to draw
     written = list(files.values())
     if save_failed_worlds(rows, specs, out / "worlds"):
         written.append(out / "worlds")

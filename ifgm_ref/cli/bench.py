@@ -269,6 +269,8 @@ def _header(
     if args.barn is not None and not args.max_time:
         limit = "BARN's 100 s"
     title = "Benchmark against the shortest collision-free path"
+    if args.barn is not None:
+        title = "Benchmark on BARN's worlds, with BARN's score"
     if args.noise_sweep is not None:
         title = "Benchmark under noise: a sweep of noise levels"
     return "\n".join(
