@@ -32,6 +32,8 @@ from urllib.parse import unquote, urldefrag, urlsplit
 
 import pytest
 
+from tests.built_once import built_once
+
 pytestmark = pytest.mark.browser
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -72,18 +74,20 @@ def site(tmp_path_factory: pytest.TempPathFactory) -> Path:
         return Path(given)
     pytest.importorskip("sphinx", reason=f"the docs extra is not installed: {SETUP}")
     pytest.importorskip("myst_nb", reason=f"the docs extra is not installed: {SETUP}")
-    out = tmp_path_factory.mktemp("site")
     env = dict(os.environ, PYTHONPATH=str(ROOT))
-    done = subprocess.run(
-        [sys.executable, "-m", "ifgm_ref", "docs", "--out", str(out), "--root", str(ROOT)],
-        capture_output=True,
-        text=True,
-        timeout=900,
-        env=env,
-        check=False,
-    )
-    assert done.returncode == 0, done.stderr[-4000:]
-    return out
+
+    def build(out: Path) -> None:
+        done = subprocess.run(
+            [sys.executable, "-m", "ifgm_ref", "docs", "--out", str(out), "--root", str(ROOT)],
+            capture_output=True,
+            text=True,
+            timeout=900,
+            env=env,
+            check=False,
+        )
+        assert done.returncode == 0, done.stderr[-4000:]
+
+    return built_once(tmp_path_factory, "site", build)  # one build for every test worker
 
 
 @pytest.fixture(scope="module")
