@@ -88,6 +88,13 @@ def draw_world(ax: Axes, world: World) -> None:
     ax.set_ylabel("y (ft)")
 
 
+def finest_colouring(trace: Sequence[TraceStep]) -> str:
+    """``"branch"`` (Figure 3's) when some step of ``trace`` reports one, else ``"behaviour"``:
+    a program under test need not report its branch, and a path coloured by a label nobody
+    gave is one colour called "none"."""
+    return "branch" if any(s.branch for s in trace) else "behaviour"
+
+
 def _labels(trace: Sequence[TraceStep], colour_by: str) -> list[str]:
     """The label of every segment (sample i to i + 1) of the trace."""
     return [str(getattr(s, colour_by) or "none") for s in trace[:-1]]

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import inspect
 import itertools
 import math
@@ -22,6 +23,7 @@ from ifgm_ref.plotting import (
     RARE_SHARE,
     animate_run,
     draw_path,
+    finest_colouring,
     plot_run,
     switch_indices,
 )
@@ -155,3 +157,16 @@ def test_run_plot_draws_the_believed_path_only_where_odometry_moved_it() -> None
         labels = [line.get_label() for line in fig.axes[0].get_lines()]
         assert ("believed" in labels) is drawn, labels
         plt.close(fig)
+
+
+def test_a_counterexample_is_coloured_by_branch_only_where_the_planner_reports_one() -> None:
+    """The oracle's plots (``finest_colouring``): a ``--cmd`` program that reports no branch
+    gets its path coloured by behaviour, not one colour called "none"."""
+    run = simulate(resolve_world("post"), IFGMPlanner())
+    assert finest_colouring(run.trace) == "branch"
+    silent = [dataclasses.replace(s, branch=None) for s in run.trace]
+    assert finest_colouring(silent) == "behaviour"
+    fig = plot_run(resolve_world("post"), silent, run.result, colour_by=finest_colouring(silent))
+    labels = [t.get_text() for t in _legend(fig).get_texts()]
+    assert not any(label.startswith("none") for label in labels), labels
+    plt.close(fig)

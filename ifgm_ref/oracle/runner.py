@@ -381,9 +381,10 @@ def write_evidence(
 
 
 def _plot(world: Any, run: Any, path: Path) -> None:
-    from ifgm_ref.plotting import plot_run, save_figure
+    from ifgm_ref.plotting import finest_colouring, plot_run, save_figure
 
-    save_figure(plot_run(world, run.trace, run.result, colour_by="branch"), path)
+    colour_by = finest_colouring(run.trace)
+    save_figure(plot_run(world, run.trace, run.result, colour_by=colour_by), path)
 
 
 def _implementation(
