@@ -326,3 +326,20 @@ def test_the_plugin_refuses_a_bad_startup_timeout(pytester: pytest.Pytester) -> 
     )  # fmt: skip
     assert result.ret == pytest.ExitCode.USAGE_ERROR
     result.stderr.fnmatch_lines(["*`startup_timeout` must be a finite number > 0, got 0.0*"])
+
+
+def test_the_oracle_leaves_no_hypothesis_folder_where_it_runs(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """Hypothesis keeps a cache in ``./.hypothesis`` by default; the oracle puts it in the
+    user's cache folder instead."""
+    monkeypatch.delenv("HYPOTHESIS_STORAGE_DIRECTORY", raising=False)
+    monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "cache"))
+    work = tmp_path / "work"
+    work.mkdir()
+    done = run_cli(
+        "oracle", "--planner", "ifgm", "--equations", "ifgm_ref.equations", *EQ1, cwd=work
+    )
+    assert done.returncode == 0, done.stderr
+    assert list(work.iterdir()) == []
+    assert (tmp_path / "cache" / "ifgm-ref" / "hypothesis").is_dir()

@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import os
 import sys
+from pathlib import Path
 from typing import TYPE_CHECKING, TextIO
 
 from ifgm_ref.cli.common import add_timeout_options
@@ -98,6 +99,8 @@ def run_oracle(args: argparse.Namespace) -> int:
     from ifgm_ref.oracle.implementation import Implementation, load_equations
     from ifgm_ref.oracle.runner import PROFILE_ALIASES, check_planner
 
+    keep_hypothesis_out_of_the_working_folder()
+
     if (args.planner is None) == (args.cmd is None):
         raise ParameterError("give exactly one of --planner NAME and --cmd 'PROGRAM'")
     if args.profile in PROFILE_ALIASES:
@@ -137,6 +140,22 @@ def run_oracle(args: argparse.Namespace) -> int:
     # has them already and gets the summary only. Redirected stdout gets the whole report.
     print(report.summary() if same_terminal(sys.stdout, sys.stderr) else report.text())
     return 0 if report.ok else 1
+
+
+def hypothesis_cache() -> Path:
+    """Where ``ifgm-ref oracle`` lets Hypothesis keep its files (a cache of the constants it
+    found in the code; the oracle keeps no example database): ``$XDG_CACHE_HOME/ifgm-ref``, or
+    ``~/.cache/ifgm-ref``, then ``hypothesis``."""
+    cache = os.environ.get("XDG_CACHE_HOME") or str(Path.home() / ".cache")
+    return Path(cache) / "ifgm-ref" / "hypothesis"
+
+
+def keep_hypothesis_out_of_the_working_folder() -> None:
+    """Point Hypothesis at :func:`hypothesis_cache` instead of ``./.hypothesis`` (its default),
+    unless ``$HYPOTHESIS_STORAGE_DIRECTORY`` chooses a folder; through that variable, so the
+    worker processes of ``--jobs`` inherit it however they start."""
+    if not os.environ.get("HYPOTHESIS_STORAGE_DIRECTORY"):
+        os.environ["HYPOTHESIS_STORAGE_DIRECTORY"] = str(hypothesis_cache())
 
 
 def same_terminal(out: TextIO, err: TextIO) -> bool:
