@@ -197,7 +197,7 @@ def test_an_argument_error_is_one_line() -> None:
     done = run_cli("simulate")
     assert done.returncode == 2
     assert done.stderr.splitlines() == [
-        "ifgm-ref simulate: error: the following arguments are required: WORLD "
+        "ifgm-ref: error: the following arguments are required: WORLD "
         "(see ifgm-ref simulate --help)"
     ]
 

@@ -315,7 +315,7 @@ def test_a_bad_timeout_is_a_one_line_error(
     done = run_cli(command, *where, "--cmd", "nothing-runs", option, value)
     assert done.returncode == 2 and done.stdout == ""
     assert done.stderr.splitlines() == [
-        f"ifgm-ref {command}: error: argument {option}: {message} (see ifgm-ref {command} --help)"
+        f"ifgm-ref: error: argument {option}: {message} (see ifgm-ref {command} --help)"
     ]
 
 

@@ -14,10 +14,12 @@ EXIT_USAGE = 2
 
 
 class Parser(argparse.ArgumentParser):
-    """An argument parser whose usage errors are one line, as the README promises."""
+    """An argument parser whose usage errors are one line, as the README promises, with the
+    prefix of every other error, ``ifgm-ref: error:``, and the subcommand's help to see."""
 
     def error(self, message: str) -> NoReturn:
-        self.exit(EXIT_USAGE, f"{self.prog}: error: {message} (see {self.prog} --help)\n")
+        program = self.prog.split()[0]
+        self.exit(EXIT_USAGE, f"{program}: error: {message} (see {self.prog} --help)\n")
 
 
 if TYPE_CHECKING:
