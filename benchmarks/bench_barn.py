@@ -1,9 +1,9 @@
 """The planners on BARN's worlds: success, collisions, timeouts, BARN's score, wall time.
 
 Run from the project root: ``python benchmarks/bench_barn.py`` (``--help`` for options). By
-default it unpacks ``../shared/barn/barn-200.tar.xz`` (200 BARN worlds with their reference
-paths, ``../shared/barn/README.md``) into a temporary folder; ``--barn DIR`` takes a folder
-or a clone of BARN's repository instead. Each planner runs with the Jackal's LiDAR; IFGM runs
+default it runs the 200 BARN worlds that ship with ifgm-ref (``ifgm_ref/bench/barn_worlds/``,
+with their README); ``--barn DIR`` takes a folder or a clone of BARN's repository (all 300)
+instead. Each planner runs with the Jackal's LiDAR; IFGM runs
 a second time with the paper's IR sensor scaled to the robot (``paper_ir``). Each line gives,
 for one planner and sensor, the share of episodes that reached the goal, collided and timed
 out (in BARN's sense: neither arrived nor collided, so a run ended by the simulator's stall
@@ -15,11 +15,10 @@ test worlds) and the wall time. It measures, it asserts nothing.
 from __future__ import annotations
 
 import argparse
-import tarfile
-import tempfile
 import time
 from pathlib import Path
 
+from ifgm_ref.bench.barn import bundled_barn_folder
 from ifgm_ref.bench.report import machine, summarize_rows
 from ifgm_ref.bench.runner import run_bench
 from ifgm_ref.bench.tasks import barn_specs
@@ -27,7 +26,6 @@ from ifgm_ref.bench.tasks import barn_specs
 PLANNERS = ["ifgm", "iba", "distbug", "bug2", "fgm", "apf"]
 #: Planners that also run with the paper's IR sensor.
 IR_PLANNERS = {"ifgm"}
-ARCHIVE = Path(__file__).resolve().parents[2] / "shared" / "barn" / "barn-200.tar.xz"
 
 
 def _measure(folder: Path, args: argparse.Namespace) -> None:
@@ -51,9 +49,9 @@ def _measure(folder: Path, args: argparse.Namespace) -> None:
 
 
 def main() -> None:
-    """Parse the options, find or unpack the worlds, print one line per planner and sensor."""
+    """Parse the options, find the worlds, print one line per planner and sensor."""
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--barn", type=Path, help=f"BARN folder (default: unpack {ARCHIVE})")
+    parser.add_argument("--barn", type=Path, help="BARN folder (default: the bundled 200 worlds)")
     parser.add_argument("--jobs", type=int, default=2, help="local worker processes (2)")
     parser.add_argument(
         "--planners",
@@ -63,13 +61,7 @@ def main() -> None:
     )
     parser.add_argument("--limit", type=int, help="only the first N worlds (by index)")
     args = parser.parse_args()
-    if args.barn is not None:
-        _measure(args.barn, args)
-        return
-    with tempfile.TemporaryDirectory() as tmp:
-        with tarfile.open(ARCHIVE) as archive:
-            archive.extractall(tmp, filter="data")
-        _measure(Path(tmp) / "barn", args)
+    _measure(args.barn or bundled_barn_folder(), args)
 
 
 if __name__ == "__main__":

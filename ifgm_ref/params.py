@@ -269,8 +269,9 @@ def paper_ir(length_scale: float = 1.0) -> SensorParams:
 def jackal_lidar() -> SensorParams:
     """The 2D LiDAR of BARN's Clearpath Jackal: 270 degrees in 720 rays, 0.1 to 30 m.
 
-    Units are metres. The field of view and ray count are BARN's (``../shared/barn/README.md``);
-    the range is that of the Jackal's simulated laser (30 m, more than any BARN world needs).
+    Units are metres. The field of view and ray count are BARN's
+    (``ifgm_ref/bench/barn_worlds/README.md``); the range is that of the Jackal's simulated
+    laser (30 m, more than any BARN world needs).
 
     >>> s = jackal_lidar()
     >>> round(math.degrees(s.fov)), s.rays, s.range_max

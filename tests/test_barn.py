@@ -151,3 +151,34 @@ def test_ifgm_crosses_the_clutter_it_used_to_circle_for_ever() -> None:
     world = barn.load_barn_world(BARN / "world_245.world")
     result = simulate(world, make_planner("ifgm"), barn.SIM).result
     assert result.reached and not result.collided, result
+
+
+def test_the_bundled_worlds_are_unpacked_once_into_the_cache(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """BARN's 200 worlds with ``N % 3 != 0`` ship with the package, with their licence and
+    README, and are unpacked on first use into the user's cache folder."""
+    monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path))
+    assert {p.name for p in barn.BUNDLED.parent.iterdir()} >= {"LICENSE", "README.md"}
+    folder = barn.bundled_barn_folder()
+    assert folder.parent == tmp_path / "ifgm-ref"
+    found = barn.find_barn_worlds(folder)
+    assert len(found) == 200 and all(f.index % 3 != 0 for f in found)
+    assert {f.index for f in found} == {n for n in range(300) if n % 3}
+    stamp = (folder / "world_1.world").stat().st_mtime_ns
+    assert barn.bundled_barn_folder() == folder  # reused, not unpacked again
+    assert (folder / "world_1.world").stat().st_mtime_ns == stamp
+    assert [p.name for p in (tmp_path / "ifgm-ref").iterdir()] == [folder.name]  # no leftovers
+    assert (folder / "world_1.world").read_bytes() == (BARN / "world_1.world").read_bytes()
+
+
+def test_cli_bench_barn_runs_the_bundled_worlds_without_a_folder(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "cache"))
+    out = tmp_path / "out"
+    argv = ["bench", "--barn", "--barn-worlds", "1,2", "--planners", "straight", "--jobs", "1"]
+    assert main([*argv, "--out", str(out)]) == 0
+    with (out / "results.csv").open() as source:
+        assert [r["world"] for r in csv.DictReader(source)] == ["barn-001", "barn-002"]
+    assert "- worlds: 2 BARN worlds from ifgm-ref's bundled set" in (out / "summary.md").read_text()

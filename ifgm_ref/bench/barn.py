@@ -2,24 +2,30 @@
 
 BARN (Perille, Truong, Xiao, Stone, "Benchmarking Metric Ground Navigation", SSRR 2020; the
 repository ``Daffan/the-barn-challenge``, MIT licence) gives 300 Gazebo worlds
-``world_N.world`` and reference paths ``path_N.npy``. ``../shared/barn/README.md`` sums up
-the facts used here; each constant below gives its source or reason.
+``world_N.world`` and reference paths ``path_N.npy``. 200 of them (indices ``N % 3 != 0``)
+ship with this package (:data:`BUNDLED`, :func:`bundled_barn_folder`); their README beside
+them sums up the facts used here, and each constant below gives its source or reason.
 
-The worlds' enclosure is in the files: every one of the 200 worlds of ``../shared/barn``
-holds, besides the obstacle field, cylinders along ``x = -4.425`` and ``x = -0.075`` from
-``y = 0.075`` to ``y = 9.525`` and along ``y = 0.075`` (touching cylinders of radius 0.075 m
-0.15 m apart: closed walls). The side beyond ``y = 9.6``, towards the goal, is open ground in
-Gazebo too, so a BARN world here is unbounded (``bounds=None``) with those walls as obstacles,
-exactly what the robot meets in BARN.
+The worlds' enclosure is in the files: every one of the 200 bundled worlds holds, besides the
+obstacle field, cylinders along ``x = -4.425`` and ``x = -0.075`` from ``y = 0.075`` to
+``y = 9.525`` and along ``y = 0.075`` (touching cylinders of radius 0.075 m 0.15 m apart:
+closed walls). The side beyond ``y = 9.6``, towards the goal, is open ground in Gazebo too, so a BARN
+world here is unbounded (``bounds=None``) with those walls as obstacles, exactly what the robot
+meets in BARN.
 
 Units are metres and seconds.
 """
 
 from __future__ import annotations
 
+import hashlib
+import io
 import math
 import os
 import re
+import shutil
+import tarfile
+import tempfile
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -42,7 +48,7 @@ GOAL = Point(-2.0, 13.0)
 #: near the robot's size, so the turn rate does not make the planners' turns wide.
 ROBOT = RobotParams(radius=0.22, speed=1.0, max_turn_rate=math.pi)
 #: The episode. 0.05 s steps move the robot 0.05 m, about a quarter of its radius; BARN's
-#: success radius is 1 m and its time limit 100 s (``../shared/barn/README.md``). BARN knows
+#: success radius is 1 m and its time limit 100 s (``barn_worlds/README.md``). BARN knows
 #: no stall, only arrival within the limit: a robot the disc rule stops would still be there
 #: at 100 s, but one the lap rule stops may get away on a later lap (7 of 514 arrivals of
 #: Bug1, IBA and IFGM in the 200 worlds did, after 2 to 8 laps round a cluster:
@@ -126,6 +132,44 @@ class BarnFiles:
     path: Path
 
 
+#: BARN's 200 worlds with ``N % 3 != 0`` and their paths, exactly as BARN ships them (commit
+#: bf5a226), in one xz-compressed tarball (296 KB) that unpacks to ``barn/``; BARN's MIT
+#: licence is beside it.
+BUNDLED = Path(__file__).parent / "barn_worlds" / "barn-200.tar.xz"
+
+
+def bundled_barn_folder() -> Path:
+    """The folder of the bundled worlds (``world_N.world``, ``path_N.npy``), unpacked from
+    :data:`BUNDLED` at the first call into ``$XDG_CACHE_HOME/ifgm-ref`` (``~/.cache/ifgm-ref``)
+    under the tarball's hash, then reused.
+
+    Only regular files named ``barn/world_N.world`` or ``barn/path_N.npy`` are unpacked; two
+    processes unpacking at once each unpack into a folder of their own and keep the first
+    that lands.
+    """
+    data = BUNDLED.read_bytes()
+    cache = Path(os.environ.get("XDG_CACHE_HOME") or Path.home() / ".cache") / "ifgm-ref"
+    folder = cache / f"barn-200-{hashlib.sha256(data).hexdigest()[:12]}"
+    if folder.is_dir():
+        return folder
+    cache.mkdir(parents=True, exist_ok=True)
+    staging = Path(tempfile.mkdtemp(prefix="barn-200-", dir=cache))
+    try:
+        with tarfile.open(fileobj=io.BytesIO(data), mode="r:xz") as tar:
+            for member in tar.getmembers():
+                name = member.name.removeprefix("barn/")
+                source = tar.extractfile(member) if member.isfile() else None
+                if source is not None and re.fullmatch(r"(world|path)_\d+\.(world|npy)", name):
+                    (staging / name).write_bytes(source.read())
+        staging.rename(folder)
+    except OSError:
+        if not folder.is_dir():  # not another process's folder landing first
+            raise
+    finally:
+        shutil.rmtree(staging, ignore_errors=True)
+    return folder
+
+
 def _world_folder(folder: Path) -> Path:
     """Where the ``world_N.world`` files are: ``folder`` itself (the unpacked tarball, or the
     repository's ``worlds/BARN``) or the repository layout ``jackal_helper/worlds/BARN``."""
@@ -143,8 +187,9 @@ def find_barn_worlds(
     """The BARN worlds in ``folder``, by index, each with its path file.
 
     ``folder`` is either a flat folder of ``world_N.world`` and ``path_N.npy`` (what
-    ``barn-200.tar.xz`` unpacks to) or a clone of BARN's repository, where the worlds are in
-    ``jackal_helper/worlds/BARN/`` and the paths in ``jackal_helper/worlds/BARN/path_files/``.
+    :func:`bundled_barn_folder` gives) or a clone of BARN's repository (all 300 worlds), where
+    the worlds are in ``jackal_helper/worlds/BARN/`` and the paths in
+    ``jackal_helper/worlds/BARN/path_files/``.
     ``indices`` keeps only those worlds (every one must be there). A world without its path
     file is an error.
     """

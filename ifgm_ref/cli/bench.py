@@ -54,10 +54,13 @@ def add_bench(sub: Subcommands) -> None:
     source.add_argument("--world-dir", metavar="DIR", help="use the world files DIR/*.json instead")
     source.add_argument(
         "--barn",
+        nargs="?",
+        const="",
         metavar="DIR",
-        help="use BARN's worlds instead: DIR holds world_N.world and path_N.npy, or is a clone "
-        "of BARN's repository (jackal_helper/worlds/BARN); adds BARN's reference_length and "
-        "barn_score to the results (docs/benchmark.md)",
+        help="use BARN's worlds instead: the 200 that ship with ifgm-ref, or DIR's, which holds "
+        "world_N.world and path_N.npy or is a clone of BARN's repository (all 300, in "
+        "jackal_helper/worlds/BARN); adds BARN's reference_length and barn_score to the "
+        "results (docs/benchmark.md)",
     )
     _add_run_options(bench)
     _add_noise_options(bench)
@@ -195,7 +198,7 @@ def _check_args(args: argparse.Namespace) -> None:
         for option in ("barn_worlds", "sensor"):
             if getattr(args, option) is not None:
                 flag = "--" + option.replace("_", "-")
-                raise ParameterError(f"{flag} applies to BARN worlds only: give --barn DIR")
+                raise ParameterError(f"{flag} applies to BARN worlds only: give --barn [DIR]")
     for planner in args.planners:
         load_planner(planner)  # a bad name or factory is one error now, not one per episode
 
@@ -205,12 +208,14 @@ def _specs(args: argparse.Namespace) -> tuple[list[WorldSpec], str]:
     from ifgm_ref.bench.tasks import barn_specs, builtin_specs, folder_specs, generated_specs
 
     if args.barn is not None:
-        from ifgm_ref.bench.barn import DEFAULT_SENSOR, parse_selection
+        from ifgm_ref.bench.barn import DEFAULT_SENSOR, bundled_barn_folder, parse_selection
 
         sensor = args.sensor or DEFAULT_SENSOR
         chosen = None if args.barn_worlds is None else parse_selection(args.barn_worlds)
-        specs = barn_specs(args.barn, sensor, chosen)
-        return specs, f"{len(specs)} BARN worlds in {args.barn}, sensor {sensor}"
+        folder = args.barn or bundled_barn_folder()
+        specs = barn_specs(folder, sensor, chosen)
+        where = args.barn or "ifgm-ref's bundled set"
+        return specs, f"{len(specs)} BARN worlds from {where}, sensor {sensor}"
     if args.builtin:
         return builtin_specs(), "the built-in worlds"
     if args.world_dir is not None:
