@@ -300,6 +300,14 @@ def mermaid_to_dot(source: str) -> str:
     return "\n".join([*head, *body, *edges, "}"])
 
 
+#: What the flowchart page says where the drawing would be when Graphviz is missing.
+NO_GRAPHVIZ = (
+    ":::{note}\nGraphviz's `dot` was not installed when this site was built, so Figure 3 is "
+    "shown as its Mermaid source below, not drawn. Install Graphviz (`apt-get install "
+    "graphviz`, or `bash .ci/browser-setup`) and rebuild the site to draw it.\n:::\n\n"
+)
+
+
 def _flowchart(text: str) -> str:
     def replace(m: re.Match[str]) -> str:
         source = m.group(1)
@@ -309,7 +317,7 @@ def _flowchart(text: str) -> str:
         )
         if shutil.which("dot") is None:
             LOG.warning("Graphviz's `dot` is not installed: the flowchart is shown as source only")
-            return shown
+            return NO_GRAPHVIZ + f"```text\n{source}```\n"
         dot = mermaid_to_dot(source)
         return (
             "```{graphviz}\n:align: center\n"

@@ -9,9 +9,9 @@ them sums up the facts used here, and each constant below gives its source or re
 The worlds' enclosure is in the files: every one of the 200 bundled worlds holds, besides the
 obstacle field, cylinders along ``x = -4.425`` and ``x = -0.075`` from ``y = 0.075`` to
 ``y = 9.525`` and along ``y = 0.075`` (touching cylinders of radius 0.075 m 0.15 m apart:
-closed walls). The side beyond ``y = 9.6``, towards the goal, is open ground in Gazebo too, so a BARN
-world here is unbounded (``bounds=None``) with those walls as obstacles, exactly what the robot
-meets in BARN.
+closed walls). The side beyond ``y = 9.6``, towards the goal, is open ground in Gazebo too,
+so a BARN world here is unbounded (``bounds=None``) with those walls as obstacles, exactly
+what the robot meets in BARN.
 
 Units are metres and seconds.
 """
