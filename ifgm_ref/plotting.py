@@ -63,8 +63,9 @@ RARE_MARKER: MarkerStyle = {
 }
 
 
-def draw_world(ax: Axes, world: World) -> None:
-    """Draw the obstacles, the bounds, the start and the goal on ``ax``."""
+def draw_world(ax: Axes, world: World, *, unit: str = "ft") -> None:
+    """Draw the obstacles, the bounds, the start and the goal on ``ax``; axes labelled in
+    ``unit`` (ft in the paper's worlds, m in Gazebo's and BARN's)."""
     for i, ob in enumerate(world.obstacles):
         label = "obstacle" if i == 0 else None
         if isinstance(ob, Circle):
@@ -84,8 +85,8 @@ def draw_world(ax: Axes, world: World) -> None:
     ax.plot(sx, sy, marker="o", color="tab:green", markersize=8, linestyle="none", label="start")
     ax.plot(*world.goal, marker="*", color="tab:red", markersize=13, linestyle="none", label="goal")
     ax.set_aspect("equal")
-    ax.set_xlabel("x (ft)")
-    ax.set_ylabel("y (ft)")
+    ax.set_xlabel(f"x ({unit})")
+    ax.set_ylabel(f"y ({unit})")
 
 
 def finest_colouring(trace: Sequence[TraceStep]) -> str:
@@ -207,12 +208,18 @@ def draw_believed_path(ax: Axes, trace: Sequence[TraceStep]) -> bool:
 
 
 def plot_run(
-    world: World, trace: Sequence[TraceStep], result: Result, *, colour_by: str = "behaviour"
+    world: World,
+    trace: Sequence[TraceStep],
+    result: Result,
+    *,
+    colour_by: str = "behaviour",
+    unit: str = "ft",
 ) -> Figure:
     """A figure of one episode: world, path by behaviour (or branch), switches, field of view,
-    and the believed path where odometry noise moved it off the true one."""
+    and the believed path where odometry noise moved it off the true one; lengths in
+    ``unit``."""
     fig, ax = plt.subplots(figsize=(9.5, 5), layout="constrained")
-    draw_world(ax, world)
+    draw_world(ax, world, unit=unit)
     wedges = [(trace[i].x, trace[i].y, trace[i].theta) for i in switch_indices(trace)[:MAX_WEDGES]]
     draw_field_of_view(ax, world, wedges)
     draw_path(ax, trace, world.robot.radius, colour_by=colour_by, by_frequency=True)
@@ -224,7 +231,7 @@ def plot_run(
     name = world.name or "world"
     ax.set_title(
         f"{result.planner} in {name}: {result.stop_reason} after {result.time_s:.1f} s, "
-        f"path {result.path_length:.1f} ft"
+        f"path {result.path_length:.1f} {unit}"
     )
     fig.legend(loc="outside right upper", fontsize="small")
     return fig

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import csv
+import json
 import math
 import shutil
 from pathlib import Path
@@ -17,6 +18,7 @@ from ifgm_ref.errors import ParameterError, WorldError
 from ifgm_ref.planners import make_planner
 from ifgm_ref.simulator import simulate
 from ifgm_ref.world import Circle
+from tests.test_cli import run_cli
 
 BARN = Path(__file__).parent / "worlds" / "barn"
 INDICES = [1, 2, 4, 245]
@@ -182,3 +184,56 @@ def test_cli_bench_barn_runs_the_bundled_worlds_without_a_folder(
     with (out / "results.csv").open() as source:
         assert [r["world"] for r in csv.DictReader(source)] == ["barn-001", "barn-002"]
     assert "- worlds: 2 BARN worlds from ifgm-ref's bundled set" in (out / "summary.md").read_text()
+
+
+def _simulate_json(*args: str) -> dict[str, object]:
+    done = run_cli("simulate", *args, "--json")
+    assert done.returncode == 0, done.stderr
+    result: dict[str, object] = json.loads(done.stdout)
+    return result
+
+
+def test_simulate_runs_a_barn_world_as_the_bench_does(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """``simulate barn:N`` (and the world file itself) prints the BARN score ``bench --barn``
+    gives that world: the same robot, sensor, time step, limit and success radius."""
+    monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path))
+    (spec,) = barn_specs(BARN, indices={4})
+    (row,) = run_world(spec, ("ifgm",))
+    assert row.reached and row.barn_score is not None
+    for args in (
+        ["barn:4", "--barn-dir", str(BARN)],
+        ["barn:4"],  # the bundled set
+        [str(BARN / "world_4.world")],
+    ):
+        result = _simulate_json(*args, "--planner", "ifgm")
+        assert (result["world"], result["time_s"]) == ("barn-004", row.time_s), args
+        assert result["barn_score"] == row.barn_score
+        assert result["reference_length"] == row.reference_length
+
+
+@pytest.mark.parametrize(
+    ("args", "message"),
+    [
+        (["barn:3"], "barn:3: the bundled BARN worlds are those with N % 3 != 0"),
+        (["barn:7", "--barn-dir", str(BARN)], "no BARN world(s) 7 in"),
+        (["post", "--sensor", "paper_ir"], "--sensor applies to Gazebo worlds"),
+        (["post", "--start", "0,0,0"], "--start applies to Gazebo worlds"),
+        ([str(BARN / "world_1.world"), "--barn-dir", str(BARN)], "--barn-dir applies to barn:N"),
+        (["missing.world"], "missing.world: no such Gazebo world file"),
+    ],
+)
+def test_simulate_refuses_what_a_barn_world_cannot_take(args: list[str], message: str) -> None:
+    done = run_cli("simulate", *args, "--planner", "straight")
+    assert done.returncode == 2 and done.stdout == ""
+    assert len(done.stderr.splitlines()) == 1 and message in done.stderr, done.stderr
+
+
+def test_a_gazebo_world_takes_its_start_and_goal_from_options() -> None:
+    result = _simulate_json(
+        str(BARN / "world_1.world"), "--planner", "ifgm", "--start=-2,3,1.5708",
+        "--goal=-2,11",
+    )  # fmt: skip
+    assert result["reached"] is True
+    assert "barn_score" in result  # still BARN's world 1, with its path

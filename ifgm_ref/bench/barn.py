@@ -241,3 +241,68 @@ def load_barn_world(
     return load_sdf_world(
         world_file, start=START, goal=GOAL, name=name, robot=ROBOT, sensor=barn_sensor(sensor)
     )
+
+
+#: ``simulate``'s name for BARN's world N: ``barn:N``.
+_BARN_NAME = re.compile(r"barn:(\d+)")
+
+
+@dataclass(frozen=True)
+class GazeboTask:
+    """A Gazebo world with BARN's task: the world (robot and sensor included), the simulation
+    settings, and BARN's reference path length L when the world is one of BARN's with its path
+    file (``None`` otherwise: no BARN score)."""
+
+    world: World
+    sim: SimParams
+    reference_length: float | None
+
+
+def gazebo_task(
+    spec: str,
+    *,
+    folder: str | os.PathLike[str] | None = None,
+    sensor: str = DEFAULT_SENSOR,
+    start: Pose | None = None,
+    goal: Point | None = None,
+) -> GazeboTask | None:
+    """The task ``simulate`` runs for ``spec``: ``barn:N`` (BARN's world N in ``folder``, by
+    default the bundled set) or a Gazebo world file (``.world``, ``.sdf``); ``None`` for
+    anything else (a JSON world file or a built-in world).
+
+    Both get BARN's robot, the sensor preset ``sensor``, and BARN's time step, 100 s and 1 m
+    success radius (:data:`SIM`), as ``bench --barn`` runs them; start and goal are BARN's
+    unless given. A file named ``world_N.world`` with ``path_N.npy`` beside it (or in
+    ``path_files/``) is BARN's world N and gets its reference length.
+    """
+    match = _BARN_NAME.fullmatch(spec)
+    path = Path(spec)
+    if match is None and path.suffix.lower() not in (".world", ".sdf"):
+        return None
+    if match is not None:
+        index = int(match.group(1))
+        if folder is None and index % 3 == 0:
+            raise WorldError(
+                f"{spec}: the bundled BARN worlds are those with N % 3 != 0; for the other 100 "
+                "give the folder of all 300 (a clone of BARN's repository)"
+            )
+        (files,) = find_barn_worlds(folder or bundled_barn_folder(), {index})
+        path = files.world
+    elif not path.is_file():
+        raise WorldError(f"{spec}: no such Gazebo world file")
+    reference = None
+    numbered = _WORLD.fullmatch(path.name)
+    if numbered is not None:
+        try:
+            (found,) = find_barn_worlds(path.parent, {int(numbered.group(1))})
+        except WorldError:
+            pass  # a world_N.world without its path: no BARN score
+        else:
+            if found.world.resolve() == path.resolve():
+                reference = reference_length(found.path)
+    name = f"barn-{int(numbered.group(1)):03d}" if numbered else path.stem
+    world = load_sdf_world(
+        path, start=start or START, goal=goal or GOAL, name=name, robot=ROBOT,
+        sensor=barn_sensor(sensor),
+    )  # fmt: skip
+    return GazeboTask(world, SIM, reference)

@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import argparse
+import math
+from collections.abc import Callable
 from pathlib import Path
 from typing import TYPE_CHECKING, NoReturn
 
@@ -110,3 +112,28 @@ def output_folder(option: str, name: str) -> None:
         raise ParameterError(
             f"{option} {name}: cannot make its folder {str(folder)!r}: {err.strerror or err}"
         ) from None
+
+
+def numbers(count: int) -> Callable[[str], tuple[float, ...]]:
+    """Argument type: ``count`` comma-separated finite numbers (a pose, a point).
+
+    >>> numbers(2)("-2, 13")
+    (-2.0, 13.0)
+    >>> numbers(3)("1,2")
+    Traceback (most recent call last):
+    ...
+    argparse.ArgumentTypeError: expected 3 comma-separated numbers, got '1,2'
+    """
+
+    def parse(text: str) -> tuple[float, ...]:
+        try:
+            values = tuple(float(part) for part in text.split(","))
+        except ValueError:
+            values = ()
+        if len(values) != count or not all(math.isfinite(v) for v in values):
+            raise argparse.ArgumentTypeError(
+                f"expected {count} comma-separated numbers, got {text!r}"
+            )
+        return values
+
+    return parse

@@ -3,20 +3,24 @@
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import json
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+from ifgm_ref.bench.barn import DEFAULT_SENSOR, GazeboTask, barn_score, gazebo_task
 from ifgm_ref.cli.common import (
     add_timeout_options,
     non_negative_int,
+    numbers,
     output_folder,
     positive_float,
 )
 from ifgm_ref.errors import ParameterError
 from ifgm_ref.noise import KINDS, NoiseLevels
-from ifgm_ref.params import SimParams
+from ifgm_ref.params import SENSOR_PRESETS, SimParams
 from ifgm_ref.planners import PLANNERS
+from ifgm_ref.pose import Point, Pose
 from ifgm_ref.scenarios import resolve_world
 from ifgm_ref.simulator import Run, simulate
 from ifgm_ref.world import World
@@ -32,7 +36,12 @@ ANIMATION_SUFFIXES = (".gif",)
 def add_simulate(sub: Subcommands) -> None:
     """Add ``simulate`` to the subcommands."""
     sim = sub.add_parser("simulate", help="run one planner in one world")
-    sim.add_argument("world", metavar="WORLD", help="a world file (JSON) or a built-in world name")
+    sim.add_argument(
+        "world",
+        metavar="WORLD",
+        help="a world file (JSON), a built-in world name, a Gazebo world (.world, .sdf) or "
+        "barn:N (BARN's world N; docs/benchmark.md)",
+    )
     sim.add_argument(
         "--planner",
         metavar="NAME",
@@ -58,7 +67,36 @@ def add_simulate(sub: Subcommands) -> None:
         "planner's stop fails): for CI scripts",
     )
     _add_output_options(sim)
+    _add_gazebo_options(sim)
     sim.set_defaults(func=run_simulate)
+
+
+def _add_gazebo_options(sim: argparse.ArgumentParser) -> None:
+    """Where BARN's worlds are, and the task in a Gazebo world (which holds none)."""
+    sim.add_argument(
+        "--barn-dir",
+        metavar="DIR",
+        help="with barn:N: BARN's worlds in DIR (a folder of world_N.world and path_N.npy, or a "
+        "clone of BARN's repository; default: the 200 that ship with ifgm-ref)",
+    )
+    sim.add_argument(
+        "--sensor",
+        choices=sorted(SENSOR_PRESETS),
+        help=f"with a Gazebo world or barn:N: the sensor preset (default {DEFAULT_SENSOR})",
+    )
+    sim.add_argument(
+        "--start",
+        type=numbers(3),
+        metavar="X,Y,THETA",
+        help="with a Gazebo world or barn:N: the start pose, m and rad (default BARN's, "
+        "-2,3,pi/2; write --start=-2,3,1.57 when it begins with a minus)",
+    )
+    sim.add_argument(
+        "--goal",
+        type=numbers(2),
+        metavar="X,Y",
+        help="with a Gazebo world or barn:N: the goal, m (default BARN's, --goal=-2,13)",
+    )
 
 
 def _add_output_options(sim: argparse.ArgumentParser) -> None:
@@ -96,11 +134,13 @@ def _add_output_options(sim: argparse.ArgumentParser) -> None:
 
 def run_simulate(args: argparse.Namespace) -> int:
     """Run ``ifgm-ref simulate``; return the exit status."""
-    world = resolve_world(args.world)
+    task = _gazebo_task(args)
+    world = resolve_world(args.world) if task is None else task.world
     if args.noise is not None or args.noise_seed is not None:
         world = NoiseLevels.parse(args.noise or "").apply(world, args.noise_seed)
-    defaults = SimParams()
-    sim = SimParams(
+    defaults = SimParams() if task is None else task.sim
+    sim = dataclasses.replace(
+        defaults,
         dt=defaults.dt if args.dt is None else args.dt,
         max_time=defaults.max_time if args.max_time is None else args.max_time,
         goal_tolerance=defaults.goal_tolerance
@@ -123,13 +163,32 @@ def run_simulate(args: argparse.Namespace) -> int:
 
         params = planner_params(args.planner, args.param or [])
         run = simulate(world, load_planner(args.planner), sim, params=params, progress=None)
-    _write_outputs(args, world, run)
-    _print_result(args, run)
+    _write_outputs(args, world, run, "ft" if task is None else "m")
+    _print_result(args, run, task)
     return 1 if args.require_goal and not run.result.reached else 0
 
 
-def _write_outputs(args: argparse.Namespace, world: World, run: Run) -> None:
-    """Write the trace, the plot and the animation that were asked for."""
+def _gazebo_task(args: argparse.Namespace) -> GazeboTask | None:
+    """The Gazebo or BARN task of ``args.world`` (None for a JSON world or a built-in one,
+    which take none of the Gazebo options)."""
+    task = gazebo_task(
+        args.world,
+        folder=args.barn_dir,
+        sensor=args.sensor or DEFAULT_SENSOR,
+        start=None if args.start is None else Pose(*args.start),
+        goal=None if args.goal is None else Point(*args.goal),
+    )
+    given = [o for o in ("barn_dir", "sensor", "start", "goal") if getattr(args, o) is not None]
+    if task is None and given:
+        flag = "--" + given[0].replace("_", "-")
+        raise ParameterError(f"{flag} applies to Gazebo worlds (.world, .sdf) and barn:N only")
+    if args.barn_dir is not None and not args.world.startswith("barn:"):
+        raise ParameterError("--barn-dir applies to barn:N only")
+    return task
+
+
+def _write_outputs(args: argparse.Namespace, world: World, run: Run, unit: str) -> None:
+    """Write the trace, the plot and the animation that were asked for (lengths in ``unit``)."""
     result = run.result
     if args.trace:
         path = Path(args.trace)
@@ -138,25 +197,36 @@ def _write_outputs(args: argparse.Namespace, world: World, run: Run) -> None:
         from ifgm_ref.plotting import animate_run, plot_run, save_figure
 
         if args.plot:
-            save_figure(plot_run(world, run.trace, result, colour_by=args.colour_by), args.plot)
+            figure = plot_run(world, run.trace, result, colour_by=args.colour_by, unit=unit)
+            save_figure(figure, args.plot)
         if args.animate:
             animate_run(world, run.trace, result, args.animate)
 
 
-def _print_result(args: argparse.Namespace, run: Run) -> None:
-    """Print the result: one JSON object (``--json``) or a sentence."""
+def _print_result(args: argparse.Namespace, run: Run, task: GazeboTask | None) -> None:
+    """Print the result: one JSON object (``--json``) or a sentence; for a BARN world, with
+    its BARN score (``barn_score``, from its reference path length). Lengths are in ft, or in
+    m in a Gazebo world."""
     result = run.result
+    reference = None if task is None else task.reference_length
+    score = None if reference is None else barn_score(result.reached, result.time_s, reference)
     if args.json:
-        print(json.dumps(result.to_json_dict()))
+        extra = {} if score is None else {"barn_score": score, "reference_length": reference}
+        print(json.dumps({**result.to_json_dict(), **extra}))
         return
-    clearance = "n/a" if result.min_clearance == float("inf") else f"{result.min_clearance:.3f} ft"
+    unit = "ft" if task is None else "m"
+    clearance = (
+        "n/a" if result.min_clearance == float("inf") else f"{result.min_clearance:.3f} {unit}"
+    )
     print(
         f"{result.planner} in {result.world or args.world}: {result.stop_reason} "
         f"(reached={result.reached}, collided={result.collided}) after {result.time_s:.1f} s, "
-        f"{result.steps} steps, path {result.path_length:.2f} ft, min clearance {clearance}"
+        f"{result.steps} steps, path {result.path_length:.2f} {unit}, min clearance {clearance}"
     )
     if result.detail:
         print(f"detail: {result.detail}")
+    if score is not None:
+        print(f"BARN score {score:.3f} (reference path {reference:.2f} m; best 0.5)")
 
 
 def check_outputs(args: argparse.Namespace) -> None:
