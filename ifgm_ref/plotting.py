@@ -252,16 +252,18 @@ def animate_run(
     fps: int = 12,
     max_frames: int = MAX_FRAMES,
     progress: bool | None = None,
+    unit: str = "ft",
 ) -> int:
     """Write a GIF of the episode: the robot, its scan rays and the path so far.
 
     The scan is re-cast from each sample's pose with the world's sensor (as the planner saw
     it, noise aside). A bar on stderr counts the frames rendered (rendering takes about
     0.15 s a frame): ``progress=None`` shows it only when stderr is a terminal, ``True``
-    always, ``False`` never. Returns the number of frames written (at most ``max_frames``).
+    always, ``False`` never. Lengths are labelled in ``unit``. Returns the number of frames
+    written (at most ``max_frames``).
     """
     frames = np.unique(np.linspace(0, len(trace) - 1, min(len(trace), max_frames)).astype(int))
-    fig, show = _animation(world, trace, result)
+    fig, show = _animation(world, trace, result, unit)
     disable = None if progress is None else not progress
     with tqdm(  # every frame shown: each takes some 0.15 s to render
         total=len(frames),
@@ -280,14 +282,14 @@ def animate_run(
 
 
 def _animation(
-    world: World, trace: Sequence[TraceStep], result: Result
+    world: World, trace: Sequence[TraceStep], result: Result, unit: str
 ) -> tuple[Figure, Callable[[int], None]]:
     """Draw what stays in every frame of :func:`animate_run`'s GIF; return the figure and the
     function that shows sample ``k`` of ``trace`` in it: the path so far, the robot, its scan
     rays and a title with the time and the branch (or behaviour)."""
     sensor = IRSensor(world)
     fig, ax = plt.subplots(figsize=(7, 4.5), layout="constrained")
-    draw_world(ax, world)
+    draw_world(ax, world, unit=unit)
     xs = np.array([s.x for s in trace])
     ys = np.array([s.y for s in trace])
     (line,) = ax.plot([], [], color="tab:blue", linewidth=1.6, label=f"{result.planner} path")

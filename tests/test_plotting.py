@@ -170,3 +170,26 @@ def test_a_counterexample_is_coloured_by_branch_only_where_the_planner_reports_o
     labels = [t.get_text() for t in _legend(fig).get_texts()]
     assert not any(label.startswith("none") for label in labels), labels
     plt.close(fig)
+
+
+def test_plots_and_animations_label_lengths_in_the_worlds_unit(tmp_path: Path) -> None:
+    """ft by default (the paper's worlds), m where ``simulate`` runs a Gazebo or BARN world."""
+    world = resolve_world("post")
+    run = simulate(world, IFGMPlanner())
+    for unit in ("ft", "m"):
+        fig = plot_run(world, run.trace, run.result, unit=unit)
+        ax = fig.axes[0]
+        assert (ax.get_xlabel(), ax.get_ylabel()) == (f"x ({unit})", f"y ({unit})")
+        assert ax.get_title().endswith(f" {unit}")
+        plt.close(fig)
+    shown: list[str] = []
+    original = plt.Figure.savefig
+
+    def keep_labels(fig: plt.Figure, *args: object, **kwargs: object) -> None:
+        shown.append(fig.axes[0].get_xlabel())
+        original(fig, *args, **kwargs)
+
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr(plt.Figure, "savefig", keep_labels)
+        animate_run(world, run.trace[:3], run.result, tmp_path / "m.gif", unit="m")
+    assert shown and set(shown) == {"x (m)"}

@@ -200,7 +200,7 @@ def _write_outputs(args: argparse.Namespace, world: World, run: Run, unit: str) 
             figure = plot_run(world, run.trace, result, colour_by=args.colour_by, unit=unit)
             save_figure(figure, args.plot)
         if args.animate:
-            animate_run(world, run.trace, result, args.animate)
+            animate_run(world, run.trace, result, args.animate, unit=unit)
 
 
 def _print_result(args: argparse.Namespace, run: Run, task: GazeboTask | None) -> None:
