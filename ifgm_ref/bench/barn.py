@@ -31,6 +31,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ifgm_ref.cache import user_cache
 from ifgm_ref.errors import ParameterError, WorldError
 from ifgm_ref.gazebo import load_sdf_world
 from ifgm_ref.params import SENSOR_PRESETS, RobotParams, SensorParams, SimParams, paper_ir
@@ -140,15 +141,15 @@ BUNDLED = Path(__file__).parent / "barn_worlds" / "barn-200.tar.xz"
 
 def bundled_barn_folder() -> Path:
     """The folder of the bundled worlds (``world_N.world``, ``path_N.npy``), unpacked from
-    :data:`BUNDLED` at the first call into ``$XDG_CACHE_HOME/ifgm-ref`` (``~/.cache/ifgm-ref``)
-    under the tarball's hash, then reused.
+    :data:`BUNDLED` at the first call into :func:`~ifgm_ref.cache.user_cache`, under the
+    tarball's hash, then reused.
 
     Only regular files named ``barn/world_N.world`` or ``barn/path_N.npy`` are unpacked; two
     processes unpacking at once each unpack into a folder of their own and keep the first
     that lands.
     """
     data = BUNDLED.read_bytes()
-    cache = Path(os.environ.get("XDG_CACHE_HOME") or Path.home() / ".cache") / "ifgm-ref"
+    cache = user_cache()
     folder = cache / f"barn-200-{hashlib.sha256(data).hexdigest()[:12]}"
     if folder.is_dir():
         return folder
@@ -279,6 +280,7 @@ def gazebo_task(
     path = Path(spec)
     if match is None and path.suffix.lower() not in (".world", ".sdf"):
         return None
+    files: BarnFiles | None
     if match is not None:
         index = int(match.group(1))
         if folder is None and index % 3 == 0:
@@ -287,22 +289,27 @@ def gazebo_task(
                 "give the folder of all 300 (a clone of BARN's repository)"
             )
         (files,) = find_barn_worlds(folder or bundled_barn_folder(), {index})
-        path = files.world
     elif not path.is_file():
         raise WorldError(f"{spec}: no such Gazebo world file")
-    reference = None
-    numbered = _WORLD.fullmatch(path.name)
-    if numbered is not None:
-        try:
-            (found,) = find_barn_worlds(path.parent, {int(numbered.group(1))})
-        except WorldError:
-            pass  # a world_N.world without its path: no BARN score
-        else:
-            if found.world.resolve() == path.resolve():
-                reference = reference_length(found.path)
-    name = f"barn-{int(numbered.group(1)):03d}" if numbered else path.stem
+    else:
+        files = _barn_files_of(path)
     world = load_sdf_world(
-        path, start=start or START, goal=goal or GOAL, name=name, robot=ROBOT,
-        sensor=barn_sensor(sensor),
+        path if files is None else files.world,
+        start=start or START, goal=goal or GOAL,
+        name=path.stem if files is None else f"barn-{files.index:03d}",
+        robot=ROBOT, sensor=barn_sensor(sensor),
     )  # fmt: skip
-    return GazeboTask(world, SIM, reference)
+    return GazeboTask(world, SIM, None if files is None else reference_length(files.path))
+
+
+def _barn_files_of(path: Path) -> BarnFiles | None:
+    """BARN's files of the world file ``path`` when it is ``world_N.world`` with its
+    ``path_N.npy`` beside it (or in ``path_files/``), else ``None`` (no BARN score)."""
+    numbered = _WORLD.fullmatch(path.name)
+    if numbered is None:
+        return None
+    try:
+        (files,) = find_barn_worlds(path.parent, {int(numbered.group(1))})
+    except WorldError:
+        return None
+    return files if files.world.resolve() == path.resolve() else None

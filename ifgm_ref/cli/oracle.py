@@ -5,9 +5,9 @@ from __future__ import annotations
 import argparse
 import os
 import sys
-from pathlib import Path
 from typing import TYPE_CHECKING, TextIO
 
+from ifgm_ref.cache import user_cache
 from ifgm_ref.cli.common import add_timeout_options
 from ifgm_ref.errors import ParameterError
 from ifgm_ref.noise import KINDS
@@ -142,20 +142,13 @@ def run_oracle(args: argparse.Namespace) -> int:
     return 0 if report.ok else 1
 
 
-def hypothesis_cache() -> Path:
-    """Where ``ifgm-ref oracle`` lets Hypothesis keep its files (a cache of the constants it
-    found in the code; the oracle keeps no example database): ``$XDG_CACHE_HOME/ifgm-ref``, or
-    ``~/.cache/ifgm-ref``, then ``hypothesis``."""
-    cache = os.environ.get("XDG_CACHE_HOME") or str(Path.home() / ".cache")
-    return Path(cache) / "ifgm-ref" / "hypothesis"
-
-
 def keep_hypothesis_out_of_the_working_folder() -> None:
-    """Point Hypothesis at :func:`hypothesis_cache` instead of ``./.hypothesis`` (its default),
-    unless ``$HYPOTHESIS_STORAGE_DIRECTORY`` chooses a folder; through that variable, so the
-    worker processes of ``--jobs`` inherit it however they start."""
+    """Point Hypothesis (a cache of the constants it found in the code; the oracle keeps no
+    example database) at ``hypothesis`` in :func:`~ifgm_ref.cache.user_cache` instead of
+    ``./.hypothesis``, unless ``$HYPOTHESIS_STORAGE_DIRECTORY`` chooses a folder; through that
+    variable, so the worker processes of ``--jobs`` inherit it however they start."""
     if not os.environ.get("HYPOTHESIS_STORAGE_DIRECTORY"):
-        os.environ["HYPOTHESIS_STORAGE_DIRECTORY"] = str(hypothesis_cache())
+        os.environ["HYPOTHESIS_STORAGE_DIRECTORY"] = str(user_cache() / "hypothesis")
 
 
 def same_terminal(out: TextIO, err: TextIO) -> bool:

@@ -163,8 +163,9 @@ def run_simulate(args: argparse.Namespace) -> int:
 
         params = planner_params(args.planner, args.param or [])
         run = simulate(world, load_planner(args.planner), sim, params=params, progress=None)
-    _write_outputs(args, world, run, "ft" if task is None else "m")
-    _print_result(args, run, task)
+    unit = "ft" if task is None else "m"  # Gazebo worlds are in metres
+    _write_outputs(args, world, run, unit)
+    _print_result(args, run, task, unit)
     return 1 if args.require_goal and not run.result.reached else 0
 
 
@@ -203,10 +204,9 @@ def _write_outputs(args: argparse.Namespace, world: World, run: Run, unit: str) 
             animate_run(world, run.trace, result, args.animate, unit=unit)
 
 
-def _print_result(args: argparse.Namespace, run: Run, task: GazeboTask | None) -> None:
-    """Print the result: one JSON object (``--json``) or a sentence; for a BARN world, with
-    its BARN score (``barn_score``, from its reference path length). Lengths are in ft, or in
-    m in a Gazebo world."""
+def _print_result(args: argparse.Namespace, run: Run, task: GazeboTask | None, unit: str) -> None:
+    """Print the result: one JSON object (``--json``) or a sentence, lengths in ``unit``; for
+    a BARN world, with its BARN score (``barn_score``, from its reference path length)."""
     result = run.result
     reference = None if task is None else task.reference_length
     score = None if reference is None else barn_score(result.reached, result.time_s, reference)
@@ -214,7 +214,6 @@ def _print_result(args: argparse.Namespace, run: Run, task: GazeboTask | None) -
         extra = {} if score is None else {"barn_score": score, "reference_length": reference}
         print(json.dumps({**result.to_json_dict(), **extra}))
         return
-    unit = "ft" if task is None else "m"
     clearance = (
         "n/a" if result.min_clearance == float("inf") else f"{result.min_clearance:.3f} {unit}"
     )
