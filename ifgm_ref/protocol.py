@@ -20,7 +20,7 @@ from typing import Any, Protocol, runtime_checkable
 from ifgm_ref.laserscan import LaserScan
 from ifgm_ref.paper import traces
 from ifgm_ref.params import RobotParams, SensorParams
-from ifgm_ref.pose import Point, Pose
+from ifgm_ref.pose import Point, Pose, wrap_angle
 
 
 class Behaviour(StrEnum):
@@ -74,6 +74,13 @@ class Command:
         The decision branch taken at this step (IFGM: the Figure 3 flowchart branch).
     stop : str, optional
         Set to end the episode with this stop reason, e.g. ``"goal_unreachable"``.
+    turn_rate : float, optional
+        Set for a velocity command, ROS's ``geometry_msgs/Twist`` (``speed`` is then its
+        ``linear.x`` and ``turn_rate`` its ``angular.z``, rad/s, positive to the left): the
+        robot turns at this rate, within ``max_turn_rate``, whatever ``heading`` says. Build
+        such a command with :meth:`from_twist`, which sets ``heading`` to where the turn
+        leads within the step, so that traces, plots and the oracle's comparisons read both
+        forms alike.
     """
 
     heading: float
@@ -81,13 +88,74 @@ class Command:
     behaviour: str | None = None
     branch: str | None = None
     stop: str | None = None
+    turn_rate: float | None = None
+
+    @classmethod
+    def from_twist(
+        cls,
+        linear: float,
+        angular: float,
+        pose: Pose,
+        params: EpisodeParams,
+        *,
+        behaviour: str | None = None,
+        branch: str | None = None,
+        stop: str | None = None,
+    ) -> Command:
+        """The velocity command ``(linear, angular)`` (ft/s, rad/s) decided at ``pose``.
+
+        Its ``heading`` is the heading the robot reaches after one step ``params.dt`` at
+        ``angular`` limited to ``max_turn_rate``: the heading command that moves the robot
+        exactly as the twist does (:func:`ifgm_ref.robot.advance`).
+
+        >>> params = EpisodeParams()  # max_turn_rate pi/2 rad/s, dt 0.1 s
+        >>> command = Command.from_twist(1.0, 0.5, Pose(0.0, 0.0, 1.0), params)
+        >>> round(command.heading, 12), command.speed, command.turn_rate
+        (1.05, 1.0, 0.5)
+        >>> Command.from_twist(1.0, 100.0, Pose(0.0, 0.0, 0.0), params).heading == math.pi / 20
+        True
+        """
+        limit = params.robot.max_turn_rate
+        turn = min(max(angular, -limit), limit) * params.dt if math.isfinite(angular) else 0.0
+        return cls(
+            heading=wrap_angle(pose.theta + turn),
+            speed=linear,
+            behaviour=behaviour,
+            branch=branch,
+            stop=stop,
+            turn_rate=angular,
+        )
+
+    def twist(self, pose: Pose, params: EpisodeParams) -> tuple[float, float]:
+        """This command as ROS's ``(linear.x, angular.z)`` when decided at ``pose``: the
+        speed and turn rate the robot executes over one step ``params.dt`` (``speed``
+        clipped to the robot's, the turn towards ``heading`` limited to ``max_turn_rate``).
+
+        >>> params = EpisodeParams()  # 1.32 ft/s (0.4 m/s), pi/2 rad/s, dt 0.1 s
+        >>> linear, angular = Command(0.1, 2.0).twist(Pose(0.0, 0.0, 0.0), params)
+        >>> round(linear, 2), round(angular, 12)
+        (1.32, 1.0)
+        >>> Command(3.0, 0.5).twist(Pose(0.0, 0.0, 0.0), params) == (0.5, math.pi / 2)
+        True
+        """
+        robot = params.robot
+        speed = min(self.speed, robot.speed)
+        rate = self.turn_rate
+        if rate is None:
+            rate = wrap_angle(self.heading - pose.theta) / params.dt
+        return speed, min(max(rate, -robot.max_turn_rate), robot.max_turn_rate)
 
     def problem(self) -> str | None:
         """Say what is wrong with this command, or ``None`` when it can be executed."""
         if not math.isfinite(self.heading):
             return f"heading={self.heading!r}, but should be finite"
         if not math.isfinite(self.speed) or self.speed < 0:
-            return f"speed={self.speed!r}, but should be finite and >= 0"
+            what = "speed" if self.turn_rate is None else "linear velocity"
+            return (
+                f"{what}={self.speed!r}, but should be finite and >= 0 (the robot does not reverse)"
+            )
+        if self.turn_rate is not None and not math.isfinite(self.turn_rate):
+            return f"angular velocity={self.turn_rate!r}, but should be finite"
         return None
 
 

@@ -238,12 +238,16 @@ def test_a_seeded_profile_draws_repeatable_random_examples() -> None:
 @pytest.mark.parametrize(
     "variant",
     # Half a minute each in process: the default run keeps the wobble (the port the oracle
-    # issue saw rejected); `pytest -m slow` runs the other two.
-    [v if v == "heading_wobble" else pytest.param(v, marks=pytest.mark.slow) for v in VARIANTS],
+    # issue saw rejected) and the velocity commands; `pytest -m slow` runs the other two.
+    [
+        v if v in ("heading_wobble", "twist") else pytest.param(v, marks=pytest.mark.slow)
+        for v in VARIANTS
+    ],
 )
 def test_faithful_variants_pass_the_quick_profile(variant: str) -> None:
-    """A port may wobble its heading by a degree, compute in float32 or break exact ties the
-    other way (ifgm_ref/oracle/variants.py): no check of the quick profile fails it."""
+    """A port may wobble its heading by a degree, compute in float32, break exact ties the
+    other way or answer velocity commands (ifgm_ref/oracle/variants.py): no check of the
+    quick profile fails it."""
     impl = Implementation.from_spec(f"ifgm_ref.oracle.variants:{VARIANTS[variant].__name__}")
     _passes_the_quick_profile(impl)
 
@@ -269,11 +273,18 @@ def test_faithful_variants_pass_the_quick_profile_through_serve(variant: str) ->
         impl.close()
 
 
-def test_serve_gives_the_in_process_verdicts_for_the_reference() -> None:
+@pytest.mark.parametrize(
+    ("spec", "options"), [("ifgm", ()), ("ifgm_ref.oracle.variants:Twist", ("--twist",))]
+)
+def test_serve_gives_the_in_process_verdicts_for_the_reference(
+    spec: str, options: tuple[str, ...]
+) -> None:
+    """``ifgm-ref serve`` gives the verdicts of the planner in process; with ``--twist`` the
+    reference answers velocity commands, and those of its in-process twin."""
     small = Profile("small", 8)
     checks = ["converges_symmetric", "deterministic"]
-    inside = check_planner("ifgm", profile=small, checks=checks, artifacts=None)
-    impl = Implementation.from_command(_serve("ifgm"), timeout=30.0)
+    inside = check_planner(spec, profile=small, checks=checks, artifacts=None)
+    impl = Implementation.from_command([*_serve("ifgm"), *options], timeout=30.0)
     try:
         outside = check_planner(impl, profile=small, checks=checks, artifacts=None)
     finally:

@@ -227,7 +227,10 @@ DROP = object()
         ({"speed": DROP}, "command.speed: missing"),
         ({"behaviour": 3}, "command.behaviour: must be a string or null, got 3"),
         ({"stop": False}, "command.stop: must be a string or null, got False"),
-        ({"behavior": "x"}, "command: unknown field(s) 'behavior'; allowed: behaviour, branch"),
+        ({"behavior": "x"}, "command: unknown field(s) 'behavior'; allowed: angular, behaviour"),
+        ({"angular": 0.5}, "command: has heading, speed, angular; give heading and speed"),
+        ({"heading": DROP, "speed": DROP, "linear": 1.0}, "command.angular: missing"),
+        ({"heading": DROP, "speed": DROP, "linear": 1.0, "angular": "x"}, "command.angular: must"),
         ({"type": "ready"}, "type 'ready', but should be 'command'"),
         ({"type": DROP}, "type None, but should be 'command'"),
     ],
@@ -235,8 +238,25 @@ DROP = object()
 def test_malformed_command_is_named_field_by_field(change: dict[str, Any], message: str) -> None:
     command = {k: v for k, v in {**COMMAND, **change}.items() if v is not DROP}
     with pytest.raises(ProtocolError) as info:
-        parse_command(command)
+        parse_command(command, at=(Pose(0.0, 0.0, 0.0), EpisodeParams()))
     assert message in str(info.value)
+
+
+@given(pose=poses, linear=finite, angular=finite, params=episodes)
+def test_a_velocity_command_round_trips_exactly(
+    pose: Pose, linear: float, angular: float, params: EpisodeParams
+) -> None:
+    command = Command.from_twist(linear, angular, pose, params, branch="case1_gap")
+    back = parse_command(through_the_wire(command_message(command)), at=(pose, params))
+    assert back == command
+    assert bits((back.heading, back.speed, back.turn_rate)) == bits(
+        (command.heading, command.speed, command.turn_rate)
+    )
+
+
+def test_a_velocity_command_needs_the_pose_it_answers() -> None:
+    with pytest.raises(ProtocolError, match="needs the pose it answers"):
+        parse_command({"type": "command", "linear": 1.0, "angular": 0.0})
 
 
 def test_command_optional_fields_may_be_null() -> None:

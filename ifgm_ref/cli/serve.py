@@ -27,6 +27,12 @@ def add_serve(sub: Subcommands) -> None:
         help="a built-in planner name (see `ifgm-ref planners`) or module:attribute, a "
         "callable that returns a new planner",
     )
+    serve.add_argument(
+        "--twist",
+        action="store_true",
+        help="answer velocity commands (linear, angular: ROS's Twist) instead of heading and "
+        "speed, for the same robot motion",
+    )
     serve.set_defaults(func=run_serve)
 
 
@@ -36,4 +42,11 @@ def run_serve(args: argparse.Namespace) -> int:
     from ifgm_ref.transport.serve import serve
 
     factory = load_planner_factory(args.planner)
+    if args.twist:
+        from ifgm_ref.velocity import VelocityPlanner
+
+        def twist_factory() -> VelocityPlanner:
+            return VelocityPlanner(factory())
+
+        return serve(twist_factory, sys.stdin, sys.stdout, sys.stderr)
     return serve(factory, sys.stdin, sys.stdout, sys.stderr)

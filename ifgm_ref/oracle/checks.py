@@ -126,8 +126,11 @@ __all__ = [
     "scale_test",
 ]
 
-#: ``passes_wide_gaps``: a commanded heading this far off the goal bearing (rad, 5 degrees)
-#: is the robot's first turn, which must be towards the gap (Case-1 steers at it).
+#: ``passes_wide_gaps``: a commanded heading this far off the goal bearing (rad, 5 degrees),
+#: steering the robot away from the goal bearing or holding it there, is the robot's first
+#: turn, which must be towards the gap (Case-1 steers at it). A command that points off the
+#: goal bearing while it turns the robot back towards it (a robot started facing away, or a
+#: velocity command, whose heading is one step's turn) is not that turn yet.
 FIRST_TURN = math.radians(5.0)
 # -- simulation helpers ------------------------------------------------------------------------
 
@@ -379,9 +382,11 @@ def _gap_test(impl: Implementation, example: tuple[World, Polygon], rec: Recorde
         # Bearings from where the planner was told it is (odometry noise moves it off the pose).
         x = step.x if step.believed_x is None else step.believed_x
         y = step.y if step.believed_y is None else step.believed_y
+        theta = step.theta if step.believed_theta is None else step.believed_theta
         to_goal = math.atan2(world.goal.y - y, world.goal.x - x)
         turn = math.remainder(step.heading_cmd - to_goal, 2.0 * math.pi)
-        if abs(turn) > FIRST_TURN:
+        steer = math.remainder(step.heading_cmd - theta, 2.0 * math.pi)
+        if abs(turn) > FIRST_TURN and turn * steer >= 0.0:
             side = math.remainder(math.atan2(centre.y - y, centre.x - x) - to_goal, 2.0 * math.pi)
             if turn * side < 0.0:
                 raise CheckFailed(

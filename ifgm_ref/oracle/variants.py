@@ -12,12 +12,16 @@ asserts that no check fails (serve any of them with
 * :class:`Float32`: everything the planner reads and answers rounded to 32-bit floats, as a
   port in ``float`` on a microcontroller computes;
 * :class:`OppositeTies`: the other choice wherever the reference breaks an exact tie
-  (left or right round a symmetric obstacle, the first or the last of equal gaps).
+  (left or right round a symmetric obstacle, the first or the last of equal gaps);
+* :func:`Twist`: every command answered as a velocity command, ``(v, w)`` as a ROS node
+  publishes it (:class:`~ifgm_ref.velocity.VelocityPlanner`), the same motion within
+  rounding.
 """
 
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import replace
 
 import numpy as np
@@ -25,7 +29,8 @@ import numpy as np
 from ifgm_ref.laserscan import LaserScan
 from ifgm_ref.planners.ifgm import IFGMPlanner
 from ifgm_ref.pose import Point, Pose
-from ifgm_ref.protocol import Command, EpisodeParams, Observation
+from ifgm_ref.protocol import Command, EpisodeParams, Observation, Planner
+from ifgm_ref.velocity import VelocityPlanner
 
 #: :class:`HeadingWobble`'s largest heading error, rad (1 degree).
 WOBBLE = math.radians(1.0)
@@ -111,9 +116,15 @@ class OppositeTies(IFGMPlanner):
         return replace(command, heading=-command.heading)
 
 
+def Twist() -> VelocityPlanner:
+    """The reference answering velocity commands (linear and angular velocity)."""
+    return VelocityPlanner(IFGMPlanner())
+
+
 #: Every accepted variant by a short name.
-VARIANTS: dict[str, type[IFGMPlanner]] = {
+VARIANTS: dict[str, Callable[[], Planner]] = {
     "heading_wobble": HeadingWobble,
     "float32": Float32,
     "opposite_ties": OppositeTies,
+    "twist": Twist,
 }

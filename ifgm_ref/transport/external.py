@@ -33,6 +33,7 @@ import subprocess
 import threading
 import weakref
 from collections.abc import Sequence
+from functools import partial
 from types import TracebackType
 from typing import IO, Any, NoReturn, TextIO
 
@@ -178,6 +179,7 @@ class ExternalPlanner:
         self._stderr_tail: collections.deque[str] = collections.deque(maxlen=STDERR_TAIL)
         self._threads: tuple[threading.Thread, ...] = ()
         self._failure: ImplementationError | None = None
+        self._episode = EpisodeParams()  # the last reset's: velocity commands are read with it
         self._finalizer: weakref.finalize[..., ExternalPlanner] | None = None
 
     # --- Planner ---------------------------------------------------------------------------
@@ -199,6 +201,7 @@ class ExternalPlanner:
             self._start()
         reply = self._exchange(reset_message(start, goal, params), "reset", startup=first)
         self._parse(parse_ready, reply, "reset")
+        self._episode = params
 
     def step(self, observation: Observation) -> Command:
         """Send ``observe`` for one step and return the program's ``command``.
@@ -213,7 +216,8 @@ class ExternalPlanner:
         if self._process is None:
             raise ImplementationError(f"{what}: reset() was not called (no program running)")
         reply = self._exchange(observe_message(observation), what)
-        return self._parse(parse_command, reply, what)  # type: ignore[no-any-return]
+        at = (observation.pose, self._episode)
+        return self._parse(partial(parse_command, at=at), reply, what)  # type: ignore[no-any-return]
 
     # --- lifetime --------------------------------------------------------------------------
 

@@ -96,7 +96,11 @@ class Reset:
 
 _SENSOR_ANGLES = ("angle_min", "angle_max", "angle_increment")
 _SCAN_NUMBERS = ("angle_min", "angle_max", "angle_increment", "range_min", "range_max")
-_COMMAND_FIELDS = frozenset({"type", "heading", "speed", "behaviour", "branch", "stop"})
+_COMMAND_FIELDS = frozenset(
+    {"type", "heading", "speed", "linear", "angular", "behaviour", "branch", "stop"}
+)
+#: The two forms of a ``command``: a heading and a speed, or a twist (linear and angular).
+_COMMAND_FORMS = (("heading", "speed"), ("linear", "angular"))
 _BlockT = TypeVar("_BlockT", RobotParams, SensorParams)
 
 
@@ -165,18 +169,21 @@ def observe_message(observation: Observation) -> dict[str, Any]:
 
 
 def command_message(command: Command) -> dict[str, Any]:
-    """Build the ``command`` reply; the optional fields only when they are set.
+    """Build the ``command`` reply, in the command's form (heading and speed, or a velocity
+    command's linear and angular velocity); the optional fields only when they are set.
 
     >>> command_message(Command(0.25, 1.0))
     {'type': 'command', 'heading': 0.25, 'speed': 1.0}
     >>> command_message(Command(0.0, 0.0, stop="goal_unreachable"))["stop"]
     'goal_unreachable'
+    >>> command_message(Command(0.3, 1.0, turn_rate=-0.5))
+    {'type': 'command', 'linear': 1.0, 'angular': -0.5}
     """
-    message: dict[str, Any] = {
-        "type": MessageType.COMMAND.value,
-        "heading": float(command.heading),
-        "speed": float(command.speed),
-    }
+    message: dict[str, Any] = {"type": MessageType.COMMAND.value}
+    if command.turn_rate is None:
+        message.update(heading=float(command.heading), speed=float(command.speed))
+    else:
+        message.update(linear=float(command.speed), angular=float(command.turn_rate))
     for name in ("behaviour", "branch", "stop"):
         value = getattr(command, name)
         if value is not None:
@@ -393,14 +400,21 @@ def parse_observe(message: Mapping[str, Any]) -> Observation:
     )
 
 
-def parse_command(message: Mapping[str, Any]) -> Command:
+def parse_command(
+    message: Mapping[str, Any], *, at: tuple[Pose, EpisodeParams] | None = None
+) -> Command:
     """Read a ``command`` reply strictly (an unknown field is an error).
+
+    A reply holds ``heading`` and ``speed``, or ``linear`` and ``angular`` (a velocity
+    command, ROS's ``geometry_msgs/Twist``), never a mix. A velocity command is read with
+    :meth:`Command.from_twist` at ``at``: the pose the program was told and the episode's
+    parameters; without them it is an error.
 
     Only types are checked here: a negative speed is a valid message, and the simulator's
     ``invalid_command`` (:meth:`Command.problem`) to report.
 
     >>> parse_command({"type": "command", "heading": 0.5, "speed": 1, "branch": "case1_gap"})
-    Command(heading=0.5, speed=1.0, behaviour=None, branch='case1_gap', stop=None)
+    Command(heading=0.5, speed=1.0, behaviour=None, branch='case1_gap', stop=None, turn_rate=None)
     >>> parse_command({"type": "command", "heading": "abc", "speed": 1.0})
     Traceback (most recent call last):
     ...
@@ -413,17 +427,37 @@ def parse_command(message: Mapping[str, Any]) -> Command:
     >>> parse_command(misspelt)  # doctest: +ELLIPSIS
     Traceback (most recent call last):
     ...
-    ifgm_ref.errors.ProtocolError: command: unknown field(s) 'behavior'; allowed: behaviour, ...
+    ifgm_ref.errors.ProtocolError: command: unknown field(s) 'behavior'; allowed: angular, ...
+    >>> twist = {"type": "command", "linear": 1.0, "angular": 0.5}
+    >>> parse_command(twist, at=(Pose(0.0, 0.0, 0.0), EpisodeParams())).turn_rate
+    0.5
+    >>> parse_command({**twist, "speed": 1.0}, at=(Pose(0.0, 0.0, 0.0), EpisodeParams()))
+    ... # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    ifgm_ref.errors.ProtocolError: command: has speed, linear, angular; give heading and speed, ...
     """
     _expect_type(message, MessageType.COMMAND)
     _no_unknown(message, _COMMAND_FIELDS, "command")
-    return Command(
-        heading=_number(_field(message, "heading", "command"), "command.heading"),
-        speed=_number(_field(message, "speed", "command"), "command.speed"),
-        behaviour=_optional_text(message.get("behaviour"), "command.behaviour"),
-        branch=_optional_text(message.get("branch"), "command.branch"),
-        stop=_optional_text(message.get("stop"), "command.stop"),
+    behaviour, branch, stop = (
+        _optional_text(message.get(name), f"command.{name}")
+        for name in ("behaviour", "branch", "stop")
     )
+    heading_form, twist_form = _COMMAND_FORMS
+    if not any(name in message for name in twist_form):
+        heading = _number(_field(message, "heading", "command"), "command.heading")
+        speed = _number(_field(message, "speed", "command"), "command.speed")
+        return Command(heading, speed, behaviour=behaviour, branch=branch, stop=stop)
+    if any(name in message for name in heading_form):
+        given = [name for name in (*heading_form, *twist_form) if name in message]
+        raise ProtocolError(
+            f"command: has {', '.join(given)}; give heading and speed, or linear and angular"
+        )
+    linear = _number(_field(message, "linear", "command"), "command.linear")
+    angular = _number(_field(message, "angular", "command"), "command.angular")
+    if at is None:
+        raise ProtocolError("command: a velocity command needs the pose it answers")
+    return Command.from_twist(linear, angular, *at, behaviour=behaviour, branch=branch, stop=stop)
 
 
 def parse_bye(message: Mapping[str, Any]) -> None:
