@@ -30,13 +30,13 @@ from typing import NamedTuple
 import matplotlib.pyplot as plt
 import shapely
 from matplotlib.figure import Figure
-from tqdm import tqdm
 
 from ifgm_ref.paper import traces
 from ifgm_ref.params import PAPER_FREE_DISTANCE_FT, PAPER_FREE_TIME_S
 from ifgm_ref.planners import make_planner
 from ifgm_ref.plotting import draw_path, draw_world
 from ifgm_ref.pose import distance
+from ifgm_ref.progress import progress_bar
 from ifgm_ref.scenarios import resolve_world
 from ifgm_ref.simulator import Run, TraceStep, simulate, total_turning
 
@@ -495,16 +495,17 @@ def write_all(out: str | Path = "paper_figs", *, progress: bool | None = None) -
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     written: list[Path] = []
-    disable = None if progress is None else not progress
-    for stem, build in tqdm(FIGURES.items(), desc="figures", unit="fig", disable=disable):
-        fig = build()
-        png, svg = out / f"{stem}.png", out / f"{stem}.svg"
-        fig.savefig(png, dpi=110, metadata={"Software": None})
-        svg_text = io.StringIO()
-        fig.savefig(svg_text, format="svg", dpi=110, metadata={"Date": None})
-        svg.write_text(stable_svg_ids(svg_text.getvalue()), encoding="utf-8")
-        written += [png, svg]
-        plt.close(fig)
+    with progress_bar(total=len(FIGURES), desc="figures", unit="fig", progress=progress) as bar:
+        for stem, build in FIGURES.items():
+            fig = build()
+            png, svg = out / f"{stem}.png", out / f"{stem}.svg"
+            fig.savefig(png, dpi=110, metadata={"Software": None})
+            svg_text = io.StringIO()
+            fig.savefig(svg_text, format="svg", dpi=110, metadata={"Date": None})
+            svg.write_text(stable_svg_ids(svg_text.getvalue()), encoding="utf-8")
+            written += [png, svg]
+            plt.close(fig)
+            bar.update()
     rows = reproduction_rows()
     for name, text in (
         ("reproduction.md", table_markdown(rows)),

@@ -27,8 +27,8 @@ from matplotlib.patches import Circle as CirclePatch
 from matplotlib.patches import Polygon as PolygonPatch
 from matplotlib.patches import Wedge
 from numpy.typing import NDArray
-from tqdm import tqdm
 
+from ifgm_ref.progress import progress_bar
 from ifgm_ref.sensor import IRSensor
 from ifgm_ref.simulator import Result, TraceStep
 from ifgm_ref.world import Circle, World
@@ -258,18 +258,18 @@ def animate_run(
 
     The scan is re-cast from each sample's pose with the world's sensor (as the planner saw
     it, noise aside). A bar on stderr counts the frames rendered (rendering takes about
-    0.15 s a frame): ``progress=None`` shows it only when stderr is a terminal, ``True``
-    always, ``False`` never. Lengths are labelled in ``unit``. Returns the number of frames
-    written (at most ``max_frames``).
+    0.15 s a frame): ``progress=None`` shows it on a terminal and writes a line every 10 s
+    to a log (:func:`ifgm_ref.progress.progress_bar`), ``True`` always, ``False`` never.
+    Lengths are labelled in ``unit``. Returns the number of frames written (at most
+    ``max_frames``).
     """
     frames = np.unique(np.linspace(0, len(trace) - 1, min(len(trace), max_frames)).astype(int))
     fig, show = _animation(world, trace, result, unit)
-    disable = None if progress is None else not progress
-    with tqdm(  # every frame shown: each takes some 0.15 s to render
+    with progress_bar(  # every frame shown: each takes some 0.15 s to render
         total=len(frames),
         unit="frame",
         desc="GIF",
-        disable=disable,
+        progress=progress,
         leave=False,
         mininterval=0.0,
         miniters=1,

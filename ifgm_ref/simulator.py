@@ -121,14 +121,13 @@ from enum import StrEnum
 from itertools import pairwise
 from typing import Any
 
-from tqdm import tqdm
-
 from ifgm_ref.collision import ClearanceChecker
 from ifgm_ref.laps import LapRule, LapWatch
 from ifgm_ref.noise import Actuation, Odometry
 from ifgm_ref.params import SimParams
 from ifgm_ref.planners.tuning import Scale, evaluate
 from ifgm_ref.pose import Pose, distance, wrap_angle
+from ifgm_ref.progress import progress_bar
 from ifgm_ref.protocol import Command, EpisodeParams, Observation, Planner
 from ifgm_ref.robot import advance
 from ifgm_ref.sensor import IRSensor
@@ -352,9 +351,10 @@ def _drive(
     """Sense, decide and move from ``state`` until the episode ends (see :func:`simulate`);
     return the stop reason and, for an invalid command, what is wrong with it."""
     max_steps = math.ceil(sim.max_time / sim.dt - 1e-9)
-    disable = None if progress is None else not progress
     actuation = Actuation(world.robot)
-    with tqdm(total=max_steps, unit="step", desc=planner.name, disable=disable, leave=False) as bar:
+    with progress_bar(
+        total=max_steps, unit="step", desc=planner.name, progress=progress, leave=False
+    ) as bar:
         while True:
             t = round(state.steps * sim.dt, 12)
             if distance(state.pose, world.goal) <= sim.goal_tolerance:

@@ -20,10 +20,9 @@ import contextlib
 from collections.abc import Callable, Iterator, Sequence
 from typing import Any, TypeVar
 
-from tqdm import tqdm
-
 from ifgm_ref.bench.tasks import NOISE_FREE, Condition, Row, WorldSpec, run_world
 from ifgm_ref.errors import ParameterError
+from ifgm_ref.progress import progress_bar
 
 #: What a task's function returns.
 R = TypeVar("R")
@@ -79,9 +78,8 @@ def map_tasks(
     if jobs < 1:
         raise ParameterError(f"jobs must be at least 1, got {jobs}")
     results: dict[int, R] = {}
-    disable = None if progress is None else not progress
     with (
-        tqdm(total=len(tasks), unit=unit, desc=desc, disable=disable) as bar,
+        progress_bar(total=len(tasks), unit=unit, desc=desc, progress=progress) as bar,
         _executor(jobs, scheduler) as executor,
     ):
         futures: dict[cf.Future[R], int] = {}
