@@ -33,3 +33,8 @@ class ImplementationError(IfgmRefError):
     The oracle reports it as such, apart from property failures: it is not a counterexample
     to a property but a program that could not be checked.
     """
+
+
+class BagError(IfgmRefError, ValueError):
+    """A robot log (a ROS bag) cannot be read or replayed: a topic is missing, time runs
+    backwards, a scan changes its ray count or holds NaN, ..."""

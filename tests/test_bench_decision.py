@@ -1,7 +1,7 @@
 """``benchmarks/bench_decision.py``: the cost of one planner decision.
 
 The benchmark is a script (``benchmarks/`` is not a package), loaded here from its path. It
-records episodes, replays them through :func:`ifgm_ref.oracle.recording.replay` asserting
+records episodes, replays them through :func:`ifgm_ref.recording.replay` asserting
 that every replayed command is the recorded one, and counts what each decision executes. The
 tests check what could silently go wrong: a planner missing from the report, a replay that
 would time other decisions than the recorded ones, counts that change from run to run, and

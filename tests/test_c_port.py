@@ -29,7 +29,6 @@ from ifgm_ref.oracle.checks import CHECKS, Kind
 from ifgm_ref.oracle.implementation import Implementation
 from ifgm_ref.oracle.invariance import HEADING_TOL, SPEED_TOL, answer_errors
 from ifgm_ref.oracle.metamorphic import moved_recording
-from ifgm_ref.oracle.recording import RecordingPlanner
 from ifgm_ref.oracle.runner import Status, check_planner
 from ifgm_ref.oracle.vectors import QUANTITIES
 from ifgm_ref.params import SimParams
@@ -42,6 +41,7 @@ from ifgm_ref.planners.ifgm import IFGMPlanner
 from ifgm_ref.planners.ifgm_atoms import Percepts
 from ifgm_ref.planners.sight import Sight
 from ifgm_ref.pose import Point
+from ifgm_ref.recording import RecordingPlanner
 from ifgm_ref.scenarios import resolve_world
 from ifgm_ref.simulator import Run, simulate
 from ifgm_ref.transport.external import ExternalPlanner

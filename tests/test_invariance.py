@@ -23,13 +23,13 @@ from ifgm_ref.oracle.implementation import Implementation, promises_of
 from ifgm_ref.oracle.invariance import HEADING_TOL, SPEED_TOL, answer_errors, generic
 from ifgm_ref.oracle.metamorphic import moved_recording, scale_world, scaled_recording
 from ifgm_ref.oracle.mutants import GapAngleInWorldFrame, QuadrantBlindGoalAngle
-from ifgm_ref.oracle.recording import Recording, RecordingPlanner
 from ifgm_ref.oracle.runner import Profile, Status, run_check
 from ifgm_ref.oracle.variants import VARIANTS
 from ifgm_ref.params import SimParams
 from ifgm_ref.planners import make_planner
 from ifgm_ref.pose import Point, Pose, wrap_angle
 from ifgm_ref.protocol import Command, EpisodeParams, Observation
+from ifgm_ref.recording import Recording, RecordingPlanner
 from ifgm_ref.shapes import rectangle
 from ifgm_ref.simulator import simulate
 from ifgm_ref.world import World

@@ -21,6 +21,8 @@ from ifgm_ref.noise import KINDS, NoiseLevels
 from ifgm_ref.params import SENSOR_PRESETS, SimParams
 from ifgm_ref.planners import PLANNERS
 from ifgm_ref.pose import Point, Pose
+from ifgm_ref.protocol import Planner
+from ifgm_ref.recording import Recording, RecordingPlanner
 from ifgm_ref.scenarios import resolve_world
 from ifgm_ref.simulator import Run, simulate
 from ifgm_ref.world import World
@@ -110,6 +112,13 @@ def _add_output_options(sim: argparse.ArgumentParser) -> None:
         help="colour the plotted path by behaviour (default) or flowchart branch",
     )
     sim.add_argument("--animate", metavar="FILE.gif", help="write an animation of the run")
+    sim.add_argument(
+        "--record",
+        metavar="FILE",
+        help="write the run as a ROS bag, in metres: FILE.mcap (ROS 2, MCAP: Foxglove, "
+        "ros2 bag play), FILE.bag (ROS 1) or a new FOLDER without suffix (ROS 2, sqlite3); "
+        "docs/bags.md",
+    )
     sim.add_argument("--dt", type=positive_float, help=f"time step in s (default {SimParams.dt})")
     sim.add_argument(
         "--max-time", type=positive_float, help=f"time limit in s (default {SimParams.max_time})"
@@ -157,14 +166,14 @@ def run_simulate(args: argparse.Namespace) -> int:
         with ExternalPlanner(
             args.cmd, timeout=args.timeout, startup_timeout=args.startup_timeout
         ) as external:
-            run = simulate(world, external, sim, params=params, progress=None)
+            run, recording = _run(args, world, external, sim, params)
     else:
         from ifgm_ref.transport.loading import load_planner
 
         params = planner_params(args.planner, args.param or [])
-        run = simulate(world, load_planner(args.planner), sim, params=params, progress=None)
+        run, recording = _run(args, world, load_planner(args.planner), sim, params)
     unit = "ft" if task is None else "m"  # Gazebo worlds are in metres
-    _write_outputs(args, world, run, unit)
+    _write_outputs(args, world, run, unit, recording)
     _print_result(args, run, task, unit)
     return 1 if args.require_goal and not run.result.reached else 0
 
@@ -188,8 +197,27 @@ def _gazebo_task(args: argparse.Namespace) -> GazeboTask | None:
     return task
 
 
-def _write_outputs(args: argparse.Namespace, world: World, run: Run, unit: str) -> None:
-    """Write the trace, the plot and the animation that were asked for (lengths in ``unit``)."""
+def _run(
+    args: argparse.Namespace,
+    world: World,
+    planner: Planner,
+    sim: SimParams,
+    params: dict[str, float],
+) -> tuple[Run, Recording | None]:
+    """Simulate ``planner`` in ``world``; keep what it was handed and answered when
+    ``--record`` asks for a bag."""
+    if not args.record:
+        return simulate(world, planner, sim, params=params, progress=None), None
+    recorder = RecordingPlanner(planner)
+    run = simulate(world, recorder, sim, params=params, progress=None)
+    return run, recorder.recording()
+
+
+def _write_outputs(
+    args: argparse.Namespace, world: World, run: Run, unit: str, recording: Recording | None
+) -> None:
+    """Write the trace, the plot, the animation and the bag (from ``recording``) that were
+    asked for (lengths in ``unit``; the bag's in metres)."""
     result = run.result
     if args.trace:
         path = Path(args.trace)
@@ -202,6 +230,10 @@ def _write_outputs(args: argparse.Namespace, world: World, run: Run, unit: str) 
             save_figure(figure, args.plot)
         if args.animate:
             animate_run(world, run.trace, result, args.animate, unit=unit)
+    if recording is not None:
+        from ifgm_ref.bags.write import write_bag
+
+        write_bag(args.record, world, run, recording, unit)
 
 
 def _print_result(args: argparse.Namespace, run: Run, task: GazeboTask | None, unit: str) -> None:
@@ -240,10 +272,15 @@ def check_outputs(args: argparse.Namespace) -> None:
                 f"{option} {name}: cannot write {Path(name).suffix or 'a file without suffix'}; "
                 f"use one of {', '.join(allowed)}"
             )
+    if args.record:
+        from ifgm_ref.bags.write import bag_format
+
+        bag_format(args.record, "--record")
     for option, name in (
         ("--trace", args.trace),
         ("--plot", args.plot),
         ("--animate", args.animate),
+        ("--record", args.record),
     ):
         if name:
             output_folder(option, name)

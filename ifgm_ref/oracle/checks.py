@@ -89,7 +89,6 @@ from ifgm_ref.oracle.metamorphic import (
     scale_world,
     scaled_recording,
 )
-from ifgm_ref.oracle.recording import RecordingPlanner, replay
 from ifgm_ref.oracle.strategies import (
     SOLVABLE_CLASSES,
     any_solvable_worlds,
@@ -101,6 +100,7 @@ from ifgm_ref.paper import traces
 from ifgm_ref.params import SimParams
 from ifgm_ref.planners.tuning import ParamInfo
 from ifgm_ref.protocol import Command, Planner
+from ifgm_ref.recording import RecordingPlanner, replay
 from ifgm_ref.shapes import circle
 from ifgm_ref.simulator import Run, StopReason, TraceStep, simulate
 from ifgm_ref.world import Polygon, World

@@ -18,7 +18,7 @@ absolute length constant (a ``1.0`` margin, a ``1e-6`` ft epsilon) breaks that.
 
 The planner's half of a relation (:func:`moved_recording`, :func:`scaled_recording`): what a
 planner was handed in one run and what it answered (a
-:class:`~ifgm_ref.oracle.recording.Recording`), transformed into what it must be handed and
+:class:`~ifgm_ref.recording.Recording`), transformed into what it must be handed and
 answer in the moved or scaled problem. In exact arithmetic the simulator hands the planner
 exactly these observations in the transformed problem (a scan is taken in the robot's frame,
 so a rigid motion leaves it as it is); the oracle replays them open loop
@@ -35,11 +35,11 @@ from collections.abc import Callable, Iterable, Mapping
 from dataclasses import replace
 
 from ifgm_ref.errors import ParameterError
-from ifgm_ref.oracle.recording import Recording
 from ifgm_ref.params import RobotParams, SensorParams, SimParams
 from ifgm_ref.planners.tuning import ParamInfo
 from ifgm_ref.pose import Point, Pose
 from ifgm_ref.protocol import Command, EpisodeParams, Observation
+from ifgm_ref.recording import Recording
 from ifgm_ref.world import Bounds, Circle, Obstacle, Polygon, World
 from ifgm_ref.worldgen.classes import placed_point, placed_pose
 

@@ -20,7 +20,6 @@ import numpy as np
 
 from ifgm_ref import equations as reference
 from ifgm_ref.errors import ParameterError
-from ifgm_ref.oracle.recording import RecordingPlanner
 from ifgm_ref.oracle.vectors.cases import (
     GROUPS,
     RANDOM_CASES,
@@ -44,6 +43,7 @@ from ifgm_ref.params import SimParams
 from ifgm_ref.planners import PLANNERS, make_planner
 from ifgm_ref.planners.tuning import episode_values
 from ifgm_ref.protocol import EpisodeParams
+from ifgm_ref.recording import RecordingPlanner
 from ifgm_ref.scenarios import resolve_world
 from ifgm_ref.simulator import simulate
 

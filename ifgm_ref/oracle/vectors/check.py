@@ -2,7 +2,7 @@
 
 :func:`check_vectors` runs any object with the equation functions' names against the equation
 cases; :func:`replay_traces` steps a planner through the reference traces
-(:func:`ifgm_ref.oracle.recording.replay`). Both read the document through its schema
+(:func:`ifgm_ref.recording.replay`). Both read the document through its schema
 (:mod:`ifgm_ref.oracle.vectors.schema`) and answer a list of mismatches in the oracle's
 ``quantity = actual, but should be expected [where]`` style.
 """
@@ -15,7 +15,6 @@ import warnings
 from collections.abc import Callable, Mapping
 from typing import Any
 
-from ifgm_ref.oracle.recording import replay
 from ifgm_ref.oracle.vectors.schema import (
     CaseRecord,
     Failure,
@@ -33,6 +32,7 @@ from ifgm_ref.oracle.vectors.schema import (
     parse_traces,
 )
 from ifgm_ref.protocol import Command, Planner
+from ifgm_ref.recording import replay
 
 __all__ = ["check_vectors", "replay_traces"]
 

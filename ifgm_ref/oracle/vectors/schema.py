@@ -12,7 +12,7 @@ the whole document          :class:`VectorsDocument`
 ``equations.<group>``       :class:`GroupRecord`, its :class:`Form` s
 ``...cases[i]``             :class:`CaseRecord`; an expected error: :class:`Failure`
 ``traces[i]``               :class:`TraceRecord`, its
-                            :class:`~ifgm_ref.oracle.recording.Recording`
+                            :class:`~ifgm_ref.recording.Recording`
 ==========================  =====================================================
 
 A trace's ``reset``, ``observe`` and ``command`` objects are the JSON-lines protocol's
@@ -41,7 +41,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from ifgm_ref.errors import ParameterError, ProtocolError
-from ifgm_ref.oracle.recording import Recording
+from ifgm_ref.recording import Recording
 from ifgm_ref.transport.wire import (
     command_message,
     observe_message,
