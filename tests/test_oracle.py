@@ -9,6 +9,7 @@ The reference IFGM's own quick-profile run is the shipped suite itself
 from __future__ import annotations
 
 import math
+import shlex
 import subprocess
 import sys
 import textwrap
@@ -21,6 +22,8 @@ from hypothesis import find, given, settings
 from hypothesis import strategies as st
 
 import ifgm_ref.equations as reference
+from ifgm_ref.bags.read import read_log
+from ifgm_ref.cli import main
 from ifgm_ref.convergence import time_bound
 from ifgm_ref.oracle.checks import CHECKS, Check, Kind
 from ifgm_ref.oracle.implementation import Implementation, promises_of
@@ -151,8 +154,12 @@ def test_fgm_and_apf_are_caught_in_the_papers_trap(planner: str, check: str, tmp
     assert not replay.reached
     report = (result.artifacts / "report.md").read_text()
     assert f"ifgm-ref simulate {result.artifacts / 'world.json'} --planner {planner}" in report
-    # The replay writes beside the counterexample, not into the current folder.
-    assert f"--plot {result.artifacts / 'world'}_replay.png" in report
+    # The replay writes beside the counterexample, not into the current folder, and records
+    # the run as a bag.
+    (command,) = [line.strip() for line in report.splitlines() if "ifgm-ref simulate" in line]
+    assert f"--plot {result.artifacts / 'world'}_replay.png" in command
+    assert main(shlex.split(command)[1:]) == 0
+    assert read_log(result.artifacts / "world_replay.mcap").steps
     assert (result.artifacts / "world.png").stat().st_size > 0
     assert (result.artifacts / "world_trace.csv").read_text().startswith("t,x,y,theta")
 

@@ -298,3 +298,18 @@ def test_a_foreign_log_needs_a_goal(
     with pytest.raises(BagError, match="no goal: the log has no /goal_pose; give --goal X,Y"):
         setting_of(read_log(path))
     assert setting_of(read_log(path), goal=Point(1.0, 2.0)).goal == Point(1.0, 2.0)
+
+
+def test_bench_records_its_episodes_on_request(tmp_path: Path, capsys: Any) -> None:
+    """``bench --record DIR``: one bag an episode, named after world and planner, each of
+    which the reference replays in agreement; in metres, as BARN's worlds are."""
+    bags = tmp_path / "bags"
+    argv = ["bench", "--barn", "--barn-worlds", "1,2", "--planners", "ifgm", "--jobs", "1"]
+    argv += ["--max-time", "5", "--out", str(tmp_path / "out"), "--record", str(bags)]
+    assert main(argv) == 0
+    assert "bench: 1 planner x 2 worlds" in capsys.readouterr().err
+    assert sorted(p.name for p in bags.iterdir()) == ["barn-001-ifgm.mcap", "barn-002-ifgm.mcap"]
+    log = read_log(bags / "barn-001-ifgm.mcap")
+    setting = setting_of(log)
+    assert (setting.unit, setting.params.dt, len(log.steps)) == ("m", barn.SIM.dt, 100)
+    assert replay_log(log, make_planner("ifgm"), setting).first_divergence is None

@@ -112,6 +112,7 @@ def run_bench(
     noise_seed: int = 0,
     progress: bool | None = None,
     on_rows: Callable[[list[Row]], None] | None = None,
+    record: str | None = None,
 ) -> list[Row]:
     """Every planner in every world under every noise condition: the rows, world by world in
     ``specs`` order (then condition by condition, planner by planner).
@@ -128,9 +129,11 @@ def run_bench(
         (:func:`~ifgm_ref.bench.tasks.noise_seed`).
     progress : show a progress bar with an ETA on stderr (``None``: only on a terminal).
     on_rows : called with each world's rows as they arrive (in completion order).
+    record : a folder to write every episode to as a ROS bag
+        (:func:`~ifgm_ref.bench.tasks.bag_path`); the workers must reach it.
     """
     names, noises = tuple(planners), tuple(conditions)
-    tasks = [(spec, names, max_time, noises, noise_seed) for spec in specs]
+    tasks = [(spec, names, max_time, noises, noise_seed, record) for spec in specs]
     results = map_tasks(
         run_world, tasks, jobs=jobs, scheduler=scheduler, progress=progress, on_result=on_rows
     )

@@ -32,6 +32,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import re
 import time
 import zlib
 from collections.abc import Sequence
@@ -48,6 +49,7 @@ from ifgm_ref.errors import WorldError
 from ifgm_ref.noise import NoiseLevels
 from ifgm_ref.params import SimParams
 from ifgm_ref.protocol import Command, EpisodeParams, Observation, Planner
+from ifgm_ref.recording import RecordingPlanner
 from ifgm_ref.scenarios import BUILTIN_WORLDS
 from ifgm_ref.simulator import simulate, total_turning
 from ifgm_ref.transport.loading import load_factory
@@ -280,9 +282,11 @@ def run_world(
     max_time: float | None = None,
     conditions: Sequence[Condition] = (NOISE_FREE,),
     seed: int = 0,
+    record: str | None = None,
 ) -> list[Row]:
     """Build ``spec``'s world, find its shortest path, run each planner there under each noise
-    condition: one row each, condition by condition, planner by planner.
+    condition: one row each, condition by condition, planner by planner; with ``record`` (a
+    folder), each episode is also written there as a ROS bag (:func:`bag_path`).
 
     The time limit is ``max_time`` s or, by default, the oracle's convergence budget for the
     world (:func:`ifgm_ref.convergence.time_bound`: Bug1's path bound driven slowly); for a
@@ -303,10 +307,32 @@ def run_world(
         except WorldError:
             optimal = None
     return [
-        _episode(spec, c.apply(world, rng_seed), name, optimal, sim, reference, c.columns(rng_seed))
+        _episode(
+            spec,
+            c.apply(world, rng_seed),
+            name,
+            optimal,
+            sim,
+            reference,
+            c.columns(rng_seed),
+            None if record is None else bag_path(record, spec, name, c),
+        )
         for c in conditions
         for name in planners
     ]
+
+
+def bag_path(folder: str, spec: WorldSpec, planner: str, condition: Condition) -> Path:
+    """Where ``bench --record`` writes an episode: ``WORLD-PLANNER[-NOISE].mcap`` in
+    ``folder``, every character but letters, digits and ``.-_=`` made ``_``.
+
+    >>> from ifgm_ref.noise import NoiseLevels
+    >>> spec = WorldSpec("u_trap", "builtin", "u_trap")
+    >>> bag_path("bags", spec, "ifgm", Condition(NoiseLevels(range=0.02))).as_posix()
+    'bags/u_trap-ifgm-range=0.02.mcap'
+    """
+    parts = [spec.name, planner] + ([condition.levels.tags()] if condition.noisy else [])
+    return Path(folder) / ("-".join(re.sub(r"[^\w.=-]", "_", p) for p in parts) + ".mcap")
 
 
 def _episode(
@@ -317,16 +343,22 @@ def _episode(
     sim: SimParams,
     reference: float | None,
     noise: dict[str, Any],
+    bag: Path | None,
 ) -> Row:
     timed = _Timed(load_factory(planner)())
+    recorder = None if bag is None else RecordingPlanner(timed)
     try:
-        run = simulate(world, timed, sim)
+        run = simulate(world, recorder or timed, sim)
     except Exception as err:  # a crashing planner is a result, not the end of the benchmark
         return Row(
             planner, spec.name, spec.kind, False, False, ERROR, math.nan, math.nan, optimal,
             None, None, math.nan, timed.decisions, None, f"{type(err).__name__}: {err}",
             reference, None if reference is None else 0.0, **noise,
         )  # fmt: skip
+    if recorder is not None and bag is not None:
+        from ifgm_ref.bags.write import write_bag
+
+        write_bag(bag, world, run, recorder.recording(), "m" if spec.kind == "barn" else "ft")
     result = run.result
     ratio = result.path_length / optimal if result.reached and optimal else None
     return Row(

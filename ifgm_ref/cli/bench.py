@@ -8,7 +8,7 @@ import sys
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from ifgm_ref.cli.common import names, non_negative_int, positive_float
+from ifgm_ref.cli.common import names, non_negative_int, output_folder, positive_float
 from ifgm_ref.errors import ParameterError
 
 if TYPE_CHECKING:
@@ -131,6 +131,12 @@ def _add_noise_options(bench: argparse.ArgumentParser) -> None:
         "sweep.csv, sweep.md and a plot per kind",
     )
     bench.add_argument(
+        "--record",
+        metavar="DIR",
+        help="also write every episode as a ROS 2 bag, DIR/WORLD-PLANNER[-NOISE].mcap "
+        "(docs/bags.md); with --scheduler, DIR must be reachable by the workers",
+    )
+    bench.add_argument(
         "--noise-seed",
         type=non_negative_int,
         metavar="N",
@@ -153,10 +159,11 @@ def run_bench(args: argparse.Namespace) -> int:
     specs, source = _specs(args)
     where = f"Dask scheduler {args.scheduler}" if args.scheduler else f"{args.jobs} process(es)"
     points = f" x {len(conditions)} noise levels" if args.noise_sweep is not None else ""
-    print(
-        f"bench: {len(args.planners)} planners x {len(specs)} worlds{points} ({source}) on {where}",
-        file=sys.stderr,
-    )
+    planners = f"{len(args.planners)} planner{'s' if len(args.planners) != 1 else ''}"
+    worlds = f"{len(specs)} world{'s' if len(specs) != 1 else ''}"
+    print(f"bench: {planners} x {worlds}{points} ({source}) on {where}", file=sys.stderr)
+    if args.record is not None:
+        output_folder("--record", str(Path(args.record) / "bag.mcap"))
     partial = Path(args.out) / PARTIAL
     partial.parent.mkdir(parents=True, exist_ok=True)
     partial.unlink(missing_ok=True)
@@ -172,6 +179,7 @@ def run_bench(args: argparse.Namespace) -> int:
             noise_seed=_noise_seed(args),
             progress=None,
             on_rows=lambda done: write_csv(partial, Row.columns(), done, append=True),
+            record=args.record,
         )
     except KeyboardInterrupt:
         print(f"interrupted: the rows so far are in {partial}", file=sys.stderr)

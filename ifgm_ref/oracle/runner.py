@@ -374,7 +374,8 @@ def write_evidence(
         for name in names:
             lines.append(
                 f"    ifgm-ref simulate {folder / name}.json {how}{limit} "
-                f"--plot {folder / name}_replay.png --trace {folder / name}_replay_trace.csv"
+                f"--plot {folder / name}_replay.png --trace {folder / name}_replay_trace.csv "
+                f"--record {folder / name}_replay.mcap"
             )
         lines.append("")
     (folder / "report.md").write_text("\n".join(lines))
