@@ -1,38 +1,36 @@
 """The documentation site, opened page by page in a real browser (headless Chromium).
 
 Run with ``pytest -m browser`` after ``bash .ci/browser-setup`` (Debian's ``chromium`` and
-``chromium-driver``, Graphviz, and the ``browser`` extra). The tests build the site with
-``ifgm-ref docs`` into a temporary folder (about a minute on 2 cores), or check the build
-in ``$IFGM_SITE_DIR`` if that is set; they serve it on localhost from a thread and open every
+``chromium-driver``, Graphviz, and the ``browser`` extra). The tests use the run's strict
+site build (``tests/site_build.py``, about two minutes on 2 cores), or the build in
+``$IFGM_SITE_DIR`` if that is set; they serve it on localhost from a thread and open every
 page. Screenshots of the landing page and of a notebook page are written to
 ``$IFGM_SITE_ARTIFACTS`` (default ``site-artifacts/``, gitignored) and their paths printed.
 
-They are marked ``browser`` and so left out of ``python3 -m pytest`` and CI: CI would have to
-install Chromium (about 100 MB of Debian packages), build the site with every notebook
-executed and open its 115 pages: 80 s measured for the last two, plus the install, on top of a
-run that already takes about 7.5 of its 10 minutes. Without
+The strict build and the internal links are checked in every run, CI's included, without a
+browser (``tests/test_site_build.py``). These tests are marked ``browser`` and left out of
+``python3 -m pytest`` and CI: CI would have to install Chromium (36 Debian packages with
+``--no-install-recommends``, about a minute) and open the site's pages (measured: 122 s for
+the browser tests on 2 cores), on top of a run that with the site build takes about six of
+its ten minutes, on machines whose package mirror is not ours to count on. Without
 Chromium, its driver or selenium they skip and say what to install.
 """
 
 from __future__ import annotations
 
 import functools
-import html.parser
 import os
 import shutil
-import subprocess
-import sys
 import threading
 from collections.abc import Iterator
 from dataclasses import dataclass, field
 from http.server import SimpleHTTPRequestHandler, ThreadingHTTPServer
 from pathlib import Path
 from typing import Any
-from urllib.parse import unquote, urldefrag, urlsplit
 
 import pytest
 
-from tests.built_once import built_once
+from tests.site_build import built_site, page_paths
 
 pytestmark = pytest.mark.browser
 
@@ -56,7 +54,6 @@ class Page:
     console_errors: list[str] = field(default_factory=list)
     broken_images: list[str] = field(default_factory=list)
     foreign_requests: list[str] = field(default_factory=list)
-    links: list[str] = field(default_factory=list)
     math_elements: int = 0
     math_errors: int = 0
     raw_display_math: bool = False
@@ -67,27 +64,8 @@ class Page:
 
 @pytest.fixture(scope="module")
 def site(tmp_path_factory: pytest.TempPathFactory) -> Path:
-    """The built site: ``$IFGM_SITE_DIR``, or a fresh ``ifgm-ref docs`` build."""
-    given = os.environ.get("IFGM_SITE_DIR")
-    if given:
-        assert (Path(given) / "docs" / "index.html").is_file(), f"no site in {given}"
-        return Path(given)
-    pytest.importorskip("sphinx", reason=f"the docs extra is not installed: {SETUP}")
-    pytest.importorskip("myst_nb", reason=f"the docs extra is not installed: {SETUP}")
-    env = dict(os.environ, PYTHONPATH=str(ROOT))
-
-    def build(out: Path) -> None:
-        done = subprocess.run(
-            [sys.executable, "-m", "ifgm_ref", "docs", "--out", str(out), "--root", str(ROOT)],
-            capture_output=True,
-            text=True,
-            timeout=900,
-            env=env,
-            check=False,
-        )
-        assert done.returncode == 0, done.stderr[-4000:]
-
-    return built_once(tmp_path_factory, "site", build)  # one build for every test worker
+    """The built site: ``$IFGM_SITE_DIR``, or the run's strict ``ifgm-ref docs`` build."""
+    return built_site(tmp_path_factory)
 
 
 @pytest.fixture(scope="module")
@@ -145,24 +123,17 @@ ready.then(() => {
   const origin = location.origin;
   const foreign = performance.getEntriesByType('resource').map(e => e.name)
     .filter(name => !name.startsWith(origin) && !name.startsWith('data:'));
-  const links = [...document.querySelectorAll('a[href]')].map(a => a.href);
   const article = document.querySelector('article') || document.body;
   const prose = article.cloneNode(true);  // the text outside code: code may show a $$
   prose.querySelectorAll('pre, code').forEach(e => e.remove());
   done({
-    images, foreign, links,
+    images, foreign,
     math: document.querySelectorAll('mjx-container').length,
     mathErrors: document.querySelectorAll('mjx-merror').length,
     rawMath: prose.textContent.includes('$$'),
   });
 }, err => done({error: String(err)}));
 """
-
-
-def _page_paths(site: Path) -> list[str]:
-    """Every HTML page of the site, not the folders of Sphinx's assets (``_static``, ...)."""
-    pages = (path.relative_to(site) for path in site.rglob("*.html"))
-    return sorted(p.as_posix() for p in pages if len(p.parts) == 1 or p.parts[0][0] not in "_.")
 
 
 def _visit(driver: Any, base_url: str, path: str) -> Page:
@@ -175,7 +146,6 @@ def _visit(driver: Any, base_url: str, path: str) -> Page:
     ]
     page.broken_images = seen["images"]
     page.foreign_requests = seen["foreign"]
-    page.links = seen["links"]
     page.math_elements = seen["math"]
     page.math_errors = seen["mathErrors"]
     page.raw_display_math = seen["rawMath"]
@@ -196,7 +166,7 @@ def pages(driver: Any, site: Path, base_url: str) -> dict[str, Page]:
     """
     shots = {path: name for name, path in SCREENSHOTS.items()}
     seen: dict[str, Page] = {}
-    for path in _page_paths(site):
+    for path in page_paths(site):
         seen[path] = _visit(driver, base_url, path)
         if path in shots:
             # The first figure in view (the landing page's, a notebook's first plot); at
@@ -242,48 +212,6 @@ def test_every_image_loads(pages: dict[str, Page]) -> None:
 def test_nothing_is_fetched_from_another_site(pages: dict[str, Page]) -> None:
     problems = _problems(pages, "foreign_requests")
     assert not problems, f"requests off the site={problems}, but should be none (no CDN)"
-
-
-class _Ids(html.parser.HTMLParser):
-    def __init__(self) -> None:
-        super().__init__()
-        self.ids: set[str] = set()
-
-    def handle_starttag(self, tag: str, attrs: list[tuple[str, str | None]]) -> None:
-        self.ids.update(value for name, value in attrs if name in ("id", "name") and value)
-
-
-@functools.cache
-def _anchors(file: Path) -> frozenset[str]:
-    parser = _Ids()
-    parser.feed(file.read_text(encoding="utf-8"))
-    return frozenset(parser.ids)
-
-
-def _resolve(site: Path, base_url: str, href: str) -> str | None:
-    """Why the internal link ``href`` is broken, or None if it resolves (or is external)."""
-    if not href.startswith(base_url):
-        return None
-    url, fragment = urldefrag(href)
-    path = unquote(urlsplit(url).path).lstrip("/")
-    file = site / path
-    if file.is_dir():
-        file = file / "index.html"
-    if not file.is_file():
-        return "no such file"
-    if fragment and file.suffix == ".html" and unquote(fragment) not in _anchors(file):
-        return f"no anchor #{fragment}"
-    return None
-
-
-def test_every_internal_link_resolves(pages: dict[str, Page], site: Path, base_url: str) -> None:
-    broken: dict[str, list[str]] = {}
-    for path, page in pages.items():
-        for href in sorted(set(page.links)):
-            reason = _resolve(site, base_url, href)
-            if reason:
-                broken.setdefault(path, []).append(f"{href.removeprefix(base_url)}: {reason}")
-    assert not broken, f"broken links={broken}, but should be none"
 
 
 def test_math_renders_on_the_proof_pages(pages: dict[str, Page]) -> None:
