@@ -15,6 +15,7 @@ and draws the flowchart. Nothing is fetched from a CDN: MathJax is served from t
 
 from __future__ import annotations
 
+import os
 import sys
 from pathlib import Path
 
@@ -54,7 +55,8 @@ myst_heading_anchors = 4
 # on the site as in the repository.
 myst_heading_slug_func = "github"
 # Execute every notebook at build time (they are committed without outputs), in its own folder.
-nb_execution_mode = "force"
+# The test suite's build sets IFGM_DOCS_EXECUTE=off: tests/test_notebooks.py runs them already.
+nb_execution_mode = os.environ.get("IFGM_DOCS_EXECUTE", "force")
 nb_execution_timeout = 600
 nb_execution_raise_on_error = True
 nb_execution_show_tb = True

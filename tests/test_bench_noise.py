@@ -304,7 +304,7 @@ def test_sweep_command_end_to_end(tmp_path: Path, capsys: pytest.CaptureFixture[
             "1", "--noise-sweep", "dropout=0.2", "--noise", "odometry=0.01", "--noise-seed",
             "9", "--out", str(out)]  # fmt: skip
     assert main(args) == 0
-    assert "1 planners x 1 worlds x 2 noise levels" in capsys.readouterr().err
+    assert "1 planner x 1 world x 2 noise levels" in capsys.readouterr().err
     text = (out / "sweep.md").read_text()
     assert "- noise sweep: dropout 20%; one kind at a time, from the noise-free baseline" in text
     assert "all over `--noise odometry=0.01`" in text and "- noise seed: 9" in text
