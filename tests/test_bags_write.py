@@ -265,9 +265,9 @@ def test_goal_and_obstacles_are_in_map_in_metres(recorded: Recorded) -> None:
             assert marker.scale.z > 0.0
         else:
             assert marker.type == 4  # LINE_STRIP, closed
-            ring = [(p.x, p.y) for p in marker.points]
-            expected = [(x * FT, y * FT) for x, y in obstacle.vertices]
-            assert ring == pytest.approx([*expected, expected[0]])
+            ring = np.array([(p.x, p.y) for p in marker.points])
+            expected = np.array([*obstacle.vertices, obstacle.vertices[0]]) * FT
+            assert np.allclose(ring, expected, rtol=1e-12, atol=0.0)
     assert {m.type for m in markers.markers} == {3, 4}
 
 

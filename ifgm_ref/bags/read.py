@@ -160,7 +160,8 @@ def _read_topics(path: Path, topics: Topics) -> dict[str, list[tuple[float, Any]
         if isinstance(err, BagError):
             raise
         raise BagError(f"{path}: cannot read it as a ROS bag ({err})") from None
-    found.setdefault(topics.cmd_vel, [])
+    for name in (topics.scan, topics.odom, topics.cmd_vel):
+        found.setdefault(name, [])  # present, but without a message
     return found
 
 
