@@ -32,6 +32,7 @@ from hypothesis import strategies as st
 from ifgm_ref.errors import ParameterError
 from ifgm_ref.laserscan import LaserScan
 from ifgm_ref.params import SensorParams, SimParams
+from ifgm_ref.planners import fgm
 from ifgm_ref.planners.apf import (
     APFBranch,
     APFParams,
@@ -463,3 +464,35 @@ def test_episodes_are_deterministic(planner_type: type[FGMPlanner | APFPlanner])
     second = episode("box", planner_type(), max_time=60.0)
     assert first.trace == second.trace
     assert first.result == second.result
+
+
+@st.composite
+def wide_scans(draw: st.DrawFn) -> LaserScan:
+    """A LiDAR-like scan: up to 720 rays over up to 270 degrees, returns near and far (some
+    inside the inflation), gaps of no return, and ``-inf`` for too near."""
+    rays = draw(st.integers(2, 720))
+    fov = draw(st.floats(0.1, 1.5 * math.pi))
+    ranges = draw(
+        st.lists(
+            st.sampled_from([math.inf, -math.inf]) | st.floats(0.01, 30.0),
+            min_size=rays,
+            max_size=rays,
+        )
+    )
+    return LaserScan(-fov / 2, fov / 2, fov / (rays - 1), 0.05, 30.0, np.array(ranges))
+
+
+@given(scan=wide_scans(), inflation=st.floats(0.0, 3.0))
+def test_wide_scans_block_the_same_rays_when_only_near_rays_are_tested(
+    scan: LaserScan, inflation: float
+) -> None:
+    """``blocked_rays`` on a wide scan tests each return against its nearby rays only
+    (``fgm.PAIRS_FROM``): the blocked rays and their distances are those of testing every
+    (return, ray) pair, to the bit."""
+    with pytest.MonkeyPatch.context() as monkeypatch:
+        monkeypatch.setattr(fgm, "PAIRS_FROM", math.inf)
+        every = blocked_rays(scan, inflation)
+        monkeypatch.setattr(fgm, "PAIRS_FROM", 0)
+        near = blocked_rays(scan, inflation)
+    assert near[0].tolist() == every[0].tolist()
+    assert near[1].tobytes() == every[1].tobytes()

@@ -32,6 +32,7 @@ from hypothesis import assume, given, note
 from hypothesis import strategies as st
 from numpy.typing import NDArray
 
+from ifgm_ref import raycast
 from ifgm_ref.raycast import RayCaster, RayFan, cast_rays
 
 #: Distance tolerance, ft (see the module docstring).
@@ -430,3 +431,54 @@ def test_ray_caster_rejects_bad_input(kwargs: dict, message: str) -> None:
     args.update(kwargs)
     with pytest.raises(ValueError, match=re.escape(message)):
         RayCaster(**args)
+
+
+def _both_paths(
+    scene: Scene, angles: NDArray[np.float64], max_range: float, monkeypatch: pytest.MonkeyPatch
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """The ranges with every (circle, ray) pair computed, and with the facing pairs only."""
+    monkeypatch.setattr(raycast, "_PAIRS_FROM", math.inf)
+    every = scene.caster(max_range).cast(scene.origin, angles)
+    monkeypatch.setattr(raycast, "_PAIRS_FROM", 0)
+    facing = scene.caster(max_range).cast(scene.origin, angles)
+    return every, facing
+
+
+@st.composite
+def crowded_scenes(draw: st.DrawFn) -> tuple[Scene, NDArray[np.float64]]:
+    """Many circles (BARN's cylinders are many and small), the origin sometimes a hair off
+    one of them, and rays aimed at the circles' tangents as well as free ones."""
+    count = draw(st.integers(1, 30))
+    points = draw(st.lists(st.tuples(coordinates, coordinates), min_size=count, max_size=count))
+    centers = np.array(points)
+    radii = np.array(draw(st.lists(st.floats(0.01, 3.0), min_size=count, max_size=count)))
+    if draw(st.booleans()):  # just outside circle 0, at 1e-12 to 0.1 of its radius
+        bearing, gap = draw(st.floats(-math.pi, math.pi)), draw(st.floats(-12.0, -1.0))
+        distance = radii[0] * (1.0 + 10.0**gap)
+        origin = (
+            float(centers[0, 0] + distance * math.cos(bearing)),
+            float(centers[0, 1] + distance * math.sin(bearing)),
+        )
+    else:
+        origin = (draw(coordinates), draw(coordinates))
+    assume(all(math.dist(origin, c) > r for c, r in zip(centers, radii, strict=True)))
+    rel = centers - origin
+    bearings = np.arctan2(rel[:, 1], rel[:, 0])
+    half = np.arcsin(radii / np.hypot(rel[:, 0], rel[:, 1]))
+    tangents = np.concatenate([bearings - half, bearings + half])
+    free = draw(st.lists(st.floats(-math.pi, math.pi), max_size=40))
+    return Scene((), centers, radii, origin), np.concatenate([tangents, free])
+
+
+@given(case=crowded_scenes(), max_range=max_ranges)
+def test_testing_only_the_rays_facing_a_circle_changes_no_bit(
+    case: tuple[Scene, NDArray[np.float64]], max_range: float
+) -> None:
+    """The facing pairs (``raycast._facing_pairs``) give every range of the full (circle,
+    ray) computation to the bit, tangent rays and an origin a hair off a circle included."""
+    scene, angles = case
+    with pytest.MonkeyPatch.context() as monkeypatch:
+        every, facing = _both_paths(scene, angles, max_range, monkeypatch)
+    assert facing.tobytes() == every.tobytes(), (
+        f"ranges={facing.tolist()!r}, but should be {every.tolist()!r} [{scene!r}]"
+    )

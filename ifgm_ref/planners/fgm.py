@@ -51,6 +51,7 @@ from numpy.typing import NDArray
 
 from ifgm_ref.equations import eq4_final_heading_fgm, fgm_gap_centre_angle
 from ifgm_ref.errors import ParameterError
+from ifgm_ref.intervals import members
 from ifgm_ref.laserscan import LaserScan
 from ifgm_ref.paper import traces
 from ifgm_ref.percepts.points import scan_points
@@ -176,6 +177,14 @@ class FGMDecision:
     d_min: float
 
 
+#: A return blocks the rays up to this much beyond its half-width, rad: rounding at an
+#: exact border keeps the border ray blocked.
+BORDER = 1e-12
+#: From this many (return, ray) pairs on, only the rays near each return are tested: a
+#: 720-ray LiDAR's scan has some 500,000, the paper's 76-ray sensor at most 5,776.
+PAIRS_FROM = 16384
+
+
 def blocked_rays(
     scan: LaserScan, inflation: float
 ) -> tuple[NDArray[np.bool_], NDArray[np.float64]]:
@@ -230,10 +239,32 @@ def blocked_rays(
     with np.errstate(divide="ignore"):
         ratio = np.where(d > 0.0, inflation / np.where(d > 0.0, d, 1.0), 1.0)
     half = np.arcsin(np.minimum(1.0, ratio))
-    # covers[i, j]: return i blocks ray j (a 1e-12 rad tolerance keeps exact borders blocked).
-    covers = np.abs(angles[np.newaxis, :] - points.angles[:, np.newaxis]) <= half[:, None] + 1e-12
-    distance = np.where(covers, d[:, np.newaxis], np.inf).min(axis=0)
+    distance = _nearest_blocking(angles, points.angles, half, d)
     return np.isfinite(distance), distance
+
+
+def _nearest_blocking(
+    angles: NDArray[np.float64],
+    at: NDArray[np.float64],
+    half: NDArray[np.float64],
+    d: NDArray[np.float64],
+) -> NDArray[np.float64]:
+    """For each ray angle, the least range ``d[i]`` of a return at angle ``at[i]`` whose
+    half-width ``half[i]`` covers it (``inf`` for none). A wide scan tests each return against
+    the rays near it only (:func:`ifgm_ref.intervals.members`), by the same comparison."""
+    if len(d) * len(angles) < PAIRS_FROM:
+        # covers[i, j]: return i blocks ray j (a tolerance keeps exact borders blocked).
+        covers = np.abs(angles[np.newaxis, :] - at[:, np.newaxis]) <= half[:, None] + BORDER
+        nearest: NDArray[np.float64] = np.where(covers, d[:, np.newaxis], np.inf).min(axis=0)
+        return nearest
+    order = np.argsort(angles, kind="stable")
+    reach = half + 2.0 * BORDER
+    owner, position = members(angles[order], at - reach, at + reach)
+    ray = order[position]
+    covers = np.abs(angles[ray] - at[owner]) <= half[owner] + BORDER
+    nearest = np.full(len(angles), np.inf)
+    np.minimum.at(nearest, ray[covers], d[owner[covers]])
+    return nearest
 
 
 def find_gaps(scan: LaserScan, inflation: float) -> tuple[RayGap, ...]:
