@@ -7,7 +7,9 @@ its commands move nothing) and yields each recorded command beside the new one. 
 compare the two their own way: the oracle's ``deterministic`` check (bit for bit), the
 conformance vectors' reference traces (within the file's tolerances:
 :func:`ifgm_ref.oracle.vectors.replay_traces`), and ``benchmarks/bench_decision.py``, which
-times and counts the replayed decisions.
+times and counts the replayed decisions. ``ifgm-ref simulate --record`` writes a recording
+as a ROS bag (:mod:`ifgm_ref.bags.write`). The module knows no map: it sits below the
+simulator's users (the oracle, the bags, the command line), which all record through it.
 
 Examples
 --------
