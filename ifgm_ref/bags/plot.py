@@ -24,6 +24,7 @@ from numpy.typing import NDArray
 
 from ifgm_ref.bags.replay import ReplayReport, ReplayStep
 from ifgm_ref.laserscan import LaserScan
+from ifgm_ref.percepts.points import scan_points, to_world
 from ifgm_ref.pose import Pose
 
 __all__ = ["plot_replay"]
@@ -95,7 +96,6 @@ def _draw_divergence(ax: Axes, report: ReplayReport, first: ReplayStep) -> None:
 
 
 def _returns(pose: Pose, scan: LaserScan) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    finite = np.isfinite(scan.ranges)
-    angles = pose.theta + scan.angles[finite]
-    ranges = scan.ranges[finite]
-    return pose.x + ranges * np.cos(angles), pose.y + ranges * np.sin(angles)
+    """The world points of ``scan``'s returns seen from ``pose``, as x and y."""
+    world = to_world(scan_points(scan).xy, pose)
+    return world[:, 0], world[:, 1]

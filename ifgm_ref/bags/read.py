@@ -31,6 +31,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from ifgm_ref.bags.messages import EPISODE_FORMAT, TopicName
 from ifgm_ref.errors import BagError
 from ifgm_ref.pose import Point, Pose, wrap_angle
 
@@ -49,12 +50,12 @@ class Topics:
     """The topics of a log; the defaults are ROS's (REP-105, Nav2) and those ``ifgm-ref
     simulate --record`` writes. ``goal``, ``branch`` and ``episode`` are optional."""
 
-    scan: str = "/scan"
-    odom: str = "/odom"
-    cmd_vel: str = "/cmd_vel"
-    goal: str = "/goal_pose"
-    branch: str = "/ifgm_ref/branch"
-    episode: str = "/ifgm_ref/episode"
+    scan: str = TopicName.SCAN
+    odom: str = TopicName.ODOM
+    cmd_vel: str = TopicName.CMD_VEL
+    goal: str = TopicName.GOAL
+    branch: str = TopicName.BRANCH
+    episode: str = TopicName.EPISODE
 
 
 @dataclass(frozen=True)
@@ -278,6 +279,6 @@ def _episode(text: str, topic: str) -> dict[str, Any]:
         episode = json.loads(text)
     except json.JSONDecodeError as err:
         raise BagError(f"{topic}: not JSON ({err.msg} at column {err.colno})") from None
-    if not isinstance(episode, dict) or episode.get("format") != "ifgm-ref episode 1":
-        raise BagError(f"{topic}: not an ifgm-ref episode (its format is not 'ifgm-ref episode 1')")
+    if not isinstance(episode, dict) or episode.get("format") != EPISODE_FORMAT:
+        raise BagError(f"{topic}: not an ifgm-ref episode (its format is not {EPISODE_FORMAT!r})")
     return episode

@@ -163,7 +163,7 @@ def run_bench(args: argparse.Namespace) -> int:
     worlds = f"{len(specs)} world{'s' if len(specs) != 1 else ''}"
     print(f"bench: {planners} x {worlds}{points} ({source}) on {where}", file=sys.stderr)
     if args.record is not None:
-        output_folder("--record", str(Path(args.record) / "bag.mcap"))
+        output_folder("--record", args.record, is_folder=True)
     partial = Path(args.out) / PARTIAL
     partial.parent.mkdir(parents=True, exist_ok=True)
     partial.unlink(missing_ok=True)

@@ -100,12 +100,13 @@ def names(text: str) -> list[str]:
     return found
 
 
-def output_folder(option: str, name: str) -> None:
-    """Make the folder an output file ``name`` (given with ``option``) goes in, as
-    ``figures --out`` does, before any work: a folder that cannot be made is a
-    :class:`~ifgm_ref.errors.ParameterError` naming the option, not an errno after the run.
+def output_folder(option: str, name: str, *, is_folder: bool = False) -> None:
+    """Make the folder an output file ``name`` (given with ``option``) goes in, or the folder
+    ``name`` itself (``is_folder``), as ``figures --out`` does, before any work: a folder that
+    cannot be made is a :class:`~ifgm_ref.errors.ParameterError` naming the option, not an
+    errno after the run.
     """
-    folder = Path(name).parent
+    folder = Path(name) if is_folder else Path(name).parent
     try:
         folder.mkdir(parents=True, exist_ok=True)
     except OSError as err:
