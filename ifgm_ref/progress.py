@@ -54,7 +54,8 @@ def progress_bar(
 ) -> tqdm:  # type: ignore[type-arg]
     """A progress bar over ``total`` ``unit`` labelled ``desc`` on stderr: ``progress=True``
     a ``tqdm`` bar, ``False`` none, ``None`` a bar on a terminal and a line now and then
-    otherwise (module docstring). ``options`` go to the bar (``leave``, ``mininterval``...).
+    otherwise (module docstring). ``options`` go to a bar (``leave``, ``mininterval``...), not
+    to the lines, whose pace and format are fixed.
     """
     if progress is None and not sys.stderr.isatty():
         return _LogLines(total=total, desc=desc, unit=unit, file=sys.stderr)
