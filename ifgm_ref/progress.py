@@ -33,6 +33,7 @@ class _LogLines(tqdm):  # type: ignore[type-arg]
 
     def __init__(self, *args: Any, **kwargs: Any) -> None:
         self._shown: float | None = None  # the count of the last line written
+        self._written = time.time()  # when it was written (the start, before any)
         kwargs.update(mininterval=LOG_INTERVAL, bar_format=LOG_FORMAT, leave=False)
         super().__init__(*args, **kwargs)
 
@@ -42,11 +43,12 @@ class _LogLines(tqdm):  # type: ignore[type-arg]
         closing = msg == ""  # tqdm clears a bar it does not leave with an empty message
         if closing and self._shown in (None, self.n):
             return
-        if not closing and time.time() - self.start_t < LOG_INTERVAL:
+        # tqdm's monitor thread may ask too: at most one line every LOG_INTERVAL s.
+        if not closing and time.time() - self._written < LOG_INTERVAL:
             return
         self.fp.write(self.__str__() + "\n")
         self.fp.flush()
-        self._shown = self.n
+        self._shown, self._written = self.n, time.time()
 
 
 def progress_bar(
