@@ -253,7 +253,7 @@ class LaserScan:
             "angle_increment": self.angle_increment,
             "range_min": self.range_min,
             "range_max": self.range_max,
-            "ranges": [_range_to_json(float(r)) for r in self.ranges],
+            "ranges": _ranges_to_json(self.ranges),
         }
 
     @classmethod
@@ -270,10 +270,13 @@ class LaserScan:
         )
 
 
-def _range_to_json(value: float) -> float | None:
-    """One range as JSON: finite as is, ``-inf`` as 0, ``+inf`` and ``nan`` as ``None``."""
-    if math.isfinite(value):
-        return value
-    if value == -math.inf:
-        return 0.0
-    return None
+def _ranges_to_json(ranges: NDArray[np.float64]) -> list[float | None]:
+    """The ranges as JSON: finite as they are, ``-inf`` as 0, ``+inf`` and ``nan`` as ``None``.
+
+    >>> _ranges_to_json(np.array([1.5, np.inf, -np.inf, np.nan]))
+    [1.5, None, 0.0, None]
+    """
+    values: list[float | None] = np.asarray(ranges, dtype=np.float64).tolist()
+    for k in np.flatnonzero(~np.isfinite(ranges)).tolist():
+        values[k] = 0.0 if values[k] == -math.inf else None
+    return values

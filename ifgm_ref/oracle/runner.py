@@ -315,15 +315,22 @@ def _run_pooled(
     jobs: int,
     finished: Callable[[CheckResult], CheckResult],
     stop_on_failure: bool,
+    meanwhile: Callable[[], bool],
 ) -> dict[str, CheckResult]:
-    """Run simulation checks in ``jobs`` worker processes (the platform's default start)."""
-    shipped = replace(impl, equations=None)  # modules do not pickle; equation checks ran here
+    """Run simulation checks in ``jobs`` worker processes (the platform's default start),
+    and ``meanwhile`` here while they run; ``meanwhile`` returns ``False`` to stop them
+    (a failure under ``stop_on_failure``)."""
+    shipped = replace(impl, equations=None)  # modules do not pickle; equation checks run here
     done: dict[str, CheckResult] = {}
     with ProcessPoolExecutor(max_workers=jobs) as pool:
         futures = {
             pool.submit(_pooled_check, n, shipped, profile, artifacts, expected.get(n)): n
             for n in names
         }
+        if not meanwhile():
+            for future in futures:
+                future.cancel()
+            return done
         for future in as_completed(futures):
             try:
                 result = future.result()
@@ -491,8 +498,8 @@ def _run_checks(
     stop_on_failure: bool,
 ) -> tuple[CheckResult, ...]:
     """Run the checks ``names`` on ``impl``: the simulation checks in ``jobs`` worker processes
-    when ``jobs > 1``, the others (all, when ``jobs == 1``) here, in order; return the results
-    in the order of ``names`` (see :func:`check_planner`)."""
+    when ``jobs > 1``, the others (all, when ``jobs == 1``) here, in order, while the workers
+    run; return the results in the order of ``names`` (see :func:`check_planner`)."""
 
     def finished(result: CheckResult) -> CheckResult:
         if progress:
@@ -501,25 +508,33 @@ def _run_checks(
 
     pooled = [n for n in names if CHECKS[n].kind is Kind.SIMULATION] if jobs > 1 else []
     done: dict[str, CheckResult] = {}
-    for name in names:
-        if name in pooled:
-            continue
-        done[name] = finished(
-            run_check(
+
+    def run_here() -> bool:
+        """Run the checks not pooled; ``False`` if one failed and that stops the run."""
+        for name in names:
+            if name in pooled:
+                continue
+            result = run_check(
                 CHECKS[name],
                 impl,
                 profile,
                 artifacts=artifacts,
                 expected_failure=expected.get(name),
             )
-        )
-        if stop_on_failure and not done[name].ok:
-            pooled = []
-            break
+            done[name] = finished(result)
+            if stop_on_failure and not result.ok:
+                return False
+        return True
+
     if pooled:
         done.update(
-            _run_pooled(pooled, impl, profile, artifacts, expected, jobs, finished, stop_on_failure)
-        )
+            _run_pooled(
+                pooled, impl, profile, artifacts, expected, jobs, finished, stop_on_failure,
+                run_here,
+            )
+        )  # fmt: skip
+    else:
+        run_here()
     return tuple(done[n] for n in names if n in done)
 
 

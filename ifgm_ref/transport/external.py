@@ -7,11 +7,11 @@ at the first :meth:`~ExternalPlanner.reset` and kept for every episode after it;
 :meth:`~ExternalPlanner.close` (or leaving a ``with`` block) sends ``bye`` and expects exit
 status 0.
 
-The adapter never hangs: the program's stdout is read by a background thread into a queue,
-and every reply is awaited at most ``timeout`` seconds, except the first of each start of the
-program (its ``ready`` to the first ``reset``, start-up included), awaited at most
-``startup_timeout`` seconds, as is the program's exit after ``bye``; its stderr is copied by
-another thread to ``log`` (if given), the last lines kept for error messages. Every way a
+The adapter never hangs: each message is written and its reply awaited
+(:mod:`~ifgm_ref.transport.pipes`) within ``timeout`` seconds, except the first of each start
+of the program (its ``ready`` to the first ``reset``, start-up included), given
+``startup_timeout`` seconds, as is the program's exit after ``bye``; its stderr is copied by a
+background thread to ``log`` (if given), the last lines kept for error messages. Every way a
 program can fail -- it cannot be started, exits, hangs, writes something that is not a
 protocol message, answers out of turn, exits non-zero at ``bye`` -- raises
 :class:`~ifgm_ref.errors.ImplementationError` saying what happened and at which message (and
@@ -24,13 +24,14 @@ from __future__ import annotations
 
 import collections
 import contextlib
+import io
 import math
 import os
-import queue
 import shlex
 import signal
 import subprocess
 import threading
+import time
 import weakref
 from collections.abc import Sequence
 from functools import partial
@@ -40,6 +41,7 @@ from typing import IO, Any, NoReturn, TextIO
 from ifgm_ref.errors import ImplementationError, ParameterError, ProtocolError
 from ifgm_ref.pose import Point, Pose
 from ifgm_ref.protocol import Command, EpisodeParams, Observation
+from ifgm_ref.transport.pipes import Pipes, connect
 from ifgm_ref.transport.wire import (
     bye_message,
     decode,
@@ -83,7 +85,6 @@ DRAIN_WAIT = 1.0
 #: How long to wait for a killed program to be reaped, s (SIGKILL cannot be ignored).
 REAP_WAIT = 5.0
 
-_EOF = None  # what the stdout reader queues when the program closes its stdout
 #: How a message names each timeout, with the command-line option that sets it.
 PER_REPLY = "the per-reply timeout, --timeout"
 STARTUP = "the start-up timeout, --startup-timeout"
@@ -173,11 +174,11 @@ class ExternalPlanner:
         self.name = shlex.join(argv) if name is None else name
         self._log = log
         self._cwd = cwd
-        self._process: subprocess.Popen[str] | None = None
-        self._replies: queue.Queue[str | None] = queue.Queue()
-        self._outbox: queue.Queue[str | None] = queue.Queue()
+        self._process: subprocess.Popen[bytes] | None = None
+        self._pipes: Pipes | None = None
         self._stderr_tail: collections.deque[str] = collections.deque(maxlen=STDERR_TAIL)
-        self._threads: tuple[threading.Thread, ...] = ()
+        self._stderr_copier: threading.Thread | None = None
+        self._stderr: IO[str] | None = None
         self._failure: ImplementationError | None = None
         self._episode = EpisodeParams()  # the last reset's: velocity commands are read with it
         self._finalizer: weakref.finalize[..., ExternalPlanner] | None = None
@@ -237,10 +238,12 @@ class ExternalPlanner:
         if process is None or self._failure is not None:
             return
         self._check_quiet("bye")
-        self._outbox.put(encode(bye_message()))
-        self._outbox.put(_EOF)  # then close its stdin
+        assert self._pipes is not None
+        deadline = time.monotonic() + self.startup_timeout
+        self._pipes.send(encode(bye_message()), deadline)  # one that is not read: no exit
+        self._pipes.close_input()
         try:
-            status = process.wait(timeout=self.startup_timeout)
+            status = process.wait(timeout=max(0.0, deadline - time.monotonic()))
         except subprocess.TimeoutExpired:
             self._fail(
                 f"program did not exit within {self.startup_timeout!r} s after bye "
@@ -306,10 +309,6 @@ class ExternalPlanner:
                 stdin=subprocess.PIPE,
                 stdout=subprocess.PIPE,
                 stderr=subprocess.PIPE,
-                text=True,
-                encoding="utf-8",
-                errors="replace",
-                bufsize=1,
                 cwd=self._cwd,
                 # its own process group, so that a kill reaches what it started, too
                 start_new_session=posix,
@@ -320,33 +319,17 @@ class ExternalPlanner:
             )
             raise self._failure from None
         self._process = process
-        self._replies = queue.Queue()
-        self._outbox = queue.Queue()
+        self._pipes = connect(process)
         self._stderr_tail = collections.deque(maxlen=STDERR_TAIL)
-        assert process.stdin is not None
-        assert process.stdout is not None and process.stderr is not None
-        self._threads = (
-            threading.Thread(
-                target=_write_lines,
-                args=(process.stdin, self._outbox),
-                name=f"stdin of pid {process.pid}",
-                daemon=True,
-            ),
-            threading.Thread(
-                target=_read_lines,
-                args=(process.stdout, self._replies),
-                name=f"stdout of pid {process.pid}",
-                daemon=True,
-            ),
-            threading.Thread(
-                target=_copy_lines,
-                args=(process.stderr, self._stderr_tail, self._log),
-                name=f"stderr of pid {process.pid}",
-                daemon=True,
-            ),
+        assert process.stderr is not None
+        self._stderr = io.TextIOWrapper(process.stderr, encoding="utf-8", errors="replace")
+        self._stderr_copier = threading.Thread(
+            target=_copy_lines,
+            args=(self._stderr, self._stderr_tail, self._log),
+            name=f"stderr of pid {process.pid}",
+            daemon=True,
         )
-        for thread in self._threads:
-            thread.start()
+        self._stderr_copier.start()
         self._finalizer = weakref.finalize(self, _kill_process, process)
 
     def _exchange(self, message: dict[str, Any], what: str, *, startup: bool = False) -> str:
@@ -356,13 +339,16 @@ class ExternalPlanner:
         else ``timeout`` s; a reply that does not come is reported naming that timeout.
         """
         self._check_quiet(what)
-        self._outbox.put(encode(message))
+        assert self._pipes is not None
         wait, which = (self.startup_timeout, STARTUP) if startup else (self.timeout, PER_REPLY)
+        deadline = time.monotonic() + wait
         try:
-            line = self._replies.get(timeout=wait)
-        except queue.Empty:
+            if not self._pipes.send(encode(message), deadline):
+                raise TimeoutError
+            line = self._pipes.receive(deadline)
+        except TimeoutError:
             self._fail(f"no reply within {wait!r} s to {what} ({which}; program killed)", tail=True)
-        if line is _EOF:
+        if line is None:
             self._wait_for_exit(what)
         return line
 
@@ -377,11 +363,12 @@ class ExternalPlanner:
 
     def _check_quiet(self, what: str, *, after: bool = False) -> None:
         """Fail if the program wrote a line nobody asked for (it would desynchronise replies)."""
+        assert self._pipes is not None
         try:
-            line = self._replies.get_nowait()
-        except queue.Empty:
+            line = self._pipes.receive(deadline=0.0)  # long past: look, do not wait
+        except TimeoutError:
             return
-        if line is _EOF:
+        if line is None:
             if after:
                 return
             self._wait_for_exit(what)
@@ -402,9 +389,11 @@ class ExternalPlanner:
         self._fail(f"program {_status(status)} before answering {what}", tail=True)
 
     def _drain(self) -> None:
-        """Let the stdout and stderr threads finish reading what the ended program wrote."""
-        for thread in self._threads[1:]:
-            thread.join(timeout=DRAIN_WAIT)
+        """Let what reads stdout and stderr finish reading what the ended program wrote."""
+        if self._pipes is not None:
+            self._pipes.drain(DRAIN_WAIT)
+        if self._stderr_copier is not None:
+            self._stderr_copier.join(timeout=DRAIN_WAIT)
 
     def _tail(self) -> str:
         tail = self._stderr_tail.copy()  # atomic: the copier thread may still append
@@ -436,40 +425,15 @@ class ExternalPlanner:
         process, self._process = self._process, None
         if process is None:
             return
-        self._outbox.put(_EOF)  # lets the writer thread end if it waits for a line
-        # A pipe still used by its thread (blocked on a full pipe, or a grandchild holds it
-        # open) is left to that thread: closing a buffered stream under it would wait for it.
-        for pipe, thread in zip(
-            (process.stdin, process.stdout, process.stderr), self._threads, strict=True
-        ):
-            if pipe is not None and not thread.is_alive():
-                with contextlib.suppress(OSError, ValueError):
-                    pipe.close()
-
-
-def _write_lines(stream: IO[str], outbox: queue.Queue[str | None]) -> None:
-    """Write every line put in ``outbox`` to ``stream``, flushed; close it at ``_EOF`` (a thread).
-
-    Writing in a thread keeps the oracle free even if the program stops reading its stdin and
-    the pipe fills: the reply then does not come, and the timeout ends the program.
-    """
-    try:
-        while (line := outbox.get()) is not _EOF:
-            stream.write(line + "\n")
-            stream.flush()
-        stream.close()
-    except (OSError, ValueError):
-        pass  # the program is gone (broken pipe) or the pipe was closed: the reader sees it
-
-
-def _read_lines(stream: IO[str], replies: queue.Queue[str | None]) -> None:
-    """Queue every line of ``stream``, then ``_EOF`` (runs in a thread)."""
-    try:
-        for line in stream:
-            replies.put(line)
-    except (OSError, ValueError):
-        pass  # closed under us
-    replies.put(_EOF)
+        if self._pipes is not None:
+            self._pipes.close()
+        self._pipes = None
+        # stderr, if a grandchild still holds it open, is left to its copier thread: closing
+        # a buffered stream under it would wait for it.
+        copier, stderr = self._stderr_copier, self._stderr
+        if copier is not None and stderr is not None and not copier.is_alive():
+            with contextlib.suppress(OSError, ValueError):
+                stderr.close()
 
 
 def _copy_lines(stream: IO[str], tail: collections.deque[str], log: TextIO | None) -> None:
@@ -484,7 +448,7 @@ def _copy_lines(stream: IO[str], tail: collections.deque[str], log: TextIO | Non
         pass
 
 
-def _kill_process(process: subprocess.Popen[str]) -> None:
+def _kill_process(process: subprocess.Popen[bytes]) -> None:
     """Kill ``process`` and its process group if it still runs, and reap it."""
     if process.poll() is None:
         try:
