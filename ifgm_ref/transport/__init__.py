@@ -7,6 +7,8 @@ module                 what it is
 :mod:`.external`       :class:`~.external.ExternalPlanner`, a planner whose decisions come from
                        a program speaking the protocol (``--cmd`` of ``ifgm-ref simulate`` and
                        ``ifgm-ref oracle``)
+:mod:`.pipes`          a program's stdin and stdout as lines, every wait bounded (polled
+                       on POSIX, threaded elsewhere)
 :mod:`.serve`          the program's end around any Python planner (``ifgm-ref serve``)
 :mod:`.loading`        a Python planner from its name: built-in or ``module:attribute``
 =====================  ====================================================================
