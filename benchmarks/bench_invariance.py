@@ -43,8 +43,10 @@ import ifgm_ref.oracle.checks as checks
 from ifgm_ref.bench.report import machine
 from ifgm_ref.oracle.check_types import CheckFailed, Recorder
 from ifgm_ref.oracle.implementation import Implementation, promises_of
+from ifgm_ref.oracle.invariance import EXACT_SCALES, ROUNDED_SCALES
 from ifgm_ref.oracle.mutants import MUTANTS
-from ifgm_ref.oracle.runner import Profile, run_check
+from ifgm_ref.oracle.profiles import Profile
+from ifgm_ref.oracle.runner import run_check
 from ifgm_ref.oracle.variants import VARIANTS
 from ifgm_ref.pose import Point, Pose
 from ifgm_ref.protocol import Command, EpisodeParams, Observation, Planner
@@ -116,7 +118,7 @@ def example(check: str, impl: Implementation, seed: int, k: int) -> tuple[Any, .
     world = GENERATORS[draw.choice(classes, "class")](draw)
     if check == "rigid_motion_invariant":
         return world, placement(draw)
-    return world, draw.choice(checks.EXACT_SCALES + checks.ROUNDED_SCALES, "scale")
+    return world, draw.choice(EXACT_SCALES + ROUNDED_SCALES, "scale")
 
 
 @dataclass(frozen=True)

@@ -18,7 +18,8 @@ import time
 
 import ifgm_ref.equations
 from ifgm_ref.bench.report import machine
-from ifgm_ref.oracle.checks import CHECKS, Kind
+from ifgm_ref.oracle.check_types import Kind
+from ifgm_ref.oracle.checks import CHECKS
 from ifgm_ref.oracle.runner import Status, check_planner
 
 

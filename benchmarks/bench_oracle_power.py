@@ -26,7 +26,8 @@ from ifgm_ref.bench.report import machine
 from ifgm_ref.oracle.checks import CHECKS
 from ifgm_ref.oracle.implementation import Implementation, promises_of
 from ifgm_ref.oracle.mutants import MUTANTS
-from ifgm_ref.oracle.runner import Profile, run_check
+from ifgm_ref.oracle.profiles import Profile
+from ifgm_ref.oracle.runner import run_check
 from ifgm_ref.oracle.variants import VARIANTS
 
 #: Planners that must be rejected: built-in names or mutant names.

@@ -25,7 +25,8 @@ import pytest
 
 from ifgm_ref.bench import barn
 from ifgm_ref.convergence import time_bound
-from ifgm_ref.oracle.checks import CHECKS, Kind
+from ifgm_ref.oracle.check_types import Kind
+from ifgm_ref.oracle.checks import CHECKS
 from ifgm_ref.oracle.implementation import Implementation
 from ifgm_ref.oracle.invariance import HEADING_TOL, SPEED_TOL, answer_errors
 from ifgm_ref.oracle.metamorphic import moved_recording

@@ -23,7 +23,8 @@ from ifgm_ref.oracle.implementation import Implementation, promises_of
 from ifgm_ref.oracle.invariance import HEADING_TOL, SPEED_TOL, answer_errors, generic
 from ifgm_ref.oracle.metamorphic import moved_recording, scale_world, scaled_recording
 from ifgm_ref.oracle.mutants import GapAngleInWorldFrame, QuadrantBlindGoalAngle
-from ifgm_ref.oracle.runner import Profile, Status, run_check
+from ifgm_ref.oracle.profiles import Profile
+from ifgm_ref.oracle.runner import Status, run_check
 from ifgm_ref.oracle.variants import VARIANTS
 from ifgm_ref.params import SimParams
 from ifgm_ref.planners import make_planner

@@ -8,7 +8,9 @@ sensor, the simulator or anything above them.
 The same import graph keeps the layers above apart: the transport (the JSON-lines protocol,
 planners found by name) serves the oracle, the command line and the benchmark alike and
 imports none of them; the world classes and the time bound serve the oracle and the
-benchmark, which import each other not at all.
+benchmark, which import each other not at all. No module imports itself through others (no
+import cycle, function-level imports included), and the oracle is layered: what is checked
+and how examples are drawn, then the checks, then what runs them.
 """
 
 from __future__ import annotations
@@ -152,3 +154,91 @@ def test_the_separation_has_teeth() -> None:
             test_layers_stay_apart("ifgm_ref.transport", "ifgm_ref.oracle", "test")
     finally:
         GRAPH["ifgm_ref.transport.wire"].discard("ifgm_ref.oracle.checks")
+
+
+#: The oracle's layers, bottom up: what is checked and how examples are drawn; the checks;
+#: what runs them. A module imports oracle modules of its own layer or below only.
+ORACLE_LAYERS = (
+    (
+        "ifgm_ref.oracle",  # the package itself (an empty __init__)
+        "ifgm_ref.oracle.implementation",
+        "ifgm_ref.oracle.check_types",
+        "ifgm_ref.oracle.profiles",
+        "ifgm_ref.oracle.domains",
+        "ifgm_ref.oracle.strategies",
+        "ifgm_ref.oracle.percept_strategies",
+        "ifgm_ref.oracle.metamorphic",
+        "ifgm_ref.oracle.mutants",
+        "ifgm_ref.oracle.variants",
+        "ifgm_ref.oracle.vectors",
+    ),
+    (
+        "ifgm_ref.oracle.checks",
+        "ifgm_ref.oracle.equation_checks",
+        "ifgm_ref.oracle.invariance",
+        "ifgm_ref.oracle.robust",
+    ),
+    (
+        "ifgm_ref.oracle.runner",
+        "ifgm_ref.oracle.pytest_plugin",
+        "ifgm_ref.oracle.test_conformance",
+    ),
+)
+
+
+def _oracle_layer(module: str) -> int:
+    for level, members in enumerate(ORACLE_LAYERS):
+        if any(module == m or (m != "ifgm_ref.oracle" and _within(module, m)) for m in members):
+            return level
+    raise AssertionError(f"{module} is in no layer of ORACLE_LAYERS: place it there")
+
+
+def _cycle(graph: dict[str, set[str]]) -> list[str] | None:
+    """An import cycle of ``graph`` (its modules in order, the first repeated), or ``None``."""
+    done: set[str] = set()
+    path: list[str] = []
+
+    def visit(module: str) -> list[str] | None:
+        if module in path:
+            return [*path[path.index(module) :], module]
+        if module in done:
+            return None
+        path.append(module)
+        for dep in sorted(graph.get(module, ())):
+            if (found := visit(dep)) is not None:
+                return found
+        path.pop()
+        done.add(module)
+        return None
+
+    for module in sorted(graph):
+        if (found := visit(module)) is not None:
+            return found
+    return None
+
+
+def test_the_package_has_no_import_cycle() -> None:
+    """Function-level imports count: a cycle hidden in one is a cycle all the same."""
+    cycle = _cycle(GRAPH)
+    assert cycle is None, f"import cycle: {' -> '.join(cycle or [])}"
+
+
+@pytest.mark.parametrize("module", sorted(m for m in MODULES if _within(m, "ifgm_ref.oracle")))
+def test_oracle_modules_import_only_their_layer_or_below(module: str) -> None:
+    level = _oracle_layer(module)
+    above = sorted(
+        dep
+        for dep in GRAPH[module]
+        if _within(dep, "ifgm_ref.oracle") and _oracle_layer(dep) > level
+    )
+    assert not above, f"{module} (layer {level}) imports a higher layer: {above}"
+
+
+def test_the_cycle_check_has_teeth() -> None:
+    GRAPH["ifgm_ref.oracle.implementation"].add("ifgm_ref.oracle.checks")
+    try:
+        assert _cycle(GRAPH) is not None
+        with pytest.raises(AssertionError, match="imports a higher layer"):
+            test_oracle_modules_import_only_their_layer_or_below("ifgm_ref.oracle.implementation")
+    finally:
+        GRAPH["ifgm_ref.oracle.implementation"].discard("ifgm_ref.oracle.checks")

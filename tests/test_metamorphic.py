@@ -24,7 +24,8 @@ from ifgm_ref.oracle.metamorphic import (
     scale_world,
 )
 from ifgm_ref.oracle.mutants import AbsoluteStandoff
-from ifgm_ref.oracle.runner import Profile, Status, check_planner, run_check
+from ifgm_ref.oracle.profiles import Profile
+from ifgm_ref.oracle.runner import Status, check_planner, run_check
 from ifgm_ref.params import RobotParams, SensorParams, SimParams
 from ifgm_ref.planners import PLANNERS
 from ifgm_ref.planners.tuning import Unit

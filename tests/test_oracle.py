@@ -25,10 +25,12 @@ import ifgm_ref.equations as reference
 from ifgm_ref.bags.read import read_log
 from ifgm_ref.cli import main
 from ifgm_ref.convergence import time_bound
-from ifgm_ref.oracle.checks import CHECKS, Check, Kind
+from ifgm_ref.oracle.check_types import Check, Kind
+from ifgm_ref.oracle.checks import CHECKS
 from ifgm_ref.oracle.implementation import Implementation, promises_of
 from ifgm_ref.oracle.mutants import MUTANTS
-from ifgm_ref.oracle.runner import Profile, Status, check_planner, run_check
+from ifgm_ref.oracle.profiles import Profile
+from ifgm_ref.oracle.runner import Status, check_planner, run_check
 from ifgm_ref.oracle.strategies import SOLVABLE_CLASSES, enclosed_worlds, open_worlds
 from ifgm_ref.oracle.variants import VARIANTS
 from ifgm_ref.params import SimParams

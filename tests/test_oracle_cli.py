@@ -15,7 +15,9 @@ from pathlib import Path
 import pytest
 from hypothesis import strategies as st
 
-from ifgm_ref.oracle.checks import CHECKS, NO_EQUATIONS, NO_EQUATIONS_PROGRAM, Check, Kind
+from ifgm_ref.oracle.check_types import Check, Kind
+from ifgm_ref.oracle.checks import CHECKS
+from ifgm_ref.oracle.equation_checks import NO_EQUATIONS, NO_EQUATIONS_PROGRAM
 from ifgm_ref.oracle.implementation import Implementation
 from ifgm_ref.oracle.runner import (
     Status,

@@ -18,15 +18,17 @@ from hypothesis import find, settings
 
 from ifgm_ref.convergence import time_bound
 from ifgm_ref.noise import NoiseLevels
-from ifgm_ref.oracle.checks import CHECKS, Kind
+from ifgm_ref.oracle.check_types import Kind
+from ifgm_ref.oracle.checks import CHECKS
 from ifgm_ref.oracle.implementation import REFERENCE_NOISE, Implementation, Promises, promises_of
+from ifgm_ref.oracle.profiles import Profile, with_noise
 from ifgm_ref.oracle.robust import (
     CONFIDENCE_Z,
     noisy_examples,
     statistical_verdict,
     wilson_lower,
 )
-from ifgm_ref.oracle.runner import Profile, Status, check_planner, run_check, with_noise
+from ifgm_ref.oracle.runner import Status, check_planner, run_check
 from ifgm_ref.oracle.strategies import gap_walls
 from ifgm_ref.params import SimParams
 from ifgm_ref.planners import make_planner

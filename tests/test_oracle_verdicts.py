@@ -13,9 +13,11 @@ import math
 
 import pytest
 
-from ifgm_ref.oracle.checks import CHECKS, Kind
+from ifgm_ref.oracle.check_types import Kind
+from ifgm_ref.oracle.checks import CHECKS
 from ifgm_ref.oracle.implementation import Implementation, Promises
-from ifgm_ref.oracle.runner import Profile, Status, run_check
+from ifgm_ref.oracle.profiles import Profile
+from ifgm_ref.oracle.runner import Status, run_check
 from ifgm_ref.planners import PLANNERS
 from ifgm_ref.pose import Point, Pose
 from ifgm_ref.protocol import Command, EpisodeParams, Observation

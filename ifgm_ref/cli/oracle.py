@@ -96,8 +96,10 @@ def _add_run_options(oracle: argparse.ArgumentParser) -> None:
 
 def run_oracle(args: argparse.Namespace) -> int:
     """Run the checks; print the report; return 0 when every check passed (or as expected)."""
-    from ifgm_ref.oracle.implementation import Implementation, load_equations
-    from ifgm_ref.oracle.runner import PROFILE_ALIASES, check_planner
+    from ifgm_ref.oracle.equation_checks import load_equations
+    from ifgm_ref.oracle.implementation import Implementation
+    from ifgm_ref.oracle.profiles import PROFILE_ALIASES
+    from ifgm_ref.oracle.runner import check_planner
 
     keep_hypothesis_out_of_the_working_folder()
 

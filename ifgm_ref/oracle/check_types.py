@@ -17,6 +17,7 @@ from typing import Any
 
 from hypothesis import strategies as st
 
+from ifgm_ref.errors import IfgmRefError
 from ifgm_ref.oracle.implementation import Implementation
 from ifgm_ref.simulator import Run
 from ifgm_ref.world import World
@@ -32,7 +33,7 @@ class Kind(StrEnum):
     EQUATION = "equation"
 
 
-class CheckFailed(AssertionError):
+class CheckFailed(IfgmRefError):
     """An implementation broke a property; the message says how."""
 
 

@@ -17,13 +17,20 @@ from typing import Any
 from hypothesis import strategies as st
 
 from ifgm_ref import equations as reference
-from ifgm_ref.errors import IfgmRefError
+from ifgm_ref.errors import IfgmRefError, ImplementationError
 from ifgm_ref.oracle.check_types import Check, CheckFailed, Evidence, Kind, Recorder
 from ifgm_ref.oracle.domains import inputs
 from ifgm_ref.oracle.implementation import Implementation
 from ifgm_ref.paper import traces
+from ifgm_ref.transport.loading import resolve
 
-__all__ = ["EQUATION_TOL", "NO_EQUATIONS", "NO_EQUATIONS_PROGRAM", "equation_checks"]
+__all__ = [
+    "EQUATION_TOL",
+    "NO_EQUATIONS",
+    "NO_EQUATIONS_PROGRAM",
+    "equation_checks",
+    "load_equations",
+]
 
 #: Why the equation checks do not apply to a Python implementation given without equations:
 #: how to give them, on the command line, under pytest and in Python.
@@ -147,3 +154,27 @@ def equation_checks() -> list[Check]:
         _equation_check(name, sentence, inputs(equation, args), angle=angle)
         for name, sentence, equation, args, angle in _CHECKED
     ]
+
+
+def load_equations(spec: str) -> object:
+    """The equations under test: the module ``spec`` names, or ``module:attribute``.
+
+    It must expose at least one of the functions the oracle's equation checks compare with
+    :mod:`ifgm_ref.equations` (``eq1_gap_midpoint`` ... ``eq4_final_heading_literal``, the
+    names of the checks), with the reference's signatures.
+
+    >>> load_equations("ifgm_ref.equations").__name__
+    'ifgm_ref.equations'
+    >>> load_equations("math")  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    ifgm_ref.errors.ImplementationError: 'math' has none of the equation functions eq1_gap_...
+    """
+    target = resolve(spec)
+    names = [check.name for check in equation_checks()]
+    if not any(callable(getattr(target, name, None)) for name in names):
+        raise ImplementationError(
+            f"{spec!r} has none of the equation functions {', '.join(names)} "
+            "(see ifgm_ref.equations)"
+        )
+    return target

@@ -20,7 +20,7 @@ from ifgm_ref.noise import NoiseLevels
 from ifgm_ref.pose import Point, Pose
 from ifgm_ref.protocol import EpisodeParams, Planner
 from ifgm_ref.transport.external import TIMEOUT
-from ifgm_ref.transport.loading import load_planner_factory, resolve
+from ifgm_ref.transport.loading import load_planner_factory
 
 #: Every solvable world class of :mod:`ifgm_ref.oracle.strategies`.
 ALL_CLASSES = frozenset({"open", "u", "h", "symmetric", "mixed"})
@@ -209,29 +209,3 @@ class Implementation:
         factory = ExternalFactory(command, timeout=timeout, startup_timeout=startup_timeout)
         text = command if isinstance(command, str) else shlex.join(command)
         return cls(factory, f"cmd: {text}", promises, equations)
-
-
-def load_equations(spec: str) -> object:
-    """The equations under test: the module ``spec`` names, or ``module:attribute``.
-
-    It must expose at least one of the functions the oracle's equation checks compare with
-    :mod:`ifgm_ref.equations` (``eq1_gap_midpoint`` ... ``eq4_final_heading_literal``, the
-    names of the checks), with the reference's signatures.
-
-    >>> load_equations("ifgm_ref.equations").__name__
-    'ifgm_ref.equations'
-    >>> load_equations("math")  # doctest: +ELLIPSIS
-    Traceback (most recent call last):
-    ...
-    ifgm_ref.errors.ImplementationError: 'math' has none of the equation functions eq1_gap_...
-    """
-    from ifgm_ref.oracle.checks import CHECKS, Kind  # the checks import this module
-
-    target = resolve(spec)
-    names = [name for name, check in CHECKS.items() if check.kind is Kind.EQUATION]
-    if not any(callable(getattr(target, name, None)) for name in names):
-        raise ImplementationError(
-            f"{spec!r} has none of the equation functions {', '.join(names)} "
-            "(see ifgm_ref.equations)"
-        )
-    return target

@@ -24,18 +24,17 @@ import pytest
 
 from ifgm_ref.errors import IfgmRefError
 from ifgm_ref.oracle.checks import CHECKS
-from ifgm_ref.oracle.implementation import PROMISES, Implementation, Promises, load_equations
-from ifgm_ref.oracle.runner import (
+from ifgm_ref.oracle.equation_checks import load_equations
+from ifgm_ref.oracle.implementation import PROMISES, Implementation, Promises
+from ifgm_ref.oracle.profiles import (
     PROFILE_ALIASES,
     PROFILES,
-    CheckResult,
     Profile,
     noise_tags,
     profile_named,
-    run_check,
-    tally,
     with_noise,
 )
+from ifgm_ref.oracle.runner import CheckResult, run_check, tally
 from ifgm_ref.transport.external import STARTUP_TIMEOUT, TIMEOUT
 
 #: The test module whose items need an implementation.

@@ -31,18 +31,10 @@ from hypothesis.errors import Flaky
 
 from ifgm_ref.errors import ImplementationError
 from ifgm_ref.noise import NoiseLevels
-from ifgm_ref.oracle.checks import (
-    CHECKS,
-    Check,
-    CheckFailed,
-    Evidence,
-    Kind,
-    Recorder,
-)
+from ifgm_ref.oracle.check_types import Check, CheckFailed, Evidence, Kind, Recorder
+from ifgm_ref.oracle.checks import CHECKS
 from ifgm_ref.oracle.implementation import Implementation, Promises, promises_of
 from ifgm_ref.oracle.profiles import (
-    PROFILE_ALIASES,
-    PROFILES,
     Profile,
     noise_tags,
     profile_named,
@@ -550,17 +542,12 @@ def _act_on(report: Report, on_fail: str | None) -> None:
 
 
 __all__ = [
-    "PROFILES",
-    "PROFILE_ALIASES",
     "CheckResult",
-    "Kind",
-    "Profile",
     "Report",
     "Status",
     "check_planner",
-    "noise_tags",
-    "profile_named",
+    "crash",
     "run_check",
     "tally",
-    "with_noise",
+    "write_evidence",
 ]

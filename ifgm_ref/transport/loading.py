@@ -6,7 +6,7 @@ plugin all name a Python planner the same way: either a built-in name (``ifgm``,
 any callable that takes no argument and returns a new object with ``name``, ``reset`` and
 ``step`` (:class:`ifgm_ref.protocol.Planner`). A class is such a callable. The oracle names
 the equations under test the same way (:func:`resolve`;
-:func:`ifgm_ref.oracle.implementation.load_equations`).
+:func:`ifgm_ref.oracle.equation_checks.load_equations`).
 """
 
 from __future__ import annotations
