@@ -13,7 +13,8 @@ The flowchart is one function of boolean *atoms* computed from the percepts (:cl
 Each :class:`Branch` has a guard, an expression over the atoms written with ``&``, ``|`` and
 ``~`` only, so that the same guards evaluate on numpy booleans at run time and on sympy
 symbols in the proofs. The guards partition the atom space: exactly one holds for every
-percept. :func:`decide` checks that at every call.
+percept. :func:`decide` checks that for each combination of atoms it meets (once: the
+branch is cached).
 """
 
 from __future__ import annotations
@@ -27,6 +28,7 @@ from typing import Any
 
 import numpy as np
 
+from ifgm_ref.errors import InvariantError
 from ifgm_ref.paper import traces
 
 
@@ -112,26 +114,46 @@ GUARDS: dict[Branch, Guard] = {
     Branch.CASE1_GAP: lambda a: _encountered(a) & ~a.close & ~a.one_sided & a.wide,
 }
 
-#: The branches in which IBA steers (Case-2, too close, and the avoidance it continues).
-IBA_BRANCHES = frozenset(
-    {
-        Branch.CASE2_NARROW_GAP,
-        Branch.CASE2_ONE_SIDED,
-        Branch.TOO_CLOSE,
-        Branch.CASE3_PREEMPT,
-        Branch.FOLLOW_EDGE,
-    }
-)
+
+def figure3(atoms: Atoms) -> Branch:
+    """Figure 3 read top down as one decision tree: the same branch as :data:`GUARDS` for
+    every combination of atoms (``tests/test_flowchart.py`` checks all 1,024), in the order a
+    reader follows the flowchart -- and the order the C port decides in.
+
+    >>> base = dict.fromkeys(Atoms.names(), False)
+    >>> figure3(Atoms(**{**base, "blocked": True, "wide": True}))
+    <Branch.CASE1_GAP: 'case1_gap'>
+    """
+    a = atoms
+    if a.at_goal:
+        return Branch.GOAL_REACHED
+    if a.turning:  # a dead-end turn under way goes on
+        return Branch.DEAD_END_TURN
+    if a.avoiding:  # IBA follows an edge: leave it, yield to a nearer obstacle, or go on
+        if a.free:
+            return Branch.PATH_REGENERATED
+        return Branch.CASE3_PREEMPT if a.preempt else Branch.FOLLOW_EDGE
+    if not a.blocked:  # nothing sensed on the reference path
+        return Branch.MOVE_TO_GOAL
+    if a.dead_end:  # inside a U or an H
+        return Branch.DEAD_END_TURN
+    if a.close:  # nearest <= d_obs: IBA
+        return Branch.TOO_CLOSE
+    if a.one_sided:  # Case-2: obstacles on one side only
+        return Branch.CASE2_ONE_SIDED
+    # both conditions: max gap > d_th (Case-1, FGM) or not (Case-2, IBA)
+    return Branch.CASE1_GAP if a.wide else Branch.CASE2_NARROW_GAP
 
 
 @traces("fig3.partition", "fig3.both_conditions")
 def decide(atoms: Atoms) -> Branch:
     """The one Figure 3 branch whose guard holds for ``atoms`` (plain or numpy booleans).
 
-    Raises ``AssertionError`` if the guards do not hold for exactly one branch -- the
-    partition property, proved for all atom values in ``proofs/flowchart.py``. The guards
-    are evaluated, and the partition checked, once per combination of atom values in a
-    process (:func:`branch_of`): a planner's step looks the branch up.
+    Raises :class:`~ifgm_ref.errors.InvariantError` if the guards do not hold for exactly
+    one branch -- the partition property, proved for all atom values in
+    ``proofs/flowchart.py``. The guards are evaluated, and the partition checked, once per
+    combination of atom values in a process (:func:`branch_of`): a planner's step looks the
+    branch up.
 
     Examples
     --------
@@ -156,5 +178,6 @@ def branch_of(values: tuple[bool, ...]) -> Branch:
     order), the guards evaluated on numpy booleans and checked to partition; cached."""
     atoms = Atoms(*(np.bool_(value) for value in values))
     holding = [branch for branch, guard in GUARDS.items() if bool(guard(atoms))]
-    assert len(holding) == 1, f"guards hold for {holding}, but should for exactly one [{atoms}]"
+    if len(holding) != 1:
+        raise InvariantError(f"guards hold for {holding}, but should for exactly one [{atoms}]")
     return holding[0]

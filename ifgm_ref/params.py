@@ -197,6 +197,11 @@ class SensorParams(_Block):
 #: :attr:`SimParams.stall_time`'s default: the stall time derived from the robot and the time
 #: step (:data:`ifgm_ref.simulator.STALL_TIME`).
 AUTO: Final = "auto"
+#: The default time step, s (:class:`SimParams`, and the planner's
+#: :class:`~ifgm_ref.protocol.EpisodeParams`).
+DT: Final = 0.1
+#: The default goal tolerance, ft (the same two).
+GOAL_TOLERANCE: Final = 0.5
 
 
 @dataclass(frozen=True)
@@ -226,9 +231,9 @@ class SimParams:
         ``max_time``.
     """
 
-    dt: float = 0.1
+    dt: float = DT
     max_time: float = 600.0
-    goal_tolerance: float = 0.5
+    goal_tolerance: float = GOAL_TOLERANCE
     stall_time: float | Literal["auto"] | None = AUTO
     stall_laps: int | None = 2
 

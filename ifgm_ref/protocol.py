@@ -19,7 +19,7 @@ from typing import Any, Protocol, runtime_checkable
 
 from ifgm_ref.laserscan import LaserScan
 from ifgm_ref.paper import traces
-from ifgm_ref.params import RobotParams, SensorParams
+from ifgm_ref.params import DT, GOAL_TOLERANCE, RobotParams, SensorParams
 from ifgm_ref.pose import Point, Pose, wrap_angle
 
 
@@ -40,9 +40,9 @@ class EpisodeParams:
 
     robot: RobotParams = field(default_factory=RobotParams)
     sensor: SensorParams = field(default_factory=SensorParams)
-    dt: float = 0.1
+    dt: float = DT
     params: dict[str, Any] = field(default_factory=dict)
-    goal_tolerance: float = 0.5
+    goal_tolerance: float = GOAL_TOLERANCE
 
 
 @traces("s3.no_map")

@@ -9,7 +9,8 @@ from collections.abc import Iterator
 
 import pytest
 
-from ifgm_ref.flowchart import GUARDS, Atoms, Branch, branch_of, decide
+from ifgm_ref.errors import InvariantError
+from ifgm_ref.flowchart import GUARDS, Atoms, Branch, branch_of, decide, figure3
 
 ALL_ATOMS = list(itertools.product([False, True], repeat=len(Atoms.names())))
 
@@ -37,7 +38,7 @@ def fresh_branches() -> Iterator[None]:
 def test_decide_rejects_guards_that_overlap(monkeypatch: pytest.MonkeyPatch) -> None:
     monkeypatch.setitem(GUARDS, Branch.CASE1_GAP, lambda a: a.blocked)  # overlaps Case-2
     atoms = Atoms(**{**dict.fromkeys(Atoms.names(), False), "blocked": True})
-    with pytest.raises(AssertionError, match="exactly one"):
+    with pytest.raises(InvariantError, match="exactly one"):
         decide(atoms)
 
 
@@ -129,3 +130,23 @@ def test_the_dead_end_proof_rejects_other_turns(
     monkeypatch.setattr(flowchart, "DEAD_END_MAX_STEPS", steps)
     with pytest.raises(ClaimFailed):
         flowchart._dead_end_claims(Derivation("dead end", "broken"))
+
+
+def test_the_decision_tree_picks_the_guards_branch_for_every_combination_of_atoms() -> None:
+    """:func:`figure3`, the flowchart read as a tree, and :data:`GUARDS`, the form the proofs
+    reason about, agree on all 2**10 combinations of atoms: one Figure 3 in two forms."""
+    for values in itertools.product([False, True], repeat=len(Atoms.names())):
+        assert figure3(Atoms(*values)) is branch_of(values), values
+
+
+def test_the_tree_comparison_has_teeth(monkeypatch: pytest.MonkeyPatch) -> None:
+    """Guards that still partition, but swap Case-1 and Case-2's narrow gap, disagree."""
+    case1, narrow = GUARDS[Branch.CASE1_GAP], GUARDS[Branch.CASE2_NARROW_GAP]
+    monkeypatch.setitem(GUARDS, Branch.CASE1_GAP, narrow)
+    monkeypatch.setitem(GUARDS, Branch.CASE2_NARROW_GAP, case1)
+    branch_of.cache_clear()
+    try:
+        with pytest.raises(AssertionError):
+            test_the_decision_tree_picks_the_guards_branch_for_every_combination_of_atoms()
+    finally:
+        branch_of.cache_clear()

@@ -4,10 +4,14 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
 import pytest
+from hypothesis import given
+from hypothesis import strategies as st
 
 from ifgm_ref.laserscan import LaserScan
 from ifgm_ref.percepts.clusters import GapReading, Side, cluster_scan, gaps_between
+from ifgm_ref.percepts.points import point_to_world, to_world
 from ifgm_ref.pose import Point, Pose
 from ifgm_ref.sensor import IRSensor
 from ifgm_ref.shapes import rectangle
@@ -42,3 +46,19 @@ def test_means_reading_overstates_a_gap_between_walls() -> None:
     assert nearest.width == pytest.approx(4.0, abs=0.5)  # the 4 ft between the walls' ends
     assert means.width > nearest.width + 3.0
     assert [c.side for c in clusters] == [Side.RIGHT, Side.LEFT]
+
+
+#: Coordinates of a point or a pose, ft.
+COORD = st.floats(-1e3, 1e3, allow_nan=False)
+
+
+@given(
+    st.tuples(COORD, COORD),
+    st.builds(Pose, COORD, COORD, st.floats(-math.pi, math.pi)),
+)
+def test_one_point_to_the_world_is_the_arrays_transform_to_the_bit(
+    xy: tuple[float, float], pose: Pose
+) -> None:
+    one = point_to_world(xy, pose)
+    many = to_world(np.array([xy]), pose)[0]
+    assert (one.x, one.y) == (float(many[0]), float(many[1]))

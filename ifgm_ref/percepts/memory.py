@@ -46,11 +46,6 @@ class PerceptMemory:
         self._start = 0
         self._end = 0
 
-    def clear(self) -> None:
-        """Forget everything."""
-        self._scans.clear()
-        self._start = self._end = 0
-
     def add(self, t: float, pose: Pose, scan: LaserScan) -> None:
         """Remember the returns of ``scan`` taken at time ``t`` from ``pose``."""
         self.add_points(t, to_world(scan_points(scan).xy, pose))

@@ -37,7 +37,7 @@ from ifgm_ref.percepts.corridor import disc_travel
 from ifgm_ref.percepts.memory import PerceptMemory
 from ifgm_ref.planners.circuit import Circuit
 from ifgm_ref.planners.edge_following import FollowSide, follow_heading, turn_speed
-from ifgm_ref.planners.sight import Body, BoundaryParams, Sight
+from ifgm_ref.planners.sight import Body, BoundaryParams, Sight, goal_bearing
 from ifgm_ref.planners.tuning import Tuning, check_names
 from ifgm_ref.pose import Point, Pose, wrap_angle
 from ifgm_ref.protocol import Behaviour, Command, EpisodeParams, Observation
@@ -222,11 +222,9 @@ class BoundaryPlanner:
     def __init__(self, rule: LeaveRule | None = None, choose_side: SideChoice = bug_side) -> None:
         self.rule = rule if rule is not None else LeaveRule()
         self.choose_side = choose_side
-        tuning = BoundaryParams.for_episode(EpisodeParams())
-        self.body = Body.of(Point(0.0, 0.0), EpisodeParams(), tuning)
-        self.memory = PerceptMemory(tuning.memory_horizon)
         self.follower = EdgeFollower()
         self.circuit = Circuit()
+        self.reset(Pose(0.0, 0.0, 0.0), Point(0.0, 0.0), EpisodeParams())  # until reset
 
     # -- protocol ---------------------------------------------------------------------------
     def reset(self, start: Pose, goal: Point, params: EpisodeParams) -> None:
@@ -291,9 +289,8 @@ class BoundaryPlanner:
         )
 
     def goal_bearing(self, pose: Pose) -> float:
-        """World-frame direction from the robot to the goal, radians."""
-        goal = self.body.goal
-        return math.atan2(goal.y - pose.y, goal.x - pose.x)
+        """World-frame direction from the robot to the goal, radians (:func:`goal_bearing`)."""
+        return goal_bearing(pose, self.body.goal)
 
     def move_to_goal(self, sight: Sight, branch: str) -> Command:
         """Head for the goal on the regenerated reference path."""

@@ -90,7 +90,7 @@ class DistBugRule(LeaveRule):
 
     def __init__(self) -> None:
         super().__init__()
-        self.step_length = 2.0
+        self.step_length: float  # read at reset
         self.d_min = math.inf
 
     def reset(self, start: Pose, goal: Point, params: EpisodeParams) -> None:

@@ -109,7 +109,13 @@ class IBARule(DistBugRule):
         """Leave at the first free path towards the goal (section 4.1), or where the free
         range promises progress (DistBug's rule, errata row 24)."""
         self.note(sight)
-        return self.progress(sight) or self.free_path_leads_on(sight)
+        return self.leaves(sight)
+
+    def leaves(self, sight: Sight, *, by_progress: bool = True) -> bool:
+        """Whether this step's sight, with the ``d_min`` noted so far, lets the robot leave
+        the edge: by DistBug's progress rule (unless ``by_progress`` is off) or by a free path
+        that leads on (:meth:`free_path_leads_on`)."""
+        return (by_progress and self.progress(sight)) or self.free_path_leads_on(sight)
 
     def free_path_leads_on(self, sight: Sight) -> bool:
         """IBA's free path, where following it as far as it is seen free would bring the robot

@@ -39,8 +39,8 @@ from typing import ClassVar
 
 import numpy as np
 
-from ifgm_ref.equations import eq1_gap_midpoint, eq2_gap_angle, eq3_goal_angle, eq4_final_heading
-from ifgm_ref.errors import ParameterError
+from ifgm_ref.equations import eq1_gap_midpoint, eq2_gap_angle, eq4_final_heading
+from ifgm_ref.errors import ParameterError, present
 from ifgm_ref.flowchart import Atoms, Branch, decide
 from ifgm_ref.laserscan import Beam, LaserScan
 from ifgm_ref.paper import traces
@@ -61,7 +61,7 @@ from ifgm_ref.planners.ifgm_atoms import (
     Percepts,
     read,
 )
-from ifgm_ref.planners.sight import Body, BoundaryParams, Sight
+from ifgm_ref.planners.sight import Body, BoundaryParams, Sight, goal_bearing
 from ifgm_ref.planners.tuning import Tuning, check_names
 from ifgm_ref.pose import Point, Pose, distance, wrap_angle
 from ifgm_ref.protocol import Behaviour, Command, EpisodeParams, Observation
@@ -124,19 +124,12 @@ class IFGMPlanner:
     parameters: ClassVar[tuple[str, ...]] = IFGMParams.names() + IBAPlanner.parameters
 
     def __init__(self) -> None:
-        episode = EpisodeParams()
-        tuning = BoundaryParams.for_episode(episode)
-        self.body = Body.of(Point(0.0, 0.0), episode, tuning)
-        self.memory = PerceptMemory(tuning.memory_horizon)
-        self.follower = EdgeFollower()
         self.iba = IBARule()
         self.circuit = Circuit()
-        self.ifgm = IFGMParams.for_episode(episode)
-        self.goal_tolerance = episode.goal_tolerance
-        self.state = IFGMState()
         self.last_atoms: Atoms | None = None
         self.last_branch: Branch | None = None
         self.last_gap: Gap | None = None
+        self.reset(Pose(0.0, 0.0, 0.0), Point(0.0, 0.0), EpisodeParams())  # until reset
 
     # -- read-only views for observers ------------------------------------------------------
     @property
@@ -156,13 +149,13 @@ class IFGMPlanner:
 
     @property
     def following(self) -> bool:
-        """IBA is following an edge (*obstacle avoidance*)."""
-        return self.state.mode is Mode.FOLLOWING
+        """IBA is following an edge (:attr:`IFGMState.following`)."""
+        return self.state.following
 
     @property
     def turning(self) -> bool:
-        """A dead-end turn sequence (45, 90, 135, 180 degrees) is under way."""
-        return self.state.mode in (Mode.DEAD_END_TURN, Mode.ESCAPING)
+        """A dead-end turn is under way (:attr:`IFGMState.turning`)."""
+        return self.state.turning
 
     @property
     def short_look(self) -> bool:
@@ -231,11 +224,8 @@ class IFGMPlanner:
         return self.decide(self.perceive(observation))
 
     def goal_bearing(self, pose: Pose) -> float:
-        """The destination angle theta_d of eq. (3), world frame (the reading we run); at the
-        goal itself, where eq. (3) has no direction, the robot's heading."""
-        if pose.position == self.body.goal:
-            return pose.theta
-        return eq3_goal_angle(pose.position, self.body.goal)
+        """The destination angle theta_d of eq. (3), world frame (:func:`goal_bearing`)."""
+        return goal_bearing(pose, self.body.goal)
 
     # -- percepts ---------------------------------------------------------------------------
     def perceive(self, observation: Observation) -> Percepts:
@@ -252,9 +242,9 @@ class IFGMPlanner:
         view = observation.scan.window().limited(view_range)
         clusters = cluster_points(points if view is scan else scan_points(view), self.ifgm.jump)
         sight = Sight(pose, self.body, self.memory.points, self.goal_bearing(pose))
-        self.circuit.note(sight, following=self.state.mode is Mode.FOLLOWING)
+        self.circuit.note(sight, following=self.state.following)
         may_leave = False
-        if self.state.mode is Mode.FOLLOWING:
+        if self.state.following:
             tracked = self._track(sight, self.state.followed)
             if tracked != self.state.followed:
                 self.state = replace(self.state, followed=tracked)
@@ -294,8 +284,7 @@ class IFGMPlanner:
                 other = FollowSide.LEFT if side is FollowSide.RIGHT else FollowSide.RIGHT
                 self.state = replace(self.state, turn_other_way=other)
             return False
-        progress = self.iba.progress(sight) and not self.state.escaped
-        return self.iba.free_path_leads_on(sight) or progress
+        return self.iba.leaves(sight, by_progress=not self.state.escaped)
 
     # -- the planner ------------------------------------------------------------------------
     @traces("fig3.move_to_goal", "fig3.regenerate", "fig3.case2", "fig3.case3")
@@ -332,15 +321,15 @@ class IFGMPlanner:
             return steer(sight.bearing, pose, self.body, Behaviour.MOVE_TO_GOAL, branch)
         if branch is Branch.CASE1_GAP:
             self.state = replace(self.state, mode=Mode.THROUGH_GAP)
-            assert reading.gap is not None
-            heading = self.gap_heading(pose, reading.gap)
+            heading = self.gap_heading(pose, present(reading.gap, "the gap Case-1 steers through"))
             return steer(heading, pose, self.body, Behaviour.OBSTACLE_AVOIDANCE, branch)
         if branch is Branch.DEAD_END_TURN:
             return self.dead_end(percepts)
         if branch is Branch.CASE3_PREEMPT:
-            assert self.state.followed is not None and reading.preemptor is not None
-            stack = (*self.state.stack, (self.state.followed, self.follower.side))
-            self.state = replace(self.state, stack=stack, followed=reading.preemptor)
+            followed = present(self.state.followed, "the edge Case-3 pre-empts")
+            stack = (*self.state.stack, (followed, self.follower.side))
+            preemptor = present(reading.preemptor, "Case-3's obstacle of most impact")
+            self.state = replace(self.state, stack=stack, followed=preemptor)
             self.follower.side = freer_side(percepts.view, pose, sight.bearing)
         elif branch is Branch.FOLLOW_EDGE:
             self._resume_if_back(sight)
@@ -430,14 +419,14 @@ class IFGMPlanner:
                 )
             turn = replace(turn, escape_from=pose.position)  # free (or 180 degrees): go
             self.state = replace(self.state, mode=Mode.ESCAPING, turn=turn)
-        assert turn.escape_from is not None
+        escape_from = present(turn.escape_from, "where the escape from the dead end began")
         walls = self.side_walls(percepts.view)
         walled = (turn.walled[0] or walls[0], turn.walled[1] or walls[1])
         wall_ended = any(seen and not now for seen, now in zip(walled, walls, strict=True))
         if walled != turn.walled:
             self.state = replace(self.state, turn=replace(turn, walled=walled))
         if (
-            distance(pose, turn.escape_from) < self.ifgm.d_look
+            distance(pose, escape_from) < self.ifgm.d_look
             and ahead > self.body.encounter
             and not wall_ended
         ):

@@ -23,7 +23,7 @@ from ifgm_ref.flowchart import Atoms
 from ifgm_ref.laserscan import Beam, LaserScan
 from ifgm_ref.paper import traces
 from ifgm_ref.percepts.clusters import Cluster, Gap, Side
-from ifgm_ref.percepts.points import to_world
+from ifgm_ref.percepts.points import point_to_world, to_world
 from ifgm_ref.planners.edge_following import FollowSide
 from ifgm_ref.planners.sight import Sight
 from ifgm_ref.planners.tuning import Tuning, Unit, derived
@@ -143,6 +143,17 @@ class IFGMState:
     escaped: bool = False
     turn_other_way: FollowSide | None = None
 
+    @property
+    def following(self) -> bool:
+        """IBA is following an edge (*obstacle avoidance*)."""
+        return self.mode is Mode.FOLLOWING
+
+    @property
+    def turning(self) -> bool:
+        """A dead-end turn sequence (45, 90, 135, 180 degrees) is under way, or the drive
+        out of the dead end that ends it."""
+        return self.mode in (Mode.DEAD_END_TURN, Mode.ESCAPING)
+
 
 @dataclass(frozen=True)
 class Percepts:
@@ -187,13 +198,6 @@ class Reading:
     short_look: bool  # the state's short_look, cleared once in the open
 
 
-def _world_point(xy: tuple[float, float], pose: Pose) -> Point:
-    """A robot-frame point in the world frame (:func:`~ifgm_ref.percepts.points.to_world` of
-    one point, in the same arithmetic)."""
-    c, s = math.cos(pose.theta), math.sin(pose.theta)
-    return Point(pose.x + c * xy[0] - s * xy[1], pose.y + s * xy[0] + c * xy[1])
-
-
 def chosen_gap(
     pose: Pose, gaps: tuple[Gap, ...], previous: Point | None, params: IFGMParams
 ) -> tuple[Gap | None, Point | None]:
@@ -207,13 +211,13 @@ def chosen_gap(
     chosen = max(gaps, key=lambda g: g.width)
     if previous is not None:
         for gap in gaps:
-            mid = _world_point(eq1_gap_midpoint(gap.right, gap.left), pose)
+            mid = point_to_world(eq1_gap_midpoint(gap.right, gap.left), pose)
             if gap.width > params.d_th and math.dist(mid, previous) <= params.jump:
                 chosen = gap
                 break
     if chosen.width <= params.d_th:
         return chosen, None
-    return chosen, _world_point(eq1_gap_midpoint(chosen.right, chosen.left), pose)
+    return chosen, point_to_world(eq1_gap_midpoint(chosen.right, chosen.left), pose)
 
 
 @traces("fig3.case3", "t1.bug_other_obstacles")
@@ -256,11 +260,11 @@ def read(percepts: Percepts, state: IFGMState) -> Reading:
     front_near = bool((view.ranges[view.beam_mask(Beam.FRONT)] <= params.d_look).any())
     # Every ray returns within the view range (-inf too): the view ahead is closed.
     enclosed = bool((view.ranges <= sight.body.tuning.view_range).all())
-    following = state.mode is Mode.FOLLOWING
+    following = state.following
     other = preemptor(pose, clusters, state.followed, params) if following else None
     atoms = Atoms(
         at_goal=sight.goal_distance <= percepts.goal_tolerance,
-        turning=state.mode in (Mode.DEAD_END_TURN, Mode.ESCAPING),
+        turning=state.turning,
         avoiding=following,
         # Looking short, an obstacle is met as IBA meets one (errata row 34): in the corridor
         # within the encounter distance, and the nearest ahead -- not the one just left.
@@ -279,8 +283,3 @@ def read(percepts: Percepts, state: IFGMState) -> Reading:
         preempt=other is not None,
     )
     return Reading(atoms, gap, gap_mid, other, short_look)
-
-
-def atoms(percepts: Percepts, state: IFGMState) -> Atoms:
-    """The flowchart's atoms for ``percepts`` in ``state`` (:func:`read`'s atoms)."""
-    return read(percepts, state).atoms

@@ -16,6 +16,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
+from ifgm_ref.equations import eq3_goal_angle
 from ifgm_ref.laserscan import PAPER_HALF_FOV
 from ifgm_ref.percepts.corridor import Offsets, disc_travel, free_length, offsets
 from ifgm_ref.planners.tuning import Tuning, Unit, derived
@@ -131,6 +132,21 @@ class Body:
     def encounter(self) -> float:
         """The hit distance: an obstacle this near in the corridor is met."""
         return self.standoff + self.tuning.hit_margin
+
+
+def goal_bearing(pose: Pose, goal: Point) -> float:
+    """The destination angle theta_d of eq. (3), world frame (the reading we run,
+    :func:`~ifgm_ref.equations.eq3_goal_angle`); at the goal itself, where eq. (3) has no
+    direction, the robot's heading.
+
+    >>> goal_bearing(Pose(0.0, 0.0, 0.5), Point(0.0, 2.0)) == math.pi / 2
+    True
+    >>> goal_bearing(Pose(1.0, 1.0, 0.5), Point(1.0, 1.0))
+    0.5
+    """
+    if pose.position == goal:
+        return pose.theta
+    return eq3_goal_angle(pose.position, goal)
 
 
 class Sight:
