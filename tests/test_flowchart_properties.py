@@ -439,8 +439,9 @@ TIE_GOAL_RIGHT = _seen([(slice(33, 43), 3.0)], goal_at(Pose(0.0, 0.0, 0.0), -0.0
 #: ... and with the goal dead ahead, away from the nearest return (right or left of ahead).
 TIE_NEAREST_RIGHT = _seen([(slice(33, 43), 3.0), (slice(36, 37), 2.9)], Point(30.0, 0.0))
 TIE_NEAREST_LEFT = _seen([(slice(33, 43), 3.0), (slice(39, 40), 2.9)], Point(30.0, 0.0))
-#: Found by Hypothesis: a return 1.25 ft away, the corridor's half-width, so the guard (errata
-#: row 29) bends IFGM's first follow command 45 degrees further off the edge, turning in place.
+#: Found by Hypothesis: a return 1.25 ft away, the corridor's half-width, so the clearance
+#: filter (errata row 29) bends IFGM's first follow command 45 degrees further off the edge,
+#: turning in place.
 AT_THE_MARGIN = _seen(
     [(slice(23, 30), 3.0), (slice(68, 69), 1.25), (slice(69, 70), 3.0)],
     Point(8.082248181845541, -3.9594525287032356),
@@ -463,8 +464,9 @@ def test_case2_follows_the_edge_on_the_freer_side(observation: Observation) -> N
     and 26): the followed obstacle is kept on the other side, and the first command already
     heads along its edge that way -- the nearest return lies on the followed side, 30 to 150
     degrees off the heading (the tangent, corrected by at most 60 degrees). The command is
-    IFGM's decision (:meth:`IFGMPlanner.act`), before the guard, which may bend it further
-    off a return already within the corridor's margin (errata row 29, ``AT_THE_MARGIN``)."""
+    IFGM's decision (:meth:`IFGMPlanner.act`), before the clearance filter, which may bend it
+    further off a return already within the corridor's margin (errata row 29,
+    ``AT_THE_MARGIN``)."""
     planner = IFGMPlanner()
     planner.reset(observation.pose, observation.goal, EPISODE)
     command = planner.act(observation)

@@ -14,7 +14,7 @@ from hypothesis import strategies as st
 from ifgm_ref.laserscan import Beam, LaserScan
 from ifgm_ref.percepts.corridor import disc_travel
 from ifgm_ref.planners import make_planner
-from ifgm_ref.planners.boundary import EdgeFollower, guard
+from ifgm_ref.planners.boundary import EdgeFollower, keep_clear
 from ifgm_ref.planners.edge_following import FollowSide
 from ifgm_ref.planners.iba import IBAPlanner, IBARule, beam_openness, freer_side
 from ifgm_ref.planners.sight import Body, BoundaryParams, Sight
@@ -110,11 +110,11 @@ BODY = Body.of(Point(20.0, 0.0), EpisodeParams(), BoundaryParams.for_episode(Epi
 
 
 def _guarded(points: list[tuple[float, float]], command: Command, pose: Pose) -> Command:
-    """``command`` through the guard, with one scan's worth of ``points`` remembered."""
-    return guard(command, Sight(pose, BODY, np.array(points, dtype=float), 0.0))
+    """``command`` through the clearance filter, with one scan's worth of ``points`` remembered."""
+    return keep_clear(command, Sight(pose, BODY, np.array(points, dtype=float), 0.0))
 
 
-def test_the_guard_turns_the_robot_off_an_obstacle_it_would_hit() -> None:
+def test_the_clearance_filter_turns_the_robot_off_an_obstacle_it_would_hit() -> None:
     """Errata row 29: a command that would sweep the disc (r 1 ft, plus the corridor margin)
     into a remembered point this step is bent to the nearest free heading."""
     pose = Pose(0.0, 0.0, 0.0)
@@ -134,7 +134,7 @@ def test_the_guard_turns_the_robot_off_an_obstacle_it_would_hit() -> None:
     heading=st.floats(-math.pi, math.pi),
     speed=st.floats(0.01, 2.0),
 )
-def test_the_guard_never_sweeps_the_disc_into_a_remembered_point(
+def test_the_clearance_filter_never_sweeps_the_disc_into_a_remembered_point(
     points: list[tuple[float, float]], heading: float, speed: float
 ) -> None:
     out = _guarded(points, Command(heading, speed), Pose(0.0, 0.0, 0.0))

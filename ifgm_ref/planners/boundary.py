@@ -16,7 +16,7 @@ So a Bug planner here is a :class:`BoundaryPlanner` made of parts:
 * a side choice: the Bug family's fixed one (:func:`bug_side`) or IBA's freer side;
 * a :class:`~ifgm_ref.planners.circuit.Circuit`, Bug1's round of the obstacle, which every
   follower falls back on after a whole loop without leaving by its rule (errata row 34);
-* :func:`guard`, which never drives into a remembered obstacle.
+* :func:`keep_clear`, which never drives into a remembered obstacle.
 
 An obstacle is met where one stands in the corridor towards the goal and it is the nearest
 ahead (:meth:`~ifgm_ref.planners.sight.Sight.meets_obstacle`), not where the one just left
@@ -49,13 +49,14 @@ __all__ = [
     "EdgeFollower",
     "LeaveRule",
     "bug_side",
-    "guard",
+    "keep_clear",
 ]
 
-#: The guard's search step round a blocked heading, rad, and the number of steps each way (a
-#: right angle): coarse enough to be cheap, fine enough to find a gap the robot fits.
-GUARD_STEP = math.pi / 12
-GUARD_STEPS = 6
+#: The clearance filter's search step round a blocked heading, rad, and the number of steps
+#: each way (a right angle): coarse enough to be cheap, fine enough to find a gap the robot
+#: fits.
+CLEAR_STEP = math.pi / 12
+CLEAR_STEPS = 6
 
 #: Stop reason of a planner that has proved the goal cannot be reached.
 GOAL_UNREACHABLE = "goal_unreachable"
@@ -141,13 +142,13 @@ class LeaveRule:
         return False
 
 
-def guard(command: Command, sight: Sight) -> Command:
+def keep_clear(command: Command, sight: Sight) -> Command:
     """``command``, or the nearest heading to it that does not bring the robot's disc nearer a
     remembered obstacle point (``sight.points``) than the corridor margin during this step.
 
     The robot turns by at most ``max_turn_rate * dt`` and then drives
     (:mod:`ifgm_ref.robot`), so the disc of the corridor's half-width is swept along the
-    heading it will have. Headings are tried in :data:`GUARD_STEP` steps either side of the
+    heading it will have. Headings are tried in :data:`CLEAR_STEP` steps either side of the
     commanded one, up to a right angle; if none is free the robot turns in place towards the
     command. The paper's robot, keeping ``standoff_margin`` from edges at 0.13 ft a step,
     never needs it in the paper's scenarios; a fast robot in clutter (BARN: 1 m/s, 0.22 m)
@@ -157,9 +158,9 @@ def guard(command: Command, sight: Sight) -> Command:
     if command.speed <= 0.0 or command.stop is not None:
         return command
     pose, body, origin = sight.pose, sight.body, (sight.pose.x, sight.pose.y)
-    for k in range(GUARD_STEPS + 1):
+    for k in range(CLEAR_STEPS + 1):
         for sign in (1, -1) if k else (1,):
-            heading = wrap_angle(command.heading + sign * k * GUARD_STEP)
+            heading = wrap_angle(command.heading + sign * k * CLEAR_STEP)
             error = wrap_angle(heading - pose.theta)
             speed = min(command.speed, turn_speed(error, body.speed) if k else body.speed)
             turn = max(-body.turn_limit, min(body.turn_limit, error))
@@ -240,9 +241,9 @@ class BoundaryPlanner:
 
     def step(self, observation: Observation) -> Command:
         """Decide (:meth:`decide`), then never drive into a remembered obstacle
-        (:func:`guard`)."""
+        (:func:`keep_clear`)."""
         sight = self.observe(observation)
-        return guard(self.decide(observation, sight), sight)
+        return keep_clear(self.decide(observation, sight), sight)
 
     def decide(self, observation: Observation, sight: Sight) -> Command:
         """Move to goal or follow the edge (see the module docstring), given this step's

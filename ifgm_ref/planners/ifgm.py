@@ -48,7 +48,7 @@ from ifgm_ref.percepts.clusters import Gap, cluster_points, gaps_between
 from ifgm_ref.percepts.corridor import free_length
 from ifgm_ref.percepts.memory import PerceptMemory
 from ifgm_ref.percepts.points import scan_points, to_world
-from ifgm_ref.planners.boundary import EdgeFollower, guard, steer
+from ifgm_ref.planners.boundary import EdgeFollower, keep_clear, steer
 from ifgm_ref.planners.circuit import Circuit, CircuitPhase
 from ifgm_ref.planners.distbug import DistBugParams
 from ifgm_ref.planners.edge_following import FollowSide
@@ -213,15 +213,15 @@ class IFGMPlanner:
         self.last_gap = None
 
     def step(self, observation: Observation) -> Command:
-        """Perceive, decide (:meth:`decide`), then never drive into a remembered obstacle
-        (the guard)."""
+        """Perceive, decide (:meth:`carry_out`), then never drive into a remembered obstacle
+        (the clearance filter)."""
         percepts = self.perceive(observation)
-        return guard(self.decide(percepts), percepts.sight)
+        return keep_clear(self.carry_out(percepts), percepts.sight)
 
     def act(self, observation: Observation) -> Command:
-        """IFGM's decision for ``observation`` before the guard: :meth:`perceive`, then
-        :meth:`decide`."""
-        return self.decide(self.perceive(observation))
+        """IFGM's decision for ``observation`` before the clearance filter: :meth:`perceive`, then
+        :meth:`carry_out`."""
+        return self.carry_out(self.perceive(observation))
 
     def goal_bearing(self, pose: Pose) -> float:
         """The destination angle theta_d of eq. (3), world frame (:func:`goal_bearing`)."""
@@ -288,7 +288,7 @@ class IFGMPlanner:
 
     # -- the planner ------------------------------------------------------------------------
     @traces("fig3.move_to_goal", "fig3.regenerate", "fig3.case2", "fig3.case3")
-    def decide(self, percepts: Percepts) -> Command:
+    def carry_out(self, percepts: Percepts) -> Command:
         """Decide with Figure 3, then act on the branch."""
         reading = read(percepts, self.state)
         state = self.state

@@ -9,9 +9,9 @@ const char IFGM_GOAL_UNREACHABLE[] = "goal_unreachable";
 
 /* Largest correction of the tangent heading towards or away from the edge. */
 #define MAX_CORRECTION (IFGM_PI / 3)
-/* The guard's search step round a blocked heading, and the steps each way. */
-#define GUARD_STEP (IFGM_PI / 12)
-#define GUARD_STEPS 6
+/* The clearance filter's search step round a blocked heading, and the steps each way. */
+#define CLEAR_STEP (IFGM_PI / 12)
+#define CLEAR_STEPS 6
 /* The goal counts as dead ahead within this angle (freer_side). */
 #define GOAL_AHEAD ((ifgm_real)1e-6)
 
@@ -76,16 +76,16 @@ ifgm_command ifgm_steer(ifgm_real heading, const ifgm_sight *s, const char *beha
     return c;
 }
 
-ifgm_command ifgm_guard(ifgm_command command, const ifgm_sight *s)
+ifgm_command ifgm_keep_clear(ifgm_command command, const ifgm_sight *s)
 {
     if (command.speed <= 0 || command.stop)
         return command;
     const ifgm_body *b = s->body;
-    for (int k = 0; k <= GUARD_STEPS; k++) {
+    for (int k = 0; k <= CLEAR_STEPS; k++) {
         for (int sign = 1; sign >= -1; sign -= 2) {
             if (k == 0 && sign < 0)
                 break;
-            ifgm_real heading = ifgm_wrap_angle(command.heading + (sign * k) * GUARD_STEP);
+            ifgm_real heading = ifgm_wrap_angle(command.heading + (sign * k) * CLEAR_STEP);
             ifgm_real error = ifgm_wrap_angle(heading - s->pose[2]);
             ifgm_real speed = k ? ifgm_turn_speed(error, b->speed) : b->speed;
             if (command.speed < speed)

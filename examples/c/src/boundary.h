@@ -1,6 +1,6 @@
 /* The parts of the boundary followers (section 2.1 of the paper: *move to goal* until an
  * obstacle is met, then *obstacle avoidance* along its edge until a leaving rule holds): the
- * edge follower, the guard, IBA's side choice, and DistBug's and IBA's leaving rules
+ * edge follower, the clearance filter, IBA's side choice, and DistBug's and IBA's leaving rules
  * (sections 2.1.3 and 4.1). DistBug and IBA (boundary_planner.h) and IFGM (ifgm.h) are made
  * of them, of the sight of the goal (sight.h) and of Bug1's round (circuit.h). The
  * reference is ifgm_ref/planners/{boundary,edge_following,distbug,iba}.py; docs/errata.md
@@ -38,7 +38,7 @@ ifgm_command ifgm_steer(ifgm_real heading, const ifgm_sight *sight, const char *
 /* `command`, or the nearest heading to it, in 15-degree steps up to a right angle either
  * side, that does not bring the robot's disc nearer a remembered point than the corridor
  * margin during this step; if none is free, turn in place (errata row 29). */
-ifgm_command ifgm_guard(ifgm_command command, const ifgm_sight *sight);
+ifgm_command ifgm_keep_clear(ifgm_command command, const ifgm_sight *sight);
 
 /* IBA's bidirectional side choice (section 4.1; errata row 26): towards the freer of the
  * side beams of the scan (`ranges`, with its rays' `angle` and `beam`); ties to the goal's

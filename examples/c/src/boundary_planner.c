@@ -104,7 +104,7 @@ static ifgm_command boundary_step(ifgm_boundary_planner *p, const ifgm_observati
     ifgm_sight s;
     ifgm_sight_init(&s, &p->body, o->pose, &p->memory,
                     atan2(p->body.goal.y - o->pose[1], p->body.goal.x - o->pose[0]));
-    return ifgm_guard(boundary_decide(p, o, &s), &s);
+    return ifgm_keep_clear(boundary_decide(p, o, &s), &s);
 }
 
 ifgm_command distbug_step(distbug_planner *p, const ifgm_observation *o)

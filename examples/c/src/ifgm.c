@@ -513,5 +513,5 @@ ifgm_command ifgm_step(ifgm_planner *p, const ifgm_observation *o)
     p->state.gap_mid = r.gap_mid;
     p->state.short_look = r.short_look;
     p->last_branch = decide(&r.a);
-    return ifgm_guard(act(p, &s, &r, p->last_branch), &s);
+    return ifgm_keep_clear(act(p, &s, &r, p->last_branch), &s);
 }

@@ -102,7 +102,7 @@ typedef struct {
 int ifgm_init(ifgm_planner *planner, const ifgm_episode *episode, const ifgm_tuning *tuning);
 
 /* One decision: perceive, take Figure 3's branch, then never drive into a remembered
- * obstacle (the guard). */
+ * obstacle (the clearance filter). */
 ifgm_command ifgm_step(ifgm_planner *planner, const ifgm_observation *observation);
 
 #endif
