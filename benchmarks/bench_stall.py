@@ -59,11 +59,11 @@ from ifgm_ref.bench.tasks import (
     noise_seed,
 )
 from ifgm_ref.convergence import time_bound
+from ifgm_ref.formulas import Scale
 from ifgm_ref.laps import LapLog, LapRule
 from ifgm_ref.noise import NoiseLevels
 from ifgm_ref.params import SimParams
 from ifgm_ref.planners import PLANNERS, make_planner
-from ifgm_ref.planners.tuning import Scale
 from ifgm_ref.pose import distance
 from ifgm_ref.protocol import EpisodeParams
 from ifgm_ref.simulator import Run, StopReason, simulate

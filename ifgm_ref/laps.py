@@ -43,7 +43,7 @@ import math
 from collections import defaultdict
 from dataclasses import dataclass, field
 
-from ifgm_ref.planners.tuning import Scale, evaluate
+from ifgm_ref.formulas import Scale, evaluate
 from ifgm_ref.pose import PointLike, distance
 
 #: ``rho``, length: the radius of a place, the robot's radius ``r``.

@@ -17,7 +17,7 @@ time limit, the episode ends with stop reason ``stalled`` when the robot's centr
 within ``r``, the robot's radius, of where it was ``T`` seconds before, over all of those
 seconds. ``T`` is :attr:`SimParams.stall_time <ifgm_ref.params.SimParams.stall_time>`, by
 default the formula :data:`STALL_TIME` in the robot's radius ``r``, speed ``v`` and turn rate
-``w`` and the time step ``dt`` (the symbols of :mod:`ifgm_ref.planners.tuning`):
+``w`` and the time step ``dt`` (the symbols of :mod:`ifgm_ref.formulas`):
 
     ``T = Max(6*pi/w, 10*r/v, 20*dt)``, 12 s for the paper's robot, 6 s for BARN's.
 
@@ -122,10 +122,10 @@ from itertools import pairwise
 from typing import Any
 
 from ifgm_ref.collision import ClearanceChecker
+from ifgm_ref.formulas import Scale, evaluate
 from ifgm_ref.laps import LapRule, LapWatch
 from ifgm_ref.noise import Actuation, Odometry
 from ifgm_ref.params import SimParams
-from ifgm_ref.planners.tuning import Scale, evaluate
 from ifgm_ref.pose import Pose, distance, wrap_angle
 from ifgm_ref.progress import progress_bar
 from ifgm_ref.protocol import Command, EpisodeParams, Observation, Planner
@@ -149,7 +149,7 @@ class StopReason(StrEnum):
 
 
 #: The default stall time, s: a formula in the robot and the time step (the module docstring
-#: gives the reasons; :func:`ifgm_ref.planners.tuning.evaluate` computes it).
+#: gives the reasons; :func:`ifgm_ref.formulas.evaluate` computes it).
 STALL_TIME = "Max(6*pi/w, 10*r/v, 20*dt)"
 
 

@@ -33,10 +33,11 @@ from collections.abc import Iterable, Mapping
 
 import sympy as sp
 
+from ifgm_ref.formulas import LENGTH_SYMBOLS, SYMBOLS, Unit, formula_expr
 from ifgm_ref.laps import LAP_LENGTH, LAP_PROGRESS, LAP_RADIUS
 from ifgm_ref.paper import traces
 from ifgm_ref.planners import PLANNERS
-from ifgm_ref.planners.tuning import LENGTH_SYMBOLS, SYMBOLS, ParamInfo, Unit, formula_expr
+from ifgm_ref.planners.tuning import ParamInfo
 from ifgm_ref.simulator import STALL_TIME
 from proofs._util import Derivation, entry_points
 
@@ -45,7 +46,7 @@ __all__ = ["PAPER_ROBOT", "PAPER_VALUES", "build", "claims", "derivation", "main
 #: The scale factor: every length is multiplied by it.
 K = sp.Symbol("k", positive=True)
 
-#: The paper's robot as exact numbers (:meth:`ifgm_ref.planners.tuning.Scale.paper`, section
+#: The paper's robot as exact numbers (:meth:`ifgm_ref.formulas.Scale.paper`, section
 #: 5.1's 197 ft in 149 s; our choices for what the paper leaves open, :mod:`ifgm_ref.params`).
 PAPER_ROBOT: dict[str, sp.Expr] = {
     "r": sp.Integer(1),

@@ -11,11 +11,11 @@ import numpy as np
 import pytest
 
 from ifgm_ref.errors import ParameterError
+from ifgm_ref.formulas import Scale
 from ifgm_ref.laps import LapLog, LapRule
 from ifgm_ref.oracle.metamorphic import scale_sim, scale_world
 from ifgm_ref.params import SimParams
 from ifgm_ref.planners.ifgm import IFGMPlanner
-from ifgm_ref.planners.tuning import Scale
 from ifgm_ref.pose import Point, Pose, distance, wrap_angle
 from ifgm_ref.protocol import Command, EpisodeParams, Observation
 from ifgm_ref.scenarios import resolve_world

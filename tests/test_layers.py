@@ -110,6 +110,9 @@ SEPARATE = [
     ("ifgm_ref.cli.bench", "ifgm_ref.oracle", "the benchmark does without the oracle"),
     ("ifgm_ref.cli.serve", "ifgm_ref.oracle", "a planner served needs no oracle"),
     ("ifgm_ref.cli.common", "ifgm_ref.oracle", "what every subcommand shares"),
+    ("ifgm_ref.simulator", "ifgm_ref.planners", "it runs any planner; formulas: ifgm_ref.formulas"),
+    ("ifgm_ref.laps", "ifgm_ref.planners", "the lap rule's thresholds are formulas too"),
+    ("ifgm_ref.formulas", "ifgm_ref.planners", "below the planners and the simulator"),
 ]
 
 

@@ -15,6 +15,7 @@ import pytest
 from hypothesis import strategies as st
 
 from ifgm_ref.errors import ParameterError
+from ifgm_ref.formulas import Unit
 from ifgm_ref.oracle.checks import CHECKS
 from ifgm_ref.oracle.implementation import Implementation, promises_of
 from ifgm_ref.oracle.metamorphic import (
@@ -28,7 +29,6 @@ from ifgm_ref.oracle.profiles import Profile
 from ifgm_ref.oracle.runner import Status, check_planner, run_check
 from ifgm_ref.params import RobotParams, SensorParams, SimParams
 from ifgm_ref.planners import PLANNERS
-from ifgm_ref.planners.tuning import Unit
 from ifgm_ref.world import Circle, Polygon, World
 from ifgm_ref.worldgen.classes import random_world
 

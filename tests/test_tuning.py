@@ -11,10 +11,11 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from ifgm_ref.errors import ParameterError
+from ifgm_ref.formulas import Scale, Unit, formula_expr
 from ifgm_ref.params import RobotParams, SensorParams
 from ifgm_ref.planners import PLANNERS, make_planner, parameters_markdown
 from ifgm_ref.planners.ifgm import IFGMParams
-from ifgm_ref.planners.tuning import Scale, Unit, derived, episode_values, formula_expr
+from ifgm_ref.planners.tuning import derived, episode_values
 from ifgm_ref.pose import Point, Pose
 from ifgm_ref.protocol import EpisodeParams
 

@@ -7,8 +7,8 @@ import sys
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+from ifgm_ref.formulas import Scale
 from ifgm_ref.planners import PLANNERS, parameters_markdown
-from ifgm_ref.planners.tuning import Scale
 from ifgm_ref.scenarios import BUILTIN_WORLDS
 from ifgm_ref.worldfile import EXPORT_DIGITS, save_world
 

@@ -24,7 +24,7 @@ exactly these observations in the transformed problem (a scan is taken in the ro
 so a rigid motion leaves it as it is); the oracle replays them open loop
 (:mod:`ifgm_ref.oracle.invariance`).
 
-Sources: the units of the parameters, :class:`ifgm_ref.planners.tuning.Unit`; the world's
+Sources: the units of the parameters, :class:`ifgm_ref.formulas.Unit`; the world's
 blocks, :mod:`ifgm_ref.world` and :mod:`ifgm_ref.params`.
 """
 
@@ -151,7 +151,7 @@ def scale_params(
 
     A name the planner does not declare has no known unit: :class:`ParameterError`.
 
-    >>> from ifgm_ref.planners.tuning import Unit
+    >>> from ifgm_ref.formulas import Unit
     >>> infos = [ParamInfo("d_th", "3*r", Unit.LENGTH), ParamInfo("w_g", "9", Unit.NUMBER),
     ...          ParamInfo("eta", "50*r**4", Unit.LENGTH4)]
     >>> scale_params({"d_th": 3.0, "w_g": 9.0, "eta": 1.0}, infos, 2.0)

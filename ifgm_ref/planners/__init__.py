@@ -11,6 +11,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 from ifgm_ref.errors import PlannerError
+from ifgm_ref.formulas import Scale
 from ifgm_ref.planners.apf import APFPlanner
 from ifgm_ref.planners.bug1 import Bug1Planner
 from ifgm_ref.planners.bug2 import Bug2Planner
@@ -19,7 +20,7 @@ from ifgm_ref.planners.fgm import FGMPlanner
 from ifgm_ref.planners.iba import IBAPlanner
 from ifgm_ref.planners.ifgm import IFGMPlanner
 from ifgm_ref.planners.straight import StraightPlanner
-from ifgm_ref.planners.tuning import ParamInfo, Scale, Tuning, parameter_infos
+from ifgm_ref.planners.tuning import ParamInfo, Tuning, parameter_infos
 from ifgm_ref.protocol import Planner
 
 

@@ -56,12 +56,13 @@ from typing import ClassVar
 import numpy as np
 from numpy.typing import NDArray
 
+from ifgm_ref.formulas import Unit
 from ifgm_ref.laserscan import LaserScan
 from ifgm_ref.paper import traces
 from ifgm_ref.percepts.corridor import free_length
 from ifgm_ref.percepts.points import scan_points
 from ifgm_ref.planners.edge_following import turn_speed
-from ifgm_ref.planners.tuning import Tuning, Unit, check_names, derived
+from ifgm_ref.planners.tuning import Tuning, check_names, derived
 from ifgm_ref.pose import Point, Pose, wrap_angle
 from ifgm_ref.protocol import Behaviour, Command, EpisodeParams, Observation
 

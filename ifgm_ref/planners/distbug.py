@@ -52,10 +52,11 @@ import math
 from dataclasses import dataclass
 from typing import ClassVar
 
+from ifgm_ref.formulas import Unit
 from ifgm_ref.paper import traces
 from ifgm_ref.planners.boundary import BoundaryPlanner, EdgeFollower, LeaveRule
 from ifgm_ref.planners.sight import BoundaryParams, Sight
-from ifgm_ref.planners.tuning import Tuning, Unit, derived
+from ifgm_ref.planners.tuning import Tuning, derived
 from ifgm_ref.pose import Point, Pose, distance
 from ifgm_ref.protocol import EpisodeParams
 

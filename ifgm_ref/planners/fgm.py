@@ -51,12 +51,13 @@ from numpy.typing import NDArray
 
 from ifgm_ref.equations import eq4_final_heading_fgm, fgm_gap_centre_angle
 from ifgm_ref.errors import ParameterError
+from ifgm_ref.formulas import Unit
 from ifgm_ref.intervals import members
 from ifgm_ref.laserscan import LaserScan
 from ifgm_ref.paper import traces
 from ifgm_ref.percepts.points import scan_points
 from ifgm_ref.planners.edge_following import turn_speed
-from ifgm_ref.planners.tuning import Tuning, Unit, check_names, derived
+from ifgm_ref.planners.tuning import Tuning, check_names, derived
 from ifgm_ref.pose import Point, Pose, wrap_angle
 from ifgm_ref.protocol import Behaviour, Command, EpisodeParams, Observation
 

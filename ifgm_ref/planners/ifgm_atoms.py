@@ -20,13 +20,14 @@ import numpy as np
 
 from ifgm_ref.equations import eq1_gap_midpoint
 from ifgm_ref.flowchart import Atoms
+from ifgm_ref.formulas import Unit
 from ifgm_ref.laserscan import Beam, LaserScan
 from ifgm_ref.paper import traces
 from ifgm_ref.percepts.clusters import Cluster, Gap, Side
 from ifgm_ref.percepts.points import point_to_world, to_world
 from ifgm_ref.planners.edge_following import FollowSide
 from ifgm_ref.planners.sight import Sight
-from ifgm_ref.planners.tuning import Tuning, Unit, derived
+from ifgm_ref.planners.tuning import Tuning, derived
 from ifgm_ref.pose import Point, Pose, distance
 
 

@@ -17,9 +17,10 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ifgm_ref.equations import eq3_goal_angle
+from ifgm_ref.formulas import Unit
 from ifgm_ref.laserscan import PAPER_HALF_FOV
 from ifgm_ref.percepts.corridor import Offsets, disc_travel, free_length, offsets
-from ifgm_ref.planners.tuning import Tuning, Unit, derived
+from ifgm_ref.planners.tuning import Tuning, derived
 from ifgm_ref.pose import Point, Pose, distance, wrap_angle
 from ifgm_ref.protocol import EpisodeParams
 
@@ -30,7 +31,7 @@ IN_VIEW_MARGIN = math.radians(10.0)
 @dataclass(frozen=True)
 class BoundaryParams(Tuning):
     """Tuning shared by the boundary followers; every default is a formula in the robot's
-    radius ``r`` (and the other symbols of :mod:`ifgm_ref.planners.tuning`).
+    radius ``r`` (and the other symbols of :mod:`ifgm_ref.formulas`).
 
     Parameters
     ----------

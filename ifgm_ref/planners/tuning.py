@@ -2,143 +2,26 @@
 
 A planner holds no absolute length. Each of its parameters is a field of a frozen dataclass
 that mixes in :class:`Tuning`, declared with :func:`derived`: a *formula* in the quantities
-of the robot, the time step and the sensor, and a *unit*. The formula gives the default; a
-value set by name in :attr:`EpisodeParams.params <ifgm_ref.protocol.EpisodeParams>` (or with
-``--param NAME=VALUE``) replaces it. The symbols a formula may use:
-
-=========  ====================================================================  ==========
-symbol     quantity                                                              the paper
-=========  ====================================================================  ==========
-``r``      robot radius                                                          1 ft
-``v``      robot speed                                                           1.322 ft/s
-``w``      largest turn rate, rad/s (``v / w`` is the turning radius)            pi/2
-``dt``     time step, s                                                          0.1
-``R``      sensor range (``range_max``)                                          15 ft
-``res``    angle between two rays, rad                                           1.8 deg
-``fov``    field of view, rad                                                    135 deg
-=========  ====================================================================  ==========
-
-The paper's numbers are what the formulas give for the paper's robot (:meth:`Scale.paper`);
-``ifgm-ref planners`` prints both. Units follow from the symbols: a *length* parameter is
-homogeneous of degree 1 in ``r``, ``v`` and ``R`` (scale every length of the world, the
-robot and the sensor by ``k`` and it scales by ``k``), a *time*, *angle* or *number* of
-degree 0; ``proofs/scale.py`` proves it of every declared formula, and the oracle's
-``scale_invariant`` check tests the consequence on whole episodes.
-
-Formulas are written in sympy's syntax (``Max``, ``Min``, ``pi``) and evaluated with
-:func:`sympy.lambdify`: the string shown to the reader is the code that runs.
+of the robot, the time step and the sensor, and a *unit* (:mod:`ifgm_ref.formulas`: the
+symbols, the units and how a formula is evaluated). The formula gives the default; a value
+set by name in :attr:`EpisodeParams.params <ifgm_ref.protocol.EpisodeParams>` (or with
+``--param NAME=VALUE``) replaces it. ``ifgm-ref planners`` prints every formula and its value
+for the paper's robot; ``proofs/scale.py`` proves each scales with its unit, and the
+oracle's ``scale_invariant`` check tests the consequence on whole episodes.
 """
 
 from __future__ import annotations
 
-import functools
 import math
-from collections.abc import Callable, Iterable, Mapping
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field, fields
-from enum import StrEnum
-from typing import TYPE_CHECKING, Any, NamedTuple, Self
-
-import sympy
+from typing import TYPE_CHECKING, Any, Self
 
 from ifgm_ref.errors import ParameterError
+from ifgm_ref.formulas import Scale, Unit, evaluate, formula_expr
 
 if TYPE_CHECKING:
     from ifgm_ref.protocol import EpisodeParams
-
-
-class Unit(StrEnum):
-    """What a planner parameter measures; ``length_power`` is how it scales with lengths."""
-
-    LENGTH = "length"
-    #: A length to the fourth power (APF's repulsive gain balancing a quadratic well).
-    LENGTH4 = "length^4"
-    TIME = "s"
-    ANGLE = "rad"
-    NUMBER = "1"
-
-    @property
-    def length_power(self) -> int:
-        """The power ``p`` such that scaling every length by ``k`` scales the value by
-        ``k ** p``.
-
-        >>> Unit.LENGTH.length_power, Unit.TIME.length_power, Unit.LENGTH4.length_power
-        (1, 0, 4)
-        """
-        return {Unit.LENGTH: 1, Unit.LENGTH4: 4}.get(self, 0)
-
-
-class Scale(NamedTuple):
-    """The quantities every planner parameter is derived from (the formula symbols)."""
-
-    r: float
-    v: float
-    w: float
-    dt: float
-    R: float
-    res: float
-    fov: float
-
-    @classmethod
-    def of(cls, params: EpisodeParams) -> Scale:
-        """The scale of an episode: its robot, time step and sensor."""
-        robot, sensor = params.robot, params.sensor
-        return cls(
-            robot.radius,
-            robot.speed,
-            robot.max_turn_rate,
-            params.dt,
-            sensor.range_max,
-            sensor.angle_increment,
-            sensor.fov,
-        )
-
-    @classmethod
-    def paper(cls) -> Scale:
-        """The paper's robot with our defaults (:mod:`ifgm_ref.params`)."""
-        from ifgm_ref.protocol import EpisodeParams
-
-        return cls.of(EpisodeParams())
-
-
-#: The formula symbols, in :class:`Scale`'s order; lengths are declared positive.
-SYMBOLS: tuple[sympy.Symbol, ...] = sympy.symbols("r v w dt R res fov", positive=True)
-#: The symbols that carry a length (``v`` is a length per second).
-LENGTH_SYMBOLS: frozenset[str] = frozenset({"r", "v", "R"})
-
-
-@functools.cache
-def formula_expr(formula: str) -> sympy.Expr:
-    """A formula as a sympy expression over :data:`SYMBOLS`; unknown names are an error.
-
-    >>> formula_expr("Max(r, v/w)")
-    Max(r, v/w)
-    >>> formula_expr("2*d")
-    Traceback (most recent call last):
-    ...
-    ifgm_ref.errors.ParameterError: formula '2*d' uses d; a formula may use r, v, w, dt, R, res, fov
-    """
-    names = {s.name: s for s in SYMBOLS}
-    expr = sympy.sympify(formula, locals=names)
-    unknown = sorted(s.name for s in expr.free_symbols if s.name not in names)
-    if unknown:
-        raise ParameterError(
-            f"formula {formula!r} uses {', '.join(unknown)}; a formula may use {', '.join(names)}"
-        )
-    return expr
-
-
-@functools.cache
-def _compiled(formula: str) -> Callable[..., float]:
-    return sympy.lambdify(SYMBOLS, formula_expr(formula), modules="math")  # type: ignore[no-any-return]
-
-
-def evaluate(formula: str, scale: Scale) -> float:
-    """The value of ``formula`` for ``scale``.
-
-    >>> round(evaluate("r + v*0.5", Scale.paper()), 4)
-    1.6611
-    """
-    return float(_compiled(formula)(*scale))
 
 
 def derived(formula: str, unit: Unit, *, zero: bool = False) -> Any:
