@@ -62,7 +62,7 @@ from ifgm_ref.paper import traces
 from ifgm_ref.percepts.corridor import free_length
 from ifgm_ref.percepts.points import scan_points
 from ifgm_ref.planners.edge_following import turn_speed
-from ifgm_ref.planners.tuning import Tuning, check_names, derived
+from ifgm_ref.planners.tuning import Tuning, check_names, derived, parameter_names
 from ifgm_ref.pose import Point, Pose, wrap_angle
 from ifgm_ref.protocol import Behaviour, Command, EpisodeParams, Observation
 
@@ -182,7 +182,7 @@ class APFPlanner:
     name: ClassVar[str] = "apf"
     tunings: ClassVar[tuple[type[Tuning], ...]] = (APFParams,)
     #: Names of the settings read from ``EpisodeParams.params``.
-    parameters: ClassVar[tuple[str, ...]] = APFParams.names()
+    parameters: ClassVar[tuple[str, ...]] = parameter_names(tunings)
 
     def __init__(self) -> None:
         self.tuning = APFParams.for_episode(EpisodeParams())

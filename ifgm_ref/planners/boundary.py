@@ -38,7 +38,7 @@ from ifgm_ref.percepts.memory import PerceptMemory
 from ifgm_ref.planners.circuit import Circuit
 from ifgm_ref.planners.edge_following import FollowSide, follow_heading, turn_speed
 from ifgm_ref.planners.sight import Body, BoundaryParams, Sight, goal_bearing
-from ifgm_ref.planners.tuning import Tuning, check_names
+from ifgm_ref.planners.tuning import Tuning, check_names, parameter_names
 from ifgm_ref.pose import Point, Pose, wrap_angle
 from ifgm_ref.protocol import Behaviour, Command, EpisodeParams, Observation
 
@@ -218,7 +218,7 @@ class BoundaryPlanner:
     #: The parameter classes the planner reads (``ifgm-ref planners`` lists their fields).
     tunings: ClassVar[tuple[type[Tuning], ...]] = (BoundaryParams,)
     #: The planner's parameter names.
-    parameters: ClassVar[tuple[str, ...]] = BoundaryParams.names()
+    parameters: ClassVar[tuple[str, ...]] = parameter_names(tunings)
 
     def __init__(self, rule: LeaveRule | None = None, choose_side: SideChoice = bug_side) -> None:
         self.rule = rule if rule is not None else LeaveRule()

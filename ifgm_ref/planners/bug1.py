@@ -30,7 +30,7 @@ from typing import ClassVar
 from ifgm_ref.paper import traces
 from ifgm_ref.planners.boundary import BoundaryPlanner, LeaveRule
 from ifgm_ref.planners.sight import BoundaryParams
-from ifgm_ref.planners.tuning import Tuning
+from ifgm_ref.planners.tuning import Tuning, parameter_names
 
 
 @traces("bug1", "t1.bug_long_paths")
@@ -55,7 +55,7 @@ class Bug1Planner(BoundaryPlanner):
 
     name: ClassVar[str] = "bug1"
     tunings: ClassVar[tuple[type[Tuning], ...]] = (BoundaryParams,)
-    parameters: ClassVar[tuple[str, ...]] = BoundaryParams.names()
+    parameters: ClassVar[tuple[str, ...]] = parameter_names(tunings)
 
     def __init__(self) -> None:
         super().__init__(LeaveRule())

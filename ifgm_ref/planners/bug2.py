@@ -40,7 +40,7 @@ from ifgm_ref.formulas import Unit
 from ifgm_ref.paper import traces
 from ifgm_ref.planners.boundary import BoundaryPlanner, EdgeFollower, LeaveRule
 from ifgm_ref.planners.sight import BoundaryParams, Sight
-from ifgm_ref.planners.tuning import Tuning, derived
+from ifgm_ref.planners.tuning import Tuning, derived, parameter_names
 from ifgm_ref.pose import Point, Pose, distance
 from ifgm_ref.protocol import EpisodeParams
 
@@ -168,7 +168,7 @@ class Bug2Planner(BoundaryPlanner):
 
     name: ClassVar[str] = "bug2"
     tunings: ClassVar[tuple[type[Tuning], ...]] = (BoundaryParams, Bug2Params)
-    parameters: ClassVar[tuple[str, ...]] = (*BoundaryParams.names(), *Bug2Params.names())
+    parameters: ClassVar[tuple[str, ...]] = parameter_names(tunings)
 
     def __init__(self) -> None:
         super().__init__(Bug2Rule())

@@ -56,7 +56,7 @@ from ifgm_ref.formulas import Unit
 from ifgm_ref.paper import traces
 from ifgm_ref.planners.boundary import BoundaryPlanner, EdgeFollower, LeaveRule
 from ifgm_ref.planners.sight import BoundaryParams, Sight
-from ifgm_ref.planners.tuning import Tuning, derived
+from ifgm_ref.planners.tuning import Tuning, derived, parameter_names
 from ifgm_ref.pose import Point, Pose, distance
 from ifgm_ref.protocol import EpisodeParams
 
@@ -161,7 +161,7 @@ class DistBugPlanner(BoundaryPlanner):
 
     name: ClassVar[str] = "distbug"
     tunings: ClassVar[tuple[type[Tuning], ...]] = (BoundaryParams, DistBugParams)
-    parameters: ClassVar[tuple[str, ...]] = (*BoundaryParams.names(), *DistBugParams.names())
+    parameters: ClassVar[tuple[str, ...]] = parameter_names(tunings)
 
     def __init__(self) -> None:
         super().__init__(DistBugRule())

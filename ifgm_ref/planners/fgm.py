@@ -57,7 +57,7 @@ from ifgm_ref.laserscan import LaserScan
 from ifgm_ref.paper import traces
 from ifgm_ref.percepts.points import scan_points
 from ifgm_ref.planners.edge_following import turn_speed
-from ifgm_ref.planners.tuning import Tuning, check_names, derived
+from ifgm_ref.planners.tuning import Tuning, check_names, derived, parameter_names
 from ifgm_ref.pose import Point, Pose, wrap_angle
 from ifgm_ref.protocol import Behaviour, Command, EpisodeParams, Observation
 
@@ -388,7 +388,7 @@ class FGMPlanner:
     name: ClassVar[str] = "fgm"
     tunings: ClassVar[tuple[type[Tuning], ...]] = (FGMParams,)
     #: Names of the settings read from ``EpisodeParams.params``.
-    parameters: ClassVar[tuple[str, ...]] = FGMParams.names()
+    parameters: ClassVar[tuple[str, ...]] = parameter_names(tunings)
 
     def __init__(self) -> None:
         self.tuning = FGMParams.for_episode(EpisodeParams())

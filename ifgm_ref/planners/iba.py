@@ -43,7 +43,7 @@ from ifgm_ref.planners.boundary import BoundaryPlanner, EdgeFollower
 from ifgm_ref.planners.distbug import DistBugParams, DistBugRule
 from ifgm_ref.planners.edge_following import FollowSide
 from ifgm_ref.planners.sight import BoundaryParams, Sight
-from ifgm_ref.planners.tuning import Tuning
+from ifgm_ref.planners.tuning import Tuning, parameter_names
 from ifgm_ref.pose import Pose, distance, wrap_angle
 
 
@@ -132,7 +132,7 @@ class IBAPlanner(BoundaryPlanner):
 
     name: ClassVar[str] = "iba"
     tunings: ClassVar[tuple[type[Tuning], ...]] = (BoundaryParams, DistBugParams)
-    parameters: ClassVar[tuple[str, ...]] = (*BoundaryParams.names(), *DistBugParams.names())
+    parameters: ClassVar[tuple[str, ...]] = parameter_names(tunings)
 
     def __init__(self) -> None:
         super().__init__(IBARule(), choose_side=freer_side)

@@ -52,7 +52,7 @@ from ifgm_ref.planners.boundary import EdgeFollower, keep_clear, steer
 from ifgm_ref.planners.circuit import Circuit, CircuitPhase
 from ifgm_ref.planners.distbug import DistBugParams
 from ifgm_ref.planners.edge_following import FollowSide
-from ifgm_ref.planners.iba import IBAPlanner, IBARule, freer_side
+from ifgm_ref.planners.iba import IBARule, freer_side
 from ifgm_ref.planners.ifgm_atoms import (
     DeadEndTurn,
     IFGMParams,
@@ -62,7 +62,7 @@ from ifgm_ref.planners.ifgm_atoms import (
     read,
 )
 from ifgm_ref.planners.sight import Body, BoundaryParams, Sight, goal_bearing
-from ifgm_ref.planners.tuning import Tuning, check_names
+from ifgm_ref.planners.tuning import Tuning, check_names, parameter_names
 from ifgm_ref.pose import Point, Pose, distance, wrap_angle
 from ifgm_ref.protocol import Behaviour, Command, EpisodeParams, Observation
 
@@ -121,7 +121,7 @@ class IFGMPlanner:
 
     name: ClassVar[str] = "ifgm"
     tunings: ClassVar[tuple[type[Tuning], ...]] = (IFGMParams, BoundaryParams, DistBugParams)
-    parameters: ClassVar[tuple[str, ...]] = IFGMParams.names() + IBAPlanner.parameters
+    parameters: ClassVar[tuple[str, ...]] = parameter_names(tunings)
 
     def __init__(self) -> None:
         self.iba = IBARule()

@@ -139,6 +139,12 @@ def check_names(params: Mapping[str, object], allowed: Iterable[str], planner: s
         raise ParameterError(f"{planner} has no parameter {names}; it has: {has}")
 
 
+def parameter_names(tunings: Iterable[type[Tuning]]) -> tuple[str, ...]:
+    """The names of every parameter of ``tunings``, in order: a planner's ``parameters``,
+    derived from its ``tunings`` so that the two cannot disagree."""
+    return tuple(name for tuning in tunings for name in tuning.names())
+
+
 def parameter_infos(tunings: Iterable[type[Tuning]]) -> tuple[ParamInfo, ...]:
     """Every parameter of ``tunings`` (a planner's :class:`Tuning` classes), in order."""
     return tuple(info for tuning in tunings for info in tuning.infos())
