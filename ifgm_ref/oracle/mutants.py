@@ -15,7 +15,7 @@ from ifgm_ref.equations import eq3_goal_angle_literal
 from ifgm_ref.paper import traces
 from ifgm_ref.percepts.clusters import Gap
 from ifgm_ref.planners.ifgm import IFGMPlanner
-from ifgm_ref.planners.ifgm_atoms import Percepts
+from ifgm_ref.planners.ifgm_atoms import IFGMState, Percepts
 from ifgm_ref.planners.sight import Sight
 from ifgm_ref.pose import Point, Pose
 from ifgm_ref.protocol import Behaviour, Command, EpisodeParams
@@ -46,8 +46,8 @@ class NeverLeavesEdge(IFGMPlanner):
 
     name = "ifgm-never-leaves"
 
-    def may_leave(self, sight: Sight) -> bool:
-        return False
+    def may_leave(self, state: IFGMState, sight: Sight) -> tuple[IFGMState, bool]:
+        return state, False
 
 
 class IgnoresDObs(IFGMPlanner):
@@ -101,9 +101,9 @@ class NoDeadEndRule(IFGMPlanner):
 
     name = "ifgm-no-dead-end-rule"
 
-    def dead_end(self, percepts: Percepts) -> Command:
+    def dead_end(self, state: IFGMState, percepts: Percepts) -> tuple[IFGMState, Command]:
         pose = percepts.sight.pose
-        return Command(pose.theta, 0.0, behaviour=Behaviour.OBSTACLE_AVOIDANCE)
+        return state, Command(pose.theta, 0.0, behaviour=Behaviour.OBSTACLE_AVOIDANCE)
 
 
 #: Every mutant by a short name.

@@ -49,6 +49,7 @@ __all__ = [
     "EdgeFollower",
     "LeaveRule",
     "bug_side",
+    "edge_heading",
     "keep_clear",
 ]
 
@@ -106,15 +107,18 @@ class EdgeFollower:
         self.side = side
 
     def heading(self, sight: Sight) -> float | None:
-        """The heading that follows the nearest remembered edge, ``None`` if none is left."""
-        pose, body = sight.pose, sight.body
-        return follow_heading(
-            (pose.x, pose.y),
-            sight.points,
-            self.side,
-            standoff=body.standoff,
-            gain=1.0 / body.radius,
-        )
+        """The heading that follows the nearest remembered edge on :attr:`side`
+        (:func:`edge_heading`)."""
+        return edge_heading(sight, self.side)
+
+
+def edge_heading(sight: Sight, side: FollowSide) -> float | None:
+    """The heading that follows the nearest remembered edge, kept on ``side``; ``None`` if
+    no edge is left."""
+    pose, body = sight.pose, sight.body
+    return follow_heading(
+        (pose.x, pose.y), sight.points, side, standoff=body.standoff, gain=1.0 / body.radius
+    )
 
 
 class LeaveRule:

@@ -114,9 +114,9 @@ class DistBugRule(LeaveRule):
         return self.progress(sight)
 
     def progress(self, sight: Sight) -> bool:
-        """Kamon and Rivlin's rule on this step's sight, with the ``d_min`` noted so far."""
-        reach = sight.goal_distance - self.free_range(sight)
-        return reach <= 0.0 or reach <= self.d_min - self.step_length
+        """Kamon and Rivlin's rule on this step's sight, with the ``d_min`` noted so far
+        (:func:`makes_progress`)."""
+        return makes_progress(sight, self.d_min, self.step_length)
 
     @staticmethod
     def free_range(sight: Sight) -> float:
@@ -130,6 +130,13 @@ class DistBugRule(LeaveRule):
         if free >= d and d <= seen:
             return d
         return max(0.0, min(free, seen) - sight.body.encounter)
+
+
+def makes_progress(sight: Sight, d_min: float, step_length: float) -> bool:
+    """Kamon and Rivlin's leaving rule: ``d - F <= 0`` or ``d - F <= d_min - Step``, with
+    ``F`` the free range (:meth:`DistBugRule.free_range`)."""
+    reach = sight.goal_distance - DistBugRule.free_range(sight)
+    return reach <= 0.0 or reach <= d_min - step_length
 
 
 @traces("distbug")

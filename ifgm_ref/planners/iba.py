@@ -40,11 +40,11 @@ import numpy as np
 from ifgm_ref.laserscan import Beam, LaserScan
 from ifgm_ref.paper import traces
 from ifgm_ref.planners.boundary import BoundaryPlanner, EdgeFollower
-from ifgm_ref.planners.distbug import DistBugParams, DistBugRule
+from ifgm_ref.planners.distbug import DistBugParams, DistBugRule, makes_progress
 from ifgm_ref.planners.edge_following import FollowSide
 from ifgm_ref.planners.sight import BoundaryParams, Sight
 from ifgm_ref.planners.tuning import Tuning, parameter_names
-from ifgm_ref.pose import Pose, distance, wrap_angle
+from ifgm_ref.pose import Point, Pose, distance, wrap_angle
 
 
 def beam_openness(scan: LaserScan, beam: Beam) -> float:
@@ -102,7 +102,7 @@ class IBARule(DistBugRule):
         farther from the goal than it has been; measured from there, the next leave would
         count a return as progress, and the robot could circle an enclosure or swap between
         two walls for ever (BARN worlds; errata row 31)."""
-        self.d_min = min(self.d_min, distance(follower.hit_point, sight.body.goal))
+        self.d_min = yardstick_at_hit(self.d_min, follower.hit_point, sight.body.goal)
 
     @traces("iba.leave_free_path", "s3.clear_path")
     def update(self, sight: Sight, follower: EdgeFollower) -> bool:
@@ -111,19 +111,34 @@ class IBARule(DistBugRule):
         self.note(sight)
         return self.leaves(sight)
 
-    def leaves(self, sight: Sight, *, by_progress: bool = True) -> bool:
+    def leaves(self, sight: Sight) -> bool:
         """Whether this step's sight, with the ``d_min`` noted so far, lets the robot leave
-        the edge: by DistBug's progress rule (unless ``by_progress`` is off) or by a free path
-        that leads on (:meth:`free_path_leads_on`)."""
-        return (by_progress and self.progress(sight)) or self.free_path_leads_on(sight)
+        the edge (:func:`leaves`)."""
+        return leaves(sight, self.d_min, self.step_length)
 
-    def free_path_leads_on(self, sight: Sight) -> bool:
-        """IBA's free path, where following it as far as it is seen free would bring the robot
-        at least as near the goal as it has been in this episode (``d_min``)."""
-        if not sight.path_free():
-            return False
-        view_range = sight.body.tuning.view_range
-        return sight.goal_distance - min(sight.goal_free_length, view_range) <= self.d_min
+
+def yardstick_at_hit(d_min: float, hit_point: Point, goal: Point) -> float:
+    """IBA's ``d_min`` once an obstacle is met at ``hit_point``: still the least distance to
+    the goal of the whole episode (:meth:`IBARule.on_hit`, errata row 31)."""
+    return min(d_min, distance(hit_point, goal))
+
+
+def leaves(sight: Sight, d_min: float, step_length: float, *, by_progress: bool = True) -> bool:
+    """IBA's leaving rules on this step's sight, ``d_min`` noted: DistBug's progress rule
+    (:func:`~ifgm_ref.planners.distbug.makes_progress`, unless ``by_progress`` is off) or a
+    free path that leads on (:func:`free_path_leads_on`)."""
+    return (by_progress and makes_progress(sight, d_min, step_length)) or free_path_leads_on(
+        sight, d_min
+    )
+
+
+def free_path_leads_on(sight: Sight, d_min: float) -> bool:
+    """IBA's free path, where following it as far as it is seen free would bring the robot
+    at least as near the goal as it has been in this episode (``d_min``)."""
+    if not sight.path_free():
+        return False
+    view_range = sight.body.tuning.view_range
+    return sight.goal_distance - min(sight.goal_free_length, view_range) <= d_min
 
 
 class IBAPlanner(BoundaryPlanner):

@@ -19,12 +19,15 @@ alone picks the branch, and this module carries it out:
   way to the end of the wall (section 5.2), then follow the wall round from outside with IBA
   and regenerate the path.
 
-The planner is composed, not inherited: it holds IBA's parts (an
-:class:`~ifgm_ref.planners.boundary.EdgeFollower` and an :class:`~ifgm_ref.planners.iba.IBARule`)
-and its own frozen state (:class:`~ifgm_ref.planners.ifgm_atoms.IFGMState`), whose
-:class:`~ifgm_ref.planners.ifgm_atoms.Mode` changes only where a Figure 3 branch says so. The
-atoms are a pure function of the step's percepts and the state
-(:func:`~ifgm_ref.planners.ifgm_atoms.read`).
+A step is four parts, and the state (:class:`~ifgm_ref.planners.ifgm_atoms.IFGMState`, one
+immutable record: the mode, the dead-end turn, the followed point and its side, the Case-3
+stack, IBA's ``d_min``) is written in one place, :meth:`IFGMPlanner._decide`:
+:meth:`~IFGMPlanner.perceive` (the percepts, and the state as they update it), the atoms
+(:func:`~ifgm_ref.planners.ifgm_atoms.read`, pure), the branch
+(:func:`~ifgm_ref.flowchart.decide`), and :meth:`~IFGMPlanner.transition`, one ``match`` over
+the branch that returns the next state and the command. IBA's parts are its functions
+(:func:`~ifgm_ref.planners.iba.leaves`, :func:`~ifgm_ref.planners.boundary.edge_heading`),
+not objects with state of their own.
 
 On a sensor wider than the paper's (a 270-degree LiDAR) Figure 3 reads the paper's 135-degree
 view of the scan (:meth:`~ifgm_ref.laserscan.LaserScan.window`); the whole scan is remembered
@@ -48,17 +51,18 @@ from ifgm_ref.percepts.clusters import Gap, cluster_points, gaps_between
 from ifgm_ref.percepts.corridor import free_length
 from ifgm_ref.percepts.memory import PerceptMemory
 from ifgm_ref.percepts.points import scan_points, to_world
-from ifgm_ref.planners.boundary import EdgeFollower, keep_clear, steer
+from ifgm_ref.planners.boundary import edge_heading, keep_clear, steer
 from ifgm_ref.planners.circuit import Circuit, CircuitPhase
 from ifgm_ref.planners.distbug import DistBugParams
 from ifgm_ref.planners.edge_following import FollowSide
-from ifgm_ref.planners.iba import IBARule, freer_side
+from ifgm_ref.planners.iba import freer_side, leaves, yardstick_at_hit
 from ifgm_ref.planners.ifgm_atoms import (
     DeadEndTurn,
     IFGMParams,
     IFGMState,
     Mode,
     Percepts,
+    Reading,
     read,
 )
 from ifgm_ref.planners.sight import Body, BoundaryParams, Sight, goal_bearing
@@ -68,6 +72,8 @@ from ifgm_ref.protocol import Behaviour, Command, EpisodeParams, Observation
 
 __all__ = ["DEAD_END_MAX_STEPS", "DEAD_END_STEP", "IFGMParams", "IFGMPlanner"]
 
+#: The two behaviours a command reports (section 2.1).
+TO_GOAL, AVOIDING = Behaviour.MOVE_TO_GOAL, Behaviour.OBSTACLE_AVOIDANCE
 #: The dead-end rule's step, radians (section 4: "turns in steps of 45 degrees").
 DEAD_END_STEP = math.pi / 4
 #: At most four steps: 45, 90, 135 and 180 degrees ("until it finds obstacle free path (on
@@ -101,13 +107,12 @@ class IFGMPlanner:
     Attributes
     ----------
     state : IFGMState
-        The mode and what is carried from step to step.
-    follower : EdgeFollower
-        IBA's edge following: the side the followed edge is kept on, the hit point.
-    iba : IBARule
-        IBA's leaving rules and their ``d_min``.
+        Everything carried from step to step.
     memory : PerceptMemory
-        The obstacle points of the last ``memory_horizon`` seconds.
+        The obstacle points of the last ``memory_horizon`` seconds (a handle the state
+        leaves out: a growing log).
+    circuit : Circuit
+        Bug1's round (errata row 34; a handle too).
     ifgm : IFGMParams
         The thresholds and weights of this episode.
     last_atoms : Atoms or None
@@ -124,7 +129,6 @@ class IFGMPlanner:
     parameters: ClassVar[tuple[str, ...]] = parameter_names(tunings)
 
     def __init__(self) -> None:
-        self.iba = IBARule()
         self.circuit = Circuit()
         self.last_atoms: Atoms | None = None
         self.last_branch: Branch | None = None
@@ -165,7 +169,7 @@ class IFGMPlanner:
     @property
     def side(self) -> FollowSide:
         """The side the followed edge is kept on (IBA's freer side, section 4.1)."""
-        return self.follower.side
+        return self.state.side
 
     @property
     def followed(self) -> Point | None:
@@ -185,9 +189,7 @@ class IFGMPlanner:
         tuning = BoundaryParams.for_episode(params)
         self.body = Body.of(goal, params, tuning)
         self.memory = PerceptMemory(tuning.memory_horizon)
-        self.follower = EdgeFollower()
-        self.follower.reset()
-        self.iba.reset(start, goal, params)
+        self.step_length = DistBugParams.for_episode(params).step_length
         self.circuit.reset()
         p = IFGMParams.for_episode(params)
         r = params.robot.radius
@@ -213,28 +215,40 @@ class IFGMPlanner:
         self.last_gap = None
 
     def step(self, observation: Observation) -> Command:
-        """Perceive, decide (:meth:`carry_out`), then never drive into a remembered obstacle
-        (the clearance filter)."""
-        percepts = self.perceive(observation)
-        return keep_clear(self.carry_out(percepts), percepts.sight)
+        """Decide (:meth:`act`), then never drive into a remembered obstacle (the clearance
+        filter, :func:`~ifgm_ref.planners.boundary.keep_clear`)."""
+        command, percepts = self._decide(observation)
+        return keep_clear(command, percepts.sight)
 
     def act(self, observation: Observation) -> Command:
-        """IFGM's decision for ``observation`` before the clearance filter: :meth:`perceive`, then
-        :meth:`carry_out`."""
-        return self.carry_out(self.perceive(observation))
+        """IFGM's decision for ``observation`` before the clearance filter."""
+        return self._decide(observation)[0]
+
+    def _decide(self, observation: Observation) -> tuple[Command, Percepts]:
+        """One step: perceive, read the atoms, let Figure 3 pick the branch, carry it out.
+        The only place the state is written after :meth:`reset`."""
+        state, percepts = self.perceive(self.state, observation)
+        reading = read(percepts, state)
+        branch = decide(reading.atoms)
+        state = replace(state, gap_mid=reading.gap_mid, short_look=reading.short_look)
+        state, command = self.transition(state, percepts, reading, branch)
+        self.state, self.last_atoms, self.last_gap, self.last_branch = (
+            state, reading.atoms, reading.gap, branch
+        )  # fmt: skip
+        return command, percepts
 
     def goal_bearing(self, pose: Pose) -> float:
         """The destination angle theta_d of eq. (3), world frame (:func:`goal_bearing`)."""
         return goal_bearing(pose, self.body.goal)
 
     # -- percepts ---------------------------------------------------------------------------
-    def perceive(self, observation: Observation) -> Percepts:
-        """Remember the scan and compute this step's percepts, each once.
+    def perceive(self, state: IFGMState, observation: Observation) -> tuple[IFGMState, Percepts]:
+        """This step's percepts, each computed once, and ``state`` as they update it.
 
         The whole field of view is remembered, for edge following; Figure 3 reads the paper's
         view, 135 degrees and ``view_range`` deep (the scan itself for the paper's sensor).
-        While following, the followed point is tracked along its edge and IBA notes the
-        distance to the goal before its leaving rules are asked."""
+        While following, the followed point is tracked along its edge, ``d_min`` notes the
+        distance to the goal, and IBA's leaving rules are asked (:meth:`may_leave`)."""
         pose, view_range = observation.pose, self.body.tuning.view_range
         scan = observation.scan.limited(view_range)
         points = scan_points(scan)
@@ -242,17 +256,16 @@ class IFGMPlanner:
         view = observation.scan.window().limited(view_range)
         clusters = cluster_points(points if view is scan else scan_points(view), self.ifgm.jump)
         sight = Sight(pose, self.body, self.memory.points, self.goal_bearing(pose))
-        self.circuit.note(sight, following=self.state.following)
+        self.circuit.note(sight, following=state.following)
         may_leave = False
-        if self.state.following:
-            tracked = self._track(sight, self.state.followed)
-            if tracked != self.state.followed:
-                self.state = replace(self.state, followed=tracked)
-            self.iba.note(sight)
-            may_leave = self.may_leave(sight)
-        return Percepts(
+        if state.following:
+            followed = self._track(sight, state.followed)
+            state = replace(state, followed=followed, d_min=min(state.d_min, sight.goal_distance))
+            state, may_leave = self.may_leave(state, sight)
+        percepts = Percepts(
             sight, view, clusters, gaps_between(clusters), may_leave, self.ifgm, self.goal_tolerance
         )
+        return state, percepts
 
     def _track(self, sight: Sight, followed: Point | None) -> Point | None:
         """The followed point, moved along its edge: the remembered point nearest the robot
@@ -261,7 +274,7 @@ class IFGMPlanner:
         tracked = nearest_remembered(sight, followed, jump) if followed else None
         return tracked or nearest_remembered(sight, None, jump)
 
-    def may_leave(self, sight: Sight) -> bool:
+    def may_leave(self, state: IFGMState, sight: Sight) -> tuple[IFGMState, bool]:
         """IBA's leaving rules (errata row 24): a free path, or DistBug's progress rule --
         but not while following the wall round from outside after a dead end, where the
         progress rule would lead straight back into the U or H (``tests/worlds/small_u``).
@@ -271,71 +284,69 @@ class IFGMPlanner:
         same obstacles again and goes the same way round (a lap without progress); once the
         loop closes, only Q is left from: along the loop to the point Q nearest the goal, and
         leave there. IFGM has no "goal unreachable": a loop that shows the goal cannot be
-        reached is left at its Q all the same."""
+        reached is left at its Q all the same. A round that found no way on sends the next
+        one the other way round (``turn_other_way``)."""
         circuit = self.circuit
         if circuit.returning:
             if not circuit.at_q(sight):
-                return False
+                return state, False
             circuit.leave()
-            return True
+            return state, True
         if (back_at := circuit.closing(sight)) is not None:
-            side = self.follower.side
-            if not circuit.close(sight, back_at, side):  # no way on this way round
-                other = FollowSide.LEFT if side is FollowSide.RIGHT else FollowSide.RIGHT
-                self.state = replace(self.state, turn_other_way=other)
-            return False
-        return self.iba.leaves(sight, by_progress=not self.state.escaped)
+            if not circuit.close(sight, back_at, state.side):  # no way on this way round
+                other = FollowSide.LEFT if state.side is FollowSide.RIGHT else FollowSide.RIGHT
+                state = replace(state, turn_other_way=other)
+            return state, False
+        by_progress = not state.escaped
+        return state, leaves(sight, state.d_min, self.step_length, by_progress=by_progress)
 
     # -- the planner ------------------------------------------------------------------------
     @traces("fig3.move_to_goal", "fig3.regenerate", "fig3.case2", "fig3.case3")
-    def carry_out(self, percepts: Percepts) -> Command:
-        """Decide with Figure 3, then act on the branch."""
-        reading = read(percepts, self.state)
-        state = self.state
-        if (reading.gap_mid, reading.short_look) != (state.gap_mid, state.short_look):
-            self.state = replace(state, gap_mid=reading.gap_mid, short_look=reading.short_look)
-        self.last_atoms, self.last_gap = reading.atoms, reading.gap
-        branch = self.last_branch = decide(reading.atoms)
+    def transition(
+        self, state: IFGMState, percepts: Percepts, reading: Reading, branch: Branch
+    ) -> tuple[IFGMState, Command]:
+        """Carry out Figure 3's ``branch``: the next state and this step's command."""
         sight = percepts.sight
-        pose = sight.pose
-        if branch is Branch.GOAL_REACHED:
-            speed = min(self.body.speed, sight.goal_distance / self.body.dt)
-            return Command(sight.bearing, speed, behaviour=Behaviour.MOVE_TO_GOAL, branch=branch)
-        if branch is Branch.MOVE_TO_GOAL:
-            if self.state.mode is not Mode.MOVE_TO_GOAL:
-                self.state = replace(self.state, mode=Mode.MOVE_TO_GOAL)
-            return steer(sight.bearing, pose, self.body, Behaviour.MOVE_TO_GOAL, branch)
-        if branch is Branch.PATH_REGENERATED:
-            # Left by the progress rule, with an obstacle still ahead: meet it at IBA's short
-            # encounter distance, not d_look (the followed one is still the nearest, and at
-            # d_look the robot would go back to following it: tests/worlds/two_posts_in_line).
-            at_q = self.circuit.phase is CircuitPhase.LEFT_AT_Q
-            self.state = replace(
-                self.state,
-                mode=Mode.MOVE_TO_GOAL,
-                short_look=at_q or not sight.path_free(),
-                escaped=False,
-                followed=None,
-                stack=(),
-            )
-            return steer(sight.bearing, pose, self.body, Behaviour.MOVE_TO_GOAL, branch)
-        if branch is Branch.CASE1_GAP:
-            self.state = replace(self.state, mode=Mode.THROUGH_GAP)
-            heading = self.gap_heading(pose, present(reading.gap, "the gap Case-1 steers through"))
-            return steer(heading, pose, self.body, Behaviour.OBSTACLE_AVOIDANCE, branch)
-        if branch is Branch.DEAD_END_TURN:
-            return self.dead_end(percepts)
-        if branch is Branch.CASE3_PREEMPT:
-            followed = present(self.state.followed, "the edge Case-3 pre-empts")
-            stack = (*self.state.stack, (followed, self.follower.side))
-            preemptor = present(reading.preemptor, "Case-3's obstacle of most impact")
-            self.state = replace(self.state, stack=stack, followed=preemptor)
-            self.follower.side = freer_side(percepts.view, pose, sight.bearing)
-        elif branch is Branch.FOLLOW_EDGE:
-            self._resume_if_back(sight)
-        else:  # Case-2 (narrow gap, one-sided) or too close: IBA takes over
-            self._start_following(percepts)
-        return self._follow(sight, branch)
+        pose, bearing = sight.pose, sight.bearing
+        match branch:
+            case Branch.GOAL_REACHED:
+                speed = min(self.body.speed, sight.goal_distance / self.body.dt)
+                return state, Command(bearing, speed, behaviour=TO_GOAL, branch=branch)
+            case Branch.MOVE_TO_GOAL:
+                state = replace(state, mode=Mode.MOVE_TO_GOAL)
+                return state, steer(bearing, pose, self.body, TO_GOAL, branch)
+            case Branch.PATH_REGENERATED:
+                # Left by the progress rule, with an obstacle still ahead: meet it at IBA's
+                # short encounter distance, not d_look (the followed one is still the nearest,
+                # and at d_look the robot would go back to following it:
+                # tests/worlds/two_posts_in_line).
+                at_q = self.circuit.phase is CircuitPhase.LEFT_AT_Q
+                short_look = at_q or not sight.path_free()
+                state = replace(
+                    state, mode=Mode.MOVE_TO_GOAL, short_look=short_look, escaped=False,
+                    followed=None, stack=(),
+                )  # fmt: skip
+                return state, steer(bearing, pose, self.body, TO_GOAL, branch)
+            case Branch.CASE1_GAP:
+                gap = present(reading.gap, "the gap Case-1 steers through")
+                heading = self.gap_heading(pose, gap)
+                state = replace(state, mode=Mode.THROUGH_GAP)
+                return state, steer(heading, pose, self.body, AVOIDING, branch)
+            case Branch.DEAD_END_TURN:
+                return self.dead_end(state, percepts)
+            case Branch.CASE3_PREEMPT:  # a nearer obstacle first; the followed one waits
+                followed = present(state.followed, "the edge Case-3 pre-empts")
+                state = replace(
+                    state,
+                    stack=(*state.stack, (followed, state.side)),
+                    followed=present(reading.preemptor, "Case-3's obstacle of most impact"),
+                    side=freer_side(percepts.view, pose, bearing),
+                )
+            case Branch.FOLLOW_EDGE:
+                state = self._resume_if_back(state, sight)
+            case _:  # Case-2 (narrow gap, one-sided) or too close: IBA takes over
+                state = self._start_following(state, percepts)
+        return self._follow(state, sight, branch)
 
     @traces("fig3.case1", "eq1", "eq2", "eq3", "eq4")
     def gap_heading(self, pose: Pose, gap: Gap) -> float:
@@ -352,39 +363,42 @@ class IFGMPlanner:
             heading=pose.theta,
         )
 
-    def _start_following(self, percepts: Percepts) -> None:
-        """IBA takes over: follow the nearest obstacle on the freer side, nothing pre-empted."""
+    def _start_following(self, state: IFGMState, percepts: Percepts) -> IFGMState:
+        """IBA takes over: follow the nearest obstacle on the freer side (or the side a round
+        of Bug1's left for it), nothing pre-empted; ``d_min`` counts the hit point."""
         sight = percepts.sight
-        side = self.state.turn_other_way or freer_side(percepts.view, sight.pose, sight.bearing)
-        self.follower.start(sight.pose.position, side)
-        self.iba.on_hit(sight, self.follower)
+        side = state.turn_other_way or freer_side(percepts.view, sight.pose, sight.bearing)
+        d_min = yardstick_at_hit(state.d_min, sight.pose.position, sight.body.goal)
         if self.circuit.phase is not CircuitPhase.FIRST_PASS:
             self.circuit.on_hit()
-        self.state = replace(
-            self.state,
+        return replace(
+            state,
             mode=Mode.FOLLOWING,
             turn=None,
             short_look=False,
             escaped=False,
             followed=nearest_remembered(sight, None, self.ifgm.jump),
+            side=side,
             stack=(),
             turn_other_way=None,
+            d_min=d_min,
         )
 
-    def _follow(self, sight: Sight, branch: Branch) -> Command:
+    def _follow(self, state: IFGMState, sight: Sight, branch: Branch) -> tuple[IFGMState, Command]:
         """Follow the edge with IBA -- after a whole loop, retrace it to Q (Bug1's round,
         errata row 34); if the edge is forgotten, head for the goal instead."""
         circuit = self.circuit
-        heading = circuit.heading_to_q(sight) if circuit.returning else self.follower.heading(sight)
+        heading = (
+            circuit.heading_to_q(sight) if circuit.returning else edge_heading(sight, state.side)
+        )
         if heading is None:  # the edge is forgotten: the obstacle is behind us
-            self.state = replace(self.state, mode=Mode.MOVE_TO_GOAL)
-            return steer(sight.bearing, sight.pose, self.body, Behaviour.MOVE_TO_GOAL, branch)
-        return steer(heading, sight.pose, self.body, Behaviour.OBSTACLE_AVOIDANCE, branch)
+            state = replace(state, mode=Mode.MOVE_TO_GOAL)
+            return state, steer(sight.bearing, sight.pose, self.body, TO_GOAL, branch)
+        return state, steer(heading, sight.pose, self.body, AVOIDING, branch)
 
-    def _resume_if_back(self, sight: Sight) -> None:
+    def _resume_if_back(self, state: IFGMState, sight: Sight) -> IFGMState:
         """Case-3 recursion: once the pre-empting obstacle is no longer the nearest, resume
         avoiding the one it interrupted, on the side it was followed on."""
-        state = self.state
         nearest = nearest_remembered(sight, None, self.ifgm.jump)
         if (
             state.stack
@@ -392,58 +406,58 @@ class IFGMPlanner:
             and state.followed is not None
             and distance(nearest, state.followed) > self.ifgm.jump
         ):
-            _, self.follower.side = state.stack[-1]
-            self.state = replace(state, stack=state.stack[:-1], followed=nearest)
+            _, side = state.stack[-1]
+            return replace(state, stack=state.stack[:-1], followed=nearest, side=side)
+        return state
 
     @traces("fig3.dead_end", "s5.ifgm_u_h")
-    def dead_end(self, percepts: Percepts) -> Command:
-        """Turn in 45-degree steps until the way ahead is free; then go that way."""
+    def dead_end(self, state: IFGMState, percepts: Percepts) -> tuple[IFGMState, Command]:
+        """Turn in 45-degree steps until the way ahead is free; go that way to the end of
+        the wall; then hand over to IBA, following the wall round from outside."""
         sight = percepts.sight
         pose = sight.pose
-        turn = self.state.turn
+        turn = state.turn
         if turn is None:  # entering the dead end: turn towards the freer beam
             side = freer_side(percepts.view, pose, sight.bearing)
             turn = DeadEndTurn(pose.theta, 1 if side is FollowSide.RIGHT else -1, 1)
-            self.state = replace(self.state, mode=Mode.DEAD_END_TURN, turn=turn)
+            state = replace(state, mode=Mode.DEAD_END_TURN, turn=turn)
         target = wrap_angle(turn.start + turn.sign * turn.steps * DEAD_END_STEP)
         turning = turn.escape_from is None
         if turning and abs(wrap_angle(pose.theta - target)) > self.ifgm.turn_done:
-            return self._turn_command(target)
+            return state, self._turn_command(target)
         ahead = free_length(sight.points, (pose.x, pose.y), pose.theta, self.body.half_width)
         if turning:
             if ahead < self.body.tuning.view_range and turn.steps < DEAD_END_MAX_STEPS:
                 turn = replace(turn, steps=turn.steps + 1)
-                self.state = replace(self.state, turn=turn)
-                return self._turn_command(
-                    wrap_angle(turn.start + turn.sign * turn.steps * DEAD_END_STEP)
-                )
+                target = wrap_angle(turn.start + turn.sign * turn.steps * DEAD_END_STEP)
+                return replace(state, turn=turn), self._turn_command(target)
             turn = replace(turn, escape_from=pose.position)  # free (or 180 degrees): go
-            self.state = replace(self.state, mode=Mode.ESCAPING, turn=turn)
+            state = replace(state, mode=Mode.ESCAPING, turn=turn)
         escape_from = present(turn.escape_from, "where the escape from the dead end began")
         walls = self.side_walls(percepts.view)
         walled = (turn.walled[0] or walls[0], turn.walled[1] or walls[1])
         wall_ended = any(seen and not now for seen, now in zip(walled, walls, strict=True))
         if walled != turn.walled:
-            self.state = replace(self.state, turn=replace(turn, walled=walled))
+            state = replace(state, turn=replace(turn, walled=walled))
         if (
             distance(pose, escape_from) < self.ifgm.d_look
             and ahead > self.body.encounter
             and not wall_ended
         ):
-            return Command(
+            command = Command(
                 target,
                 self.body.speed,
-                behaviour=Behaviour.OBSTACLE_AVOIDANCE,
+                behaviour=AVOIDING,
                 branch=Branch.DEAD_END_TURN,
             )
+            return state, command
         # Escaped: follow the nearest wall round from outside (IBA), then regenerate the path.
-        self._start_following(percepts)
-        self.state = replace(self.state, escaped=True)
+        state = replace(self._start_following(state, percepts), escaped=True)
         followed = nearest_remembered(sight, None, self.ifgm.jump)
         if followed is not None:
             rel = wrap_angle(math.atan2(followed.y - pose.y, followed.x - pose.x) - pose.theta)
-            self.follower.side = FollowSide.LEFT if rel > 0.0 else FollowSide.RIGHT
-        return self._follow(sight, Branch.DEAD_END_TURN)
+            state = replace(state, side=FollowSide.LEFT if rel > 0.0 else FollowSide.RIGHT)
+        return self._follow(state, sight, Branch.DEAD_END_TURN)
 
     def side_walls(self, view: LaserScan) -> tuple[bool, bool]:
         """Whether the left and the right beam of the view have a return within ``d_look``.
@@ -462,6 +476,4 @@ class IFGMPlanner:
         )
 
     def _turn_command(self, target: float) -> Command:
-        return Command(
-            target, 0.0, behaviour=Behaviour.OBSTACLE_AVOIDANCE, branch=Branch.DEAD_END_TURN
-        )
+        return Command(target, 0.0, behaviour=AVOIDING, branch=Branch.DEAD_END_TURN)

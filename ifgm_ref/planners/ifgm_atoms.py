@@ -112,7 +112,10 @@ class DeadEndTurn:
 
 @dataclass(frozen=True)
 class IFGMState:
-    """Everything IFGM carries from one step to the next (besides IBA's follower and rule).
+    """Everything IFGM carries from one step to the next, in one immutable record; beside it
+    only the planner's handles to two growing logs, the remembered points
+    (:class:`~ifgm_ref.percepts.memory.PerceptMemory`) and Bug1's round
+    (:class:`~ifgm_ref.planners.circuit.Circuit`).
 
     Attributes
     ----------
@@ -133,6 +136,11 @@ class IFGMState:
     turn_other_way : FollowSide or None
         After a round of Bug1's that found no way on (errata row 34): the side the next
         round follows on, the other one than that round's; ``None`` otherwise.
+    side : FollowSide
+        The side the followed edge is kept on (IBA's freer side, section 4.1).
+    d_min : float
+        IBA's yardstick: the least distance to the goal seen while following, over the whole
+        episode (errata row 31).
     """
 
     mode: Mode = Mode.MOVE_TO_GOAL
@@ -143,6 +151,8 @@ class IFGMState:
     short_look: bool = False
     escaped: bool = False
     turn_other_way: FollowSide | None = None
+    side: FollowSide = FollowSide.RIGHT
+    d_min: float = math.inf
 
     @property
     def following(self) -> bool:
