@@ -39,7 +39,7 @@ from ifgm_ref.planners.circuit import Circuit, CircuitPhase
 from ifgm_ref.planners.distbug import DistBugRule
 from ifgm_ref.planners.edge_following import FollowSide
 from ifgm_ref.planners.ifgm import IFGMPlanner
-from ifgm_ref.planners.ifgm_atoms import Percepts
+from ifgm_ref.planners.ifgm_atoms import IFGMState, Percepts
 from ifgm_ref.planners.sight import Sight
 from ifgm_ref.pose import Point
 from ifgm_ref.recording import RecordingPlanner
@@ -533,10 +533,10 @@ def test_the_c_ifgm_closes_a_round_across_its_leaves_as_the_python_one(
     events: list[str] = []  # the reference's: obstacles met on a first pass, loops closed
     start_following, close = IFGMPlanner._start_following, Circuit.close
 
-    def noting_start(planner: IFGMPlanner, percepts: Percepts) -> None:
+    def noting_start(planner: IFGMPlanner, state: IFGMState, percepts: Percepts) -> IFGMState:
         if planner.circuit.phase is CircuitPhase.FIRST_PASS:
             events.append("met again")
-        start_following(planner, percepts)
+        return start_following(planner, state, percepts)
 
     def noting_close(circuit: Circuit, sight: Sight, at: int, side: FollowSide) -> bool:
         events.append("closed")
