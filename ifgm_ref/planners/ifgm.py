@@ -230,7 +230,8 @@ class IFGMPlanner:
         state, percepts = self.perceive(self.state, observation)
         reading = read(percepts, state)
         branch = decide(reading.atoms)
-        state = replace(state, gap_mid=reading.gap_mid, short_look=reading.short_look)
+        if (reading.gap_mid, reading.short_look) != (state.gap_mid, state.short_look):
+            state = replace(state, gap_mid=reading.gap_mid, short_look=reading.short_look)
         state, command = self.transition(state, percepts, reading, branch)
         self.state, self.last_atoms, self.last_gap, self.last_branch = (
             state, reading.atoms, reading.gap, branch
@@ -313,7 +314,8 @@ class IFGMPlanner:
                 speed = min(self.body.speed, sight.goal_distance / self.body.dt)
                 return state, Command(bearing, speed, behaviour=TO_GOAL, branch=branch)
             case Branch.MOVE_TO_GOAL:
-                state = replace(state, mode=Mode.MOVE_TO_GOAL)
+                if state.mode is not Mode.MOVE_TO_GOAL:
+                    state = replace(state, mode=Mode.MOVE_TO_GOAL)
                 return state, steer(bearing, pose, self.body, TO_GOAL, branch)
             case Branch.PATH_REGENERATED:
                 # Left by the progress rule, with an obstacle still ahead: meet it at IBA's
