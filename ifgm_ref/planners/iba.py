@@ -109,11 +109,6 @@ class IBARule(DistBugRule):
         """Leave at the first free path towards the goal (section 4.1), or where the free
         range promises progress (DistBug's rule, errata row 24)."""
         self.note(sight)
-        return self.leaves(sight)
-
-    def leaves(self, sight: Sight) -> bool:
-        """Whether this step's sight, with the ``d_min`` noted so far, lets the robot leave
-        the edge (:func:`leaves`)."""
         return leaves(sight, self.d_min, self.step_length)
 
 
