@@ -45,15 +45,15 @@ from numpy.typing import NDArray
 
 from ifgm_ref.errors import ParameterError
 from ifgm_ref.flowchart import Branch
-from ifgm_ref.params import SensorParams, _require
+from ifgm_ref.params import SensorParams
 from ifgm_ref.planners import make_planner
 from ifgm_ref.planners.ifgm_atoms import IFGMParams
-from ifgm_ref.planners.tuning import positive_param
 from ifgm_ref.plotting import draw_field_of_view, draw_world
 from ifgm_ref.scenarios import resolve_world
 from ifgm_ref.shapes import circle, u_shape
 from ifgm_ref.simulator import Run
 from ifgm_ref.simulator import simulate as run_episode
+from ifgm_ref.validate import POSITIVE, require
 from ifgm_ref.world import World
 
 __all__ = [
@@ -100,6 +100,8 @@ BRANCH_COLOURS: Final[dict[Branch, str]] = {
     Branch.CASE3_PREEMPT: "tab:cyan",
     Branch.FOLLOW_EDGE: "tab:orange",
     Branch.DEAD_END_TURN: "tab:purple",
+    Branch.DEAD_END_ESCAPE: "tab:gray",
+    Branch.DEAD_END_HANDOVER: "gold",
     Branch.PATH_REGENERATED: "tab:olive",
     Branch.GOAL_REACHED: "black",
 }
@@ -114,7 +116,7 @@ _PAPER = IFGMParams.paper()
 
 def _within(name: str, value: float, bounds: tuple[float, float]) -> None:
     """Raise :class:`ParameterError` unless ``value`` is a number in ``bounds``."""
-    _require(name, value)
+    require(name, value)
     if not bounds[0] <= value <= bounds[1]:
         raise ParameterError(f"`{name}` must be in [{bounds[0]}, {bounds[1]}], got {value!r}")
 
@@ -160,12 +162,12 @@ class ExploreSetting:
 
     def __post_init__(self) -> None:
         diameter = 2.0 * resolve_world("u_trap").robot.radius
-        if positive_param("d_th", self.d_th) <= diameter:
+        if require("d_th", self.d_th, POSITIVE) <= diameter:
             raise ParameterError(
                 f"`d_th` must be > the robot diameter {diameter!r} (section 4), got {self.d_th!r}"
             )
-        positive_param("w_g", self.w_g)
-        positive_param("w_d", self.w_d)
+        require("w_g", self.w_g, POSITIVE)
+        require("w_d", self.w_d, POSITIVE)
         _within("sensor_range", self.sensor_range, SENSOR_RANGE_RANGE)
         _within("u_width", self.u_width, U_WIDTH_RANGE)
         _within("u_depth", self.u_depth, U_DEPTH_RANGE)

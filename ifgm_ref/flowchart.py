@@ -33,7 +33,12 @@ from ifgm_ref.paper import traces
 
 
 class Branch(StrEnum):
-    """The branches of the reconstructed Figure 3, as they appear in traces."""
+    """The branches of the reconstructed Figure 3, as they appear in traces.
+
+    The flowchart decides ``DEAD_END_TURN`` for the whole dead end; a step of it is labelled
+    with the phase it carries out (:data:`DEAD_END_PHASES`): turning in place, driving out,
+    or handing over to IBA.
+    """
 
     GOAL_REACHED = "goal_reached"
     MOVE_TO_GOAL = "move_to_goal"
@@ -45,6 +50,33 @@ class Branch(StrEnum):
     FOLLOW_EDGE = "follow_edge"
     DEAD_END_TURN = "dead_end_turn"
     PATH_REGENERATED = "path_regenerated"
+    DEAD_END_ESCAPE = "dead_end_escape"
+    DEAD_END_HANDOVER = "dead_end_handover"
+
+
+#: The dead end's phases, in order: turn in 45-degree steps, drive out the way found free,
+#: hand over to IBA at the end of the wall. Only the first is decided by the flowchart.
+DEAD_END_PHASES = (Branch.DEAD_END_TURN, Branch.DEAD_END_ESCAPE, Branch.DEAD_END_HANDOVER)
+
+#: The branches the flowchart decides between (:data:`GUARDS`): all but the dead end's
+#: later phases.
+DECIDED = tuple(branch for branch in Branch if branch not in DEAD_END_PHASES[1:])
+
+#: The label each phase label replaces: traces written before the phases had labels of their
+#: own (issue 29) call all three ``dead_end_turn``.
+FORMER_LABELS = {phase: Branch.DEAD_END_TURN for phase in DEAD_END_PHASES[1:]}
+
+
+def same_branch(reported: str, reference: str) -> bool:
+    """Whether a port's (or a log's) branch label ``reported`` names the reference's branch
+    ``reference``: the same label, or the one it replaces (:data:`FORMER_LABELS`).
+
+    >>> same_branch("dead_end_turn", "dead_end_escape"), same_branch("follow_edge", "too_close")
+    (True, False)
+    """
+    if reported == reference:
+        return True
+    return reference in FORMER_LABELS and reported == FORMER_LABELS[Branch(reference)]
 
 
 @dataclass(frozen=True)
@@ -98,7 +130,8 @@ def _encountered(a: Atoms) -> Any:
     return ~a.at_goal & ~a.turning & ~a.avoiding & a.blocked & ~a.dead_end
 
 
-#: Figure 3 as guards: for every combination of atoms exactly one guard holds.
+#: Figure 3 as guards: for every combination of atoms exactly one guard holds. One guard for
+#: each of the :data:`DECIDED` branches.
 GUARDS: dict[Branch, Guard] = {
     Branch.GOAL_REACHED: lambda a: a.at_goal,
     Branch.DEAD_END_TURN: lambda a: (

@@ -10,20 +10,42 @@ from collections.abc import Iterator
 import pytest
 
 from ifgm_ref.errors import InvariantError
-from ifgm_ref.flowchart import GUARDS, Atoms, Branch, branch_of, decide, figure3
+from ifgm_ref.flowchart import (
+    DEAD_END_PHASES,
+    DECIDED,
+    FORMER_LABELS,
+    GUARDS,
+    Atoms,
+    Branch,
+    branch_of,
+    decide,
+    figure3,
+    same_branch,
+)
 
 ALL_ATOMS = list(itertools.product([False, True], repeat=len(Atoms.names())))
 
 
-def test_every_branch_has_a_guard() -> None:
-    assert set(GUARDS) == set(Branch)
+def test_every_decided_branch_has_a_guard() -> None:
+    assert set(GUARDS) == set(DECIDED)
+    assert set(Branch) == set(DECIDED) | set(DEAD_END_PHASES)
+
+
+def test_a_former_label_names_the_phases_it_labelled_and_nothing_else() -> None:
+    """Traces from before the dead end's phases had labels of their own call every phase
+    ``dead_end_turn``: such a label agrees with each phase, and no other label does."""
+    for reference in Branch:
+        agreeing = {str(b) for b in Branch if same_branch(str(b), reference)}
+        expected = {str(reference)} | ({"dead_end_turn"} if reference in FORMER_LABELS else set())
+        assert agreeing == expected, reference
+    assert not same_branch("dead_end_escape", "dead_end_turn")  # the new label is no old one
 
 
 @pytest.mark.paper("fig3.partition")
 def test_guards_partition_every_combination_of_atoms() -> None:
     """Exhaustive over all 2**10 atom values (the sympy proof is the general statement)."""
     taken = {decide(Atoms(*values)) for values in ALL_ATOMS}
-    assert taken == set(Branch)
+    assert taken == set(DECIDED)
 
 
 @pytest.fixture

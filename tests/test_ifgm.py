@@ -4,6 +4,7 @@ branch taken in a built-in world, and each branch's post-condition when it is ta
 from __future__ import annotations
 
 import math
+import re
 from collections import Counter
 from dataclasses import dataclass, replace
 
@@ -137,6 +138,29 @@ def test_dead_end_turns_in_45_degree_steps_in_place(name: str) -> None:
     assert distinct == list(range(1, len(distinct) + 1)), f"turn steps {distinct}"
     assert 1 <= len(distinct) <= 4
     assert len({math.copysign(1, s) for s in steps}) == 1, "turned both ways"
+
+
+@pytest.mark.paper("fig3.dead_end", "s5.ifgm_u_h")
+@pytest.mark.parametrize("name", ["u_trap", "h_block"])
+def test_a_dead_end_turns_then_drives_out_then_hands_over_once(name: str) -> None:
+    """Errata row 35: every dead end is labelled turn (in place), escape (full speed along
+    the last turn's target), then one hand-over to IBA, in that order and nothing between."""
+    commands = [d.command for d in run_in(name)[1].decisions]
+    labels = "".join(
+        {"dead_end_turn": "T", "dead_end_escape": "E", "dead_end_handover": "H"}.get(
+            str(c.branch), "."
+        )
+        for c in commands
+    )
+    dead_ends = re.findall(r"[TEH]+", labels)
+    assert dead_ends, "no dead end"
+    for found in dead_ends:
+        assert re.fullmatch(r"T+E*H", found), f"dead-end labels {found}"
+    for i, label in enumerate(labels):
+        if label == "E":
+            turned = commands[labels.rindex("T", 0, i)]
+            assert commands[i].speed > 0.0 == turned.speed
+            assert commands[i].heading == turned.heading
 
 
 class OffByHalfADegree(IFGMPlanner):

@@ -425,6 +425,30 @@ def test_a_float32_port_fails_the_double_tolerances() -> None:
 # ---- traces ----------------------------------------------------------------------------------
 
 
+def test_the_format_page_lists_the_traces_as_the_file_holds_them() -> None:
+    """docs/vectors-format.md's table of traces: id, planner, world, start, steps, stop and
+    branches, row for row (it had gone stale once: starts and branch lists)."""
+    page = (Path(__file__).resolve().parent.parent / "docs" / "vectors-format.md").read_text()
+    rows = [
+        [cell.strip().strip("`") for cell in line.strip("|").split("|")]
+        for line in page.splitlines()
+        if line.startswith("| `") and line.count("|") == 8
+    ]
+    listed = [
+        (t["id"], t["planner"], t["world"], t["reset"]["start"], len(t["steps"]),
+         t["stop_reason"], t["branches"])
+        for t in vectors()["traces"]
+    ]  # fmt: skip
+    assert [
+        (i, planner, world, [float(x) for x in start.strip("()").split(",")], int(steps), stop,
+         branches.split(", "))
+        for i, planner, world, start, steps, stop, branches in rows
+    ] == [
+        (i, planner, world, [round(x, 2) for x in start], steps, stop, branches)
+        for i, planner, world, start, steps, stop, branches in listed
+    ]  # fmt: skip
+
+
 def test_traces_cover_every_branch_of_figure_3() -> None:
     v = vectors()
     taken = {

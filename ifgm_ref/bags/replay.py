@@ -44,6 +44,7 @@ import numpy as np
 
 from ifgm_ref.bags.read import BagScan, LogStep, RobotLog
 from ifgm_ref.errors import BagError, ProtocolError
+from ifgm_ref.flowchart import same_branch
 from ifgm_ref.laserscan import LaserScan
 from ifgm_ref.oracle.invariance import HEADING_TOL, SPEED_TOL
 from ifgm_ref.params import RobotParams, SensorParams
@@ -351,7 +352,7 @@ def difference(
 ) -> str:
     """What differs between a logged step and the reference's, ``""`` when they agree:
     speeds and turn rates within the robot's limits, and the two steps' branches (compared
-    when both name one).
+    when both name one: :func:`~ifgm_ref.flowchart.same_branch`).
 
     >>> params = EpisodeParams()  # dt 0.1 s: 0.1 rad of heading is 1 rad/s of turn rate
     >>> difference((1.0, 0.5), (1.0, 1.2), ("a", "a"), params, Tolerance())
@@ -370,6 +371,6 @@ branch a against b'
     if speed > limit:
         found.append(f"speed off by {speed:.3g} (more than {limit:.3g})")
     logged_branch, reference_branch = branches
-    if logged_branch and reference_branch and logged_branch != reference_branch:
+    if logged_branch and reference_branch and not same_branch(logged_branch, reference_branch):
         found.append(f"branch {logged_branch} against {reference_branch}")
     return "; ".join(found)

@@ -414,8 +414,10 @@ class IFGMPlanner:
 
     @traces("fig3.dead_end", "s5.ifgm_u_h")
     def dead_end(self, state: IFGMState, percepts: Percepts) -> tuple[IFGMState, Command]:
-        """Turn in 45-degree steps until the way ahead is free; go that way to the end of
-        the wall; then hand over to IBA, following the wall round from outside."""
+        """Figure 3's dead end, in its three phases (each its own label): turn in 45-degree
+        steps until the way ahead is free (``dead_end_turn``); go that way to the end of the
+        wall (``dead_end_escape``); then hand over to IBA, following the wall round from
+        outside (``dead_end_handover``)."""
         sight = percepts.sight
         pose = sight.pose
         turn = state.turn
@@ -446,20 +448,16 @@ class IFGMPlanner:
             and ahead > self.body.encounter
             and not wall_ended
         ):
-            command = Command(
-                target,
-                self.body.speed,
-                behaviour=AVOIDING,
-                branch=Branch.DEAD_END_TURN,
+            return state, Command(
+                target, self.body.speed, behaviour=AVOIDING, branch=Branch.DEAD_END_ESCAPE
             )
-            return state, command
         # Escaped: follow the nearest wall round from outside (IBA), then regenerate the path.
         state = replace(self._start_following(state, percepts), escaped=True)
         followed = nearest_remembered(sight, None, self.ifgm.jump)
         if followed is not None:
             rel = wrap_angle(math.atan2(followed.y - pose.y, followed.x - pose.x) - pose.theta)
             state = replace(state, side=FollowSide.LEFT if rel > 0.0 else FollowSide.RIGHT)
-        return self._follow(state, sight, Branch.DEAD_END_TURN)
+        return self._follow(state, sight, Branch.DEAD_END_HANDOVER)
 
     def side_walls(self, view: LaserScan) -> tuple[bool, bool]:
         """Whether the left and the right beam of the view have a return within ``d_look``.

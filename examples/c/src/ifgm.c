@@ -11,7 +11,7 @@
 static const char *const BRANCH_NAMES[IFGM_BRANCHES] = {
     "goal_reached",  "move_to_goal",  "case1_gap",         "case2_narrow_gap",
     "case2_one_sided", "too_close",   "case3_preempt",     "follow_edge",
-    "dead_end_turn", "path_regenerated"};
+    "dead_end_turn", "path_regenerated", "dead_end_escape", "dead_end_handover"};
 
 const char *ifgm_branch_name(ifgm_branch branch)
 {
@@ -390,8 +390,9 @@ static int side_wall(const ifgm_planner *p, ifgm_beam beam)
     return 0;
 }
 
-/* Turn in 45-degree steps until the way ahead is free; then go that way; once out, follow
- * the nearest wall round from outside (section 4, dead end; errata row 32). */
+/* The dead end in its three phases, each labelled: turn in 45-degree steps until the way
+ * ahead is free (dead_end_turn); go that way (dead_end_escape); once out, follow the nearest
+ * wall round from outside (dead_end_handover). Section 4, dead end; errata row 32. */
 static ifgm_command dead_end(ifgm_planner *p, const ifgm_sight *s)
 {
     ifgm_state *st = &p->state;
@@ -431,7 +432,7 @@ static ifgm_command dead_end(ifgm_planner *p, const ifgm_sight *s)
     }
     ifgm_real out = hypot(st->escape_from.x - s->pose[0], st->escape_from.y - s->pose[1]);
     if (out < b->tuning.d_look && ahead > b->encounter && !wall_ended)
-        return command_of(target, b->speed, IFGM_DEAD_END_TURN);
+        return command_of(target, b->speed, IFGM_DEAD_END_ESCAPE);
     start_following(p, s);
     st->escaped = 1;
     ifgm_point followed;
@@ -440,7 +441,7 @@ static ifgm_command dead_end(ifgm_planner *p, const ifgm_sight *s)
         ifgm_real rel = ifgm_wrap_angle(to - s->pose[2]);
         p->follower.side = rel > 0 ? IFGM_FOLLOW_LEFT : IFGM_FOLLOW_RIGHT;
     }
-    return follow(p, s, IFGM_DEAD_END_TURN);
+    return follow(p, s, IFGM_DEAD_END_HANDOVER);
 }
 
 /* Case-1: the final heading through the gap by eqs. (1)-(4), world frame. */

@@ -34,7 +34,7 @@ typedef enum {
     IFGM_MODE_ESCAPING       /* driving out of the dead end the way found free */
 } ifgm_mode;
 
-/* Figure 3's branches, as they appear in the `branch` of a command. */
+/* Figure 3's branches, as they appear in the `branch` of a command (Branch). */
 typedef enum {
     IFGM_GOAL_REACHED,
     IFGM_MOVE_TO_GOAL_BRANCH,
@@ -46,6 +46,8 @@ typedef enum {
     IFGM_FOLLOW_EDGE,
     IFGM_DEAD_END_TURN,
     IFGM_PATH_REGENERATED,
+    IFGM_DEAD_END_ESCAPE,   /* the dead end's later phases: labels of commands, never decided */
+    IFGM_DEAD_END_HANDOVER,
     IFGM_BRANCHES
 } ifgm_branch;
 

@@ -15,6 +15,7 @@ import warnings
 from collections.abc import Callable, Mapping
 from typing import Any
 
+from ifgm_ref.flowchart import same_branch
 from ifgm_ref.oracle.vectors.schema import (
     CaseRecord,
     Failure,
@@ -243,7 +244,11 @@ def _command_mismatch(
                 f"({tolerance.describe(periodic=periodic)}) {where}"
             )
     branch = getattr(command, "branch", None)
-    if branch is not None and expected.branch is not None and str(branch) != expected.branch:
+    if (
+        branch is not None
+        and expected.branch is not None
+        and not same_branch(str(branch), expected.branch)
+    ):
         return f"branch={str(branch)!r}, but should be {expected.branch!r} {where}"
     return None
 
