@@ -37,6 +37,7 @@ from typing import NamedTuple
 from ifgm_ref.errors import WorldError
 from ifgm_ref.params import RobotParams, SensorParams
 from ifgm_ref.pose import Point, Pose
+from ifgm_ref.validate import POSITIVE, violation
 from ifgm_ref.world import Bounds, Circle, Obstacle, Polygon, World
 
 #: Geometry skipped without complaint: the ground.
@@ -93,8 +94,9 @@ def _positive(element: ET.Element, tag: str, count: int, where: str) -> list[flo
     if node is None:
         raise WorldError(f"{where}: missing <{tag}>")
     values = _numbers(node.text, count, f"{where}.{tag}")
-    if any(v <= 0 for v in values):
-        raise WorldError(f"{where}.{tag}: must be > 0, got {node.text!r}")
+    for value in values:
+        if why := violation(value, POSITIVE, shown=repr(node.text)):
+            raise WorldError(f"{where}.{tag}: {why}")
     return values
 
 

@@ -18,25 +18,12 @@ from typing import Any, Final, Literal, Self
 
 from ifgm_ref.errors import ParameterError
 from ifgm_ref.paper import traces
+from ifgm_ref.validate import NON_NEGATIVE, POSITIVE, require
 
 #: Straight-line source-to-destination distance of the paper's Scenario 1, ft (section 5.1).
 PAPER_FREE_DISTANCE_FT = 197.0
 #: Time of the paper's obstacle-free run over that distance, s (section 5.1).
 PAPER_FREE_TIME_S = 149.0
-
-
-def _require(
-    name: str, value: float, *, positive: bool = False, non_negative: bool = False
-) -> None:
-    """Raise :class:`ParameterError` unless ``value`` is a finite number in its domain."""
-    if isinstance(value, bool) or not isinstance(value, int | float):
-        raise ParameterError(f"`{name}` must be a number, got {value!r}")
-    if not math.isfinite(value):
-        raise ParameterError(f"`{name}` must be finite, got {value!r}")
-    if positive and value <= 0:
-        raise ParameterError(f"`{name}` must be > 0, got {value!r}")
-    if non_negative and value < 0:
-        raise ParameterError(f"`{name}` must be >= 0, got {value!r}")
 
 
 #: Metadata of a field a protocol message may leave out (the noise models came later: a
@@ -50,7 +37,7 @@ def _noise(default: float | int = 0) -> Any:
 
 
 def _probability(name: str, value: float) -> None:
-    _require(name, value, non_negative=True)
+    require(name, value, NON_NEGATIVE)
     if value > 1:
         raise ParameterError(f"`{name}` must be a probability in [0, 1], got {value!r}")
 
@@ -119,11 +106,11 @@ class RobotParams(_Block):
     seed: int = _noise()
 
     def __post_init__(self) -> None:
-        _require("radius", self.radius, positive=True)
-        _require("speed", self.speed, positive=True)
-        _require("max_turn_rate", self.max_turn_rate, positive=True)
-        _require("odometry_drift", self.odometry_drift, non_negative=True)
-        _require("actuation_noise", self.actuation_noise, non_negative=True)
+        require("radius", self.radius, POSITIVE)
+        require("speed", self.speed, POSITIVE)
+        require("max_turn_rate", self.max_turn_rate, POSITIVE)
+        require("odometry_drift", self.odometry_drift, NON_NEGATIVE)
+        require("actuation_noise", self.actuation_noise, NON_NEGATIVE)
         _count("latency", self.latency)
         _count("seed", self.seed)
 
@@ -171,20 +158,20 @@ class SensorParams(_Block):
     spurious: float = _noise(0.0)
 
     def __post_init__(self) -> None:
-        _require("fov", self.fov, positive=True)
+        require("fov", self.fov, POSITIVE)
         if self.fov >= 2.0 * math.pi:
             raise ParameterError(f"`fov` must be < 2 pi, got {self.fov!r}")
         if isinstance(self.rays, bool) or not isinstance(self.rays, int) or self.rays < 2:
             raise ParameterError(f"`rays` must be an integer >= 2, got {self.rays!r}")
-        _require("range_max", self.range_max, positive=True)
-        _require("range_min", self.range_min, non_negative=True)
+        require("range_max", self.range_max, POSITIVE)
+        require("range_min", self.range_min, NON_NEGATIVE)
         if self.range_min >= self.range_max:
             raise ParameterError(
                 f"`range_min` must be < `range_max`, got {self.range_min!r} >= {self.range_max!r}"
             )
-        _require("noise_std", self.noise_std, non_negative=True)
+        require("noise_std", self.noise_std, NON_NEGATIVE)
         _count("seed", self.seed)
-        _require("noise_rel", self.noise_rel, non_negative=True)
+        require("noise_rel", self.noise_rel, NON_NEGATIVE)
         _probability("dropout", self.dropout)
         _probability("spurious", self.spurious)
 
@@ -238,15 +225,15 @@ class SimParams:
     stall_laps: int | None = 2
 
     def __post_init__(self) -> None:
-        _require("dt", self.dt, positive=True)
-        _require("max_time", self.max_time, positive=True)
-        _require("goal_tolerance", self.goal_tolerance, positive=True)
+        require("dt", self.dt, POSITIVE)
+        require("max_time", self.max_time, POSITIVE)
+        require("goal_tolerance", self.goal_tolerance, POSITIVE)
         if self.stall_time is not None and self.stall_time != AUTO:
             if isinstance(self.stall_time, str):
                 raise ParameterError(
                     f"`stall_time` must be a number, {AUTO!r} or None, got {self.stall_time!r}"
                 )
-            _require("stall_time", self.stall_time, non_negative=True)
+            require("stall_time", self.stall_time, NON_NEGATIVE)
         if self.stall_laps is not None:
             _count("stall_laps", self.stall_laps)
 
@@ -261,7 +248,7 @@ def paper_ir(length_scale: float = 1.0) -> SensorParams:
     >>> paper_ir().range_max, paper_ir(0.22).rays, round(paper_ir(0.22).range_max, 6)
     (15.0, 76, 3.3)
     """
-    _require("length_scale", length_scale, positive=True)
+    require("length_scale", length_scale, POSITIVE)
     base = SensorParams()
     return SensorParams(
         fov=base.fov,

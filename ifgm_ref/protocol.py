@@ -17,10 +17,12 @@ from dataclasses import dataclass, field
 from enum import StrEnum
 from typing import Any, Protocol, runtime_checkable
 
+from ifgm_ref.errors import ParameterError
 from ifgm_ref.laserscan import LaserScan
 from ifgm_ref.paper import traces
 from ifgm_ref.params import DT, GOAL_TOLERANCE, RobotParams, SensorParams
 from ifgm_ref.pose import Point, Pose, wrap_angle
+from ifgm_ref.validate import POSITIVE, require
 
 
 class Behaviour(StrEnum):
@@ -32,10 +34,19 @@ class Behaviour(StrEnum):
 
 @dataclass(frozen=True)
 class EpisodeParams:
-    """Everything a planner may know before the first step, besides start and goal.
+    """Everything a planner may know before the first step, besides start and goal: the one
+    configuration of an episode, each field typed and checked on construction
+    (:mod:`ifgm_ref.validate`).
 
-    ``params`` holds planner-specific settings (e.g. ``d_th``) by name; ``goal_tolerance`` is
-    the distance, in ft, at which the episode counts the goal as reached.
+    ``params`` holds planner settings by name (e.g. ``d_th``), passed on as the protocol's
+    ``reset.params`` carries them: the planner that reads them checks its names and values
+    (:class:`~ifgm_ref.planners.tuning.Tuning`); ``goal_tolerance`` is the distance, in ft,
+    at which the episode counts the goal as reached.
+
+    >>> EpisodeParams(dt=0.0)
+    Traceback (most recent call last):
+    ...
+    ifgm_ref.errors.ParameterError: `dt` must be a finite number > 0, got 0.0
     """
 
     robot: RobotParams = field(default_factory=RobotParams)
@@ -43,6 +54,16 @@ class EpisodeParams:
     dt: float = DT
     params: dict[str, Any] = field(default_factory=dict)
     goal_tolerance: float = GOAL_TOLERANCE
+
+    def __post_init__(self) -> None:
+        for name, kind in (("robot", RobotParams), ("sensor", SensorParams)):
+            if not isinstance(getattr(self, name), kind):
+                raise ParameterError(f"`{name}` must be a {kind.__name__}")
+        require("dt", self.dt, POSITIVE)
+        require("goal_tolerance", self.goal_tolerance, POSITIVE)
+        for name in self.params:
+            if not isinstance(name, str):
+                raise ParameterError(f"a parameter's name must be a string, got {name!r}")
 
 
 @traces("s3.no_map")

@@ -25,7 +25,7 @@ import math
 from collections.abc import Sequence
 
 from ifgm_ref.errors import ParameterError
-from ifgm_ref.params import _require
+from ifgm_ref.validate import POSITIVE, require
 from ifgm_ref.world import Circle, Polygon
 
 __all__ = ["circle", "h_shape", "rectangle", "regular_polygon", "u_shape"]
@@ -39,8 +39,8 @@ def _center(center: Sequence[float]) -> tuple[float, float]:
         x, y = center
     except (TypeError, ValueError):
         raise ParameterError(f"`center` must be a pair of numbers (x, y), got {center!r}") from None
-    _require("center[0]", x)
-    _require("center[1]", y)
+    require("center[0]", x)
+    require("center[1]", y)
     return float(x), float(y)
 
 
@@ -82,12 +82,12 @@ def rectangle(center: Sequence[float], width: float, height: float, angle: float
     >>> rectangle((0.0, 0.0), 0.0, 2.0)
     Traceback (most recent call last):
     ...
-    ifgm_ref.errors.ParameterError: `width` must be > 0, got 0.0
+    ifgm_ref.errors.ParameterError: `width` must be a finite number > 0, got 0.0
     """
     c = _center(center)
-    _require("width", width, positive=True)
-    _require("height", height, positive=True)
-    _require("angle", angle)
+    require("width", width, POSITIVE)
+    require("height", height, POSITIVE)
+    require("angle", angle)
     w2, h2 = width / 2.0, height / 2.0
     return _place(c, ((-w2, -h2), (w2, -h2), (w2, h2), (-w2, h2)), angle)
 
@@ -102,10 +102,10 @@ def circle(center: Sequence[float], radius: float) -> Circle:
     >>> circle((1.0, 2.0), math.inf)
     Traceback (most recent call last):
     ...
-    ifgm_ref.errors.ParameterError: `radius` must be finite, got inf
+    ifgm_ref.errors.ParameterError: `radius` must be a finite number > 0, got inf
     """
     c = _center(center)
-    _require("radius", radius, positive=True)
+    require("radius", radius, POSITIVE)
     return Circle(c, radius)
 
 
@@ -138,10 +138,10 @@ def regular_polygon(
     ifgm_ref.errors.ParameterError: `sides` must be an integer >= 3, got 2
     """
     c = _center(center)
-    _require("radius", radius, positive=True)
+    require("radius", radius, POSITIVE)
     if isinstance(sides, bool) or not isinstance(sides, int) or sides < 3:
         raise ParameterError(f"`sides` must be an integer >= 3, got {sides!r}")
-    _require("angle", angle)
+    require("angle", angle)
     step = 2.0 * math.pi / sides
     local = [(radius * math.cos(k * step), radius * math.sin(k * step)) for k in range(sides)]
     return _place(c, local, angle)
@@ -197,12 +197,12 @@ def u_shape(
     ifgm_ref.errors.ParameterError: `thickness` must be < `width` / 2 = 3.0, got 3.0
     """
     c = _center(center)
-    _require("width", width, positive=True)
-    _require("depth", depth, positive=True)
-    _require("thickness", thickness, positive=True)
+    require("width", width, POSITIVE)
+    require("depth", depth, POSITIVE)
+    require("thickness", thickness, POSITIVE)
     _below("thickness", thickness, "`width` / 2", width / 2.0)
     _below("thickness", thickness, "`depth`", depth)
-    _require("opening", opening)
+    require("opening", opening)
     return _place(c, _u_outline(width, depth, thickness), opening)
 
 
@@ -269,14 +269,14 @@ def h_shape(
     ifgm_ref.errors.ParameterError: `bar_thickness` must be < `height` = 8.0, got 8.0
     """
     c = _center(center)
-    _require("width", width, positive=True)
-    _require("height", height, positive=True)
-    _require("thickness", thickness, positive=True)
+    require("width", width, POSITIVE)
+    require("height", height, POSITIVE)
+    require("thickness", thickness, POSITIVE)
     bar = thickness if bar_thickness is None else bar_thickness
-    _require("bar_thickness", bar, positive=True)
+    require("bar_thickness", bar, POSITIVE)
     _below("thickness", thickness, "`width` / 2", width / 2.0)
     _below("thickness" if bar_thickness is None else "bar_thickness", bar, "`height`", height)
-    _require("orientation", orientation)
+    require("orientation", orientation)
     return _place(c, _h_outline(width, height, thickness, bar), orientation)
 
 

@@ -33,7 +33,6 @@ distance for polygons), never ``buffer()``, whose chords make an inflated obstac
 from __future__ import annotations
 
 import math
-import numbers
 import reprlib
 from collections.abc import Iterable, Mapping, Set
 from dataclasses import dataclass, field
@@ -47,6 +46,7 @@ from numpy.typing import NDArray
 from ifgm_ref.errors import WorldError
 from ifgm_ref.params import RobotParams, SensorParams
 from ifgm_ref.pose import Point, PointLike, Pose
+from ifgm_ref.validate import POSITIVE, REAL, Domain, violation
 
 _SHORT = reprlib.Repr()
 _SHORT.maxlist = _SHORT.maxtuple = 8
@@ -71,17 +71,11 @@ def _items(value: object, where: str, what: str) -> tuple[object, ...]:
         raise WorldError(f"{where}: must be {what}, got {_show(value)}") from None
 
 
-def _number(value: object, where: str) -> float:
-    """``value`` as a finite float; booleans are not numbers here."""
-    if isinstance(value, bool) or not isinstance(value, numbers.Real):
-        raise WorldError(f"{where}: must be a number, got {_show(value)}")
-    try:
-        number = float(value)
-    except OverflowError:  # an integer beyond the float range
-        number = math.inf
-    if not math.isfinite(number):
-        raise WorldError(f"{where}: must be finite, got {_show(value)}")
-    return number
+def _number(value: object, where: str, domain: Domain = REAL) -> float:
+    """``value`` as a finite float in ``domain``; booleans are not numbers here."""
+    if why := violation(value, domain, shown=_show(value)):
+        raise WorldError(f"{where}: {why}")
+    return float(value)  # type: ignore[arg-type]
 
 
 def _numbers(value: object, where: str, names: tuple[str, ...]) -> tuple[float, ...]:
@@ -151,7 +145,7 @@ class Circle:
     >>> Circle((0.0, 0.0), -2)
     Traceback (most recent call last):
     ...
-    ifgm_ref.errors.WorldError: circle.radius: must be > 0, got -2
+    ifgm_ref.errors.WorldError: circle.radius: must be a finite number > 0, got -2
     """
 
     center: tuple[float, float]
@@ -159,9 +153,7 @@ class Circle:
 
     def __post_init__(self) -> None:
         center = _numbers(self.center, "circle.center", ("x", "y"))
-        radius = _number(self.radius, "circle.radius")
-        if radius <= 0:
-            raise WorldError(f"circle.radius: must be > 0, got {_show(self.radius)}")
+        radius = _number(self.radius, "circle.radius", POSITIVE)
         object.__setattr__(self, "center", center)
         object.__setattr__(self, "radius", radius)
 

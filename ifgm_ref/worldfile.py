@@ -11,11 +11,11 @@ Only ``start`` and ``goal`` are required; an optional field may be left out or b
 Units are feet, seconds and radians.
 
 Every problem raises :class:`~ifgm_ref.errors.WorldError` with one line naming the file and
-the JSON path, e.g. ``world.json: obstacles[1].circle.radius: must be > 0, got -2``. The
-checks on values are those of :mod:`ifgm_ref.world` and :mod:`ifgm_ref.params`; this module
-adds only what is about the file: its JSON syntax, its fields, and the JSON literals ``NaN``
-and ``Infinity`` (and overflowing numbers such as ``1e999``), which Python's ``json`` accepts
-but JSON does not.
+the JSON path, e.g. ``world.json: obstacles[1].circle.radius: must be a finite number > 0,
+got -2``. The checks on values are those of :mod:`ifgm_ref.world` and :mod:`ifgm_ref.params`
+(worded by :mod:`ifgm_ref.validate`); this module adds only what is about the file: its JSON
+syntax, its fields, and the JSON literals ``NaN`` and ``Infinity`` (and overflowing numbers
+such as ``1e999``), which Python's ``json`` accepts but JSON does not.
 
 Writing is canonical: :func:`dumps_world` gives one text per world, floats are written with
 ``repr`` (which reads back to the same float), and the ``robot`` and ``sensor`` blocks list
@@ -64,8 +64,8 @@ _Block = TypeVar("_Block", RobotParams, SensorParams)
 class _Literal(float):
     """A JSON number that is no finite float (``NaN``, ``Infinity``, ``1e999``), with its text.
 
-    Its ``repr`` is the text of the file, so that a validator's message ("must be finite, got
-    NaN") quotes the file rather than Python.
+    Its ``repr`` is the text of the file, so that a validator's message ("must be a finite
+    number, got NaN") quotes the file rather than Python.
     """
 
     text: str
@@ -237,7 +237,7 @@ def loads_world(text: str, *, source: str = "<string>") -> World:
     >>> loads_world('{"start": [0, 0, NaN], "goal": [10, 0]}')
     Traceback (most recent call last):
     ...
-    ifgm_ref.errors.WorldError: <string>: start[2]: must be finite, got NaN
+    ifgm_ref.errors.WorldError: <string>: start[2]: must be a finite number, got NaN
     >>> loads_world('{"start": [0, 0, 0],\\n "goal": [10, 0]')
     Traceback (most recent call last):
     ...

@@ -137,7 +137,7 @@ def test_every_kind_has_an_axis_label() -> None:
         (["--noise", "range=x"], "--noise range=x: the level must be a number"),
         (["--noise", "sonar=0.1"], "--noise sonar=0.1: expected KIND=LEVEL with KIND one of"),
         (["--noise", "dropout=1.5"], "`dropout` must be a probability in [0, 1], got 1.5"),
-        (["--noise", "range=-0.1"], "`noise_rel` must be >= 0"),
+        (["--noise", "range=-0.1"], "`noise_rel` must be a finite number >= 0"),
         (["--noise-sweep", "range"], "--noise-sweep 'range': expected KIND=LEVEL:LEVEL:..."),
         (["--noise-sweep", "range=0:0.1"], "the levels must be distinct and > 0"),
         (["--noise-sweep", "range=0.1:0.1"], "the levels must be distinct and > 0"),

@@ -129,7 +129,7 @@ def test_given_name_bounds_and_robot(tmp_path: Path) -> None:
                 "<model name='m'><static>1</static><link><collision><geometry><box>"
                 "<size>1 -1 1</size></box></geometry></collision></link></model>"
             ),
-            "m.collision.box.size: must be > 0",
+            "m.collision.box.size: must be a finite number > 0",
         ),
         (
             _sdf(

@@ -116,6 +116,12 @@ SEPARATE = [
 ]
 
 
+def test_the_validator_sits_below_everything_it_checks() -> None:
+    """:mod:`ifgm_ref.validate`, which the equations, the parameters, the protocol and the
+    command line all call, imports nothing of the project but its errors."""
+    assert set(_closure("ifgm_ref.validate")) == {"ifgm_ref.errors"}
+
+
 def test_map_free_layers_exist() -> None:
     assert "ifgm_ref.planners" in MAP_FREE
     assert "ifgm_ref.planners.straight" in MAP_FREE

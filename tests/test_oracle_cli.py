@@ -307,7 +307,7 @@ def test_a_program_that_cannot_be_checked_is_one_line_not_an_error_per_check(
         ("oracle", "--startup-timeout", "nan", "must be a finite number > 0, got 'nan'"),
         ("oracle", "--timeout", "-1", "must be a finite number > 0, got '-1'"),
         ("simulate", "--startup-timeout", "inf", "must be a finite number > 0, got 'inf'"),
-        ("simulate", "--startup-timeout", "soon", "must be a number, got 'soon'"),
+        ("simulate", "--startup-timeout", "soon", "must be a finite number > 0, got 'soon'"),
     ],
 )
 def test_a_bad_timeout_is_a_one_line_error(

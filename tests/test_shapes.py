@@ -228,20 +228,32 @@ def test_h_shape_unrotated_stands_like_the_letter() -> None:
 @pytest.mark.parametrize(
     ("build", "message"),
     [
-        (lambda: rectangle((0, 0), -1.0, 2.0), "`width` must be > 0, got -1.0"),
-        (lambda: rectangle((0, 0), 1.0, math.nan), "`height` must be finite, got nan"),
-        (lambda: rectangle((0, 0), 1.0, 1.0, angle=math.inf), "`angle` must be finite, got inf"),
-        (lambda: rectangle((0, math.nan), 1.0, 1.0), "`center[1]` must be finite, got nan"),
+        (lambda: rectangle((0, 0), -1.0, 2.0), "`width` must be a finite number > 0, got -1.0"),
+        (lambda: rectangle((0, 0), 1.0, math.nan), "`height` must be a finite number > 0, got nan"),
+        (
+            lambda: rectangle((0, 0), 1.0, 1.0, angle=math.inf),
+            "`angle` must be a finite number, got inf",
+        ),
+        (
+            lambda: rectangle((0, math.nan), 1.0, 1.0),
+            "`center[1]` must be a finite number, got nan",
+        ),
         (
             lambda: rectangle((0, 0, 0), 1.0, 1.0),
             "`center` must be a pair of numbers (x, y), got (0, 0, 0)",
         ),
         (lambda: rectangle("ab", 1.0, 1.0), "`center` must be a pair of numbers (x, y), got 'ab'"),
-        (lambda: circle((0, 0), 0), "`radius` must be > 0, got 0"),
+        (lambda: circle((0, 0), 0), "`radius` must be a finite number > 0, got 0"),
         (lambda: regular_polygon((0, 0), 1.0, 2), "`sides` must be an integer >= 3, got 2"),
         (lambda: regular_polygon((0, 0), 1.0, 4.0), "`sides` must be an integer >= 3, got 4.0"),
-        (lambda: regular_polygon((0, 0), -1.0, 4), "`radius` must be > 0, got -1.0"),
-        (lambda: u_shape((0, 0), 6.0, 4.0, 0.0), "`thickness` must be > 0, got 0.0"),
+        (
+            lambda: regular_polygon((0, 0), -1.0, 4),
+            "`radius` must be a finite number > 0, got -1.0",
+        ),
+        (
+            lambda: u_shape((0, 0), 6.0, 4.0, 0.0),
+            "`thickness` must be a finite number > 0, got 0.0",
+        ),
         (
             lambda: u_shape((0, 0), 6.0, 4.0, 3.0),
             "`thickness` must be < `width` / 2 = 3.0, got 3.0",
@@ -249,7 +261,7 @@ def test_h_shape_unrotated_stands_like_the_letter() -> None:
         (lambda: u_shape((0, 0), 10.0, 2.0, 2.0), "`thickness` must be < `depth` = 2.0, got 2.0"),
         (
             lambda: u_shape((0, 0), 6.0, 4.0, 1.0, opening=math.nan),
-            "`opening` must be finite, got nan",
+            "`opening` must be a finite number, got nan",
         ),
         (
             lambda: h_shape((0, 0), 6.0, 8.0, 3.5),
@@ -261,12 +273,12 @@ def test_h_shape_unrotated_stands_like_the_letter() -> None:
         ),
         (
             lambda: h_shape((0, 0), 6.0, 8.0, 1.0, bar_thickness=-1.0),
-            "`bar_thickness` must be > 0, got -1.0",
+            "`bar_thickness` must be a finite number > 0, got -1.0",
         ),
         (lambda: h_shape((0, 0), 20.0, 2.0, 3.0), "`thickness` must be < `height` = 2.0, got 3.0"),
         (
             lambda: h_shape((0, 0), 6.0, 8.0, 1.0, orientation=math.inf),
-            "`orientation` must be finite, got inf",
+            "`orientation` must be a finite number, got inf",
         ),
     ],
 )

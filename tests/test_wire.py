@@ -319,7 +319,7 @@ def _reset() -> dict[str, Any]:
         (("params",), [], "reset.params: must be an object, got []"),
         (("start",), [0, 0], "reset.start: must be an array of 3 numbers"),
         (("robot",), None, "reset.robot: must be an object, got None"),
-        (("robot", "radius"), -1.0, "reset.robot: `radius` must be > 0, got -1.0"),
+        (("robot", "radius"), -1.0, "reset.robot: `radius` must be a finite number > 0, got -1.0"),
         (("sensor", "rays"), 76.0, "reset.sensor: `rays` must be an integer >= 2, got 76.0"),
         (("sensor", "angle_min"), 0.0, "reset.sensor.angle_min: 0.0, but should be -1.178"),
         (("sensor", "angle_increment"), "x", "reset.sensor.angle_increment: must be a finite"),

@@ -43,12 +43,12 @@ def test_circle_coerces_to_floats() -> None:
 @pytest.mark.parametrize(
     ("center", "radius", "message"),
     [
-        ((0.0, 0.0), 0, "circle.radius: must be > 0, got 0"),
-        ((0.0, 0.0), -2, "circle.radius: must be > 0, got -2"),
-        ((0.0, 0.0), math.nan, "circle.radius: must be finite, got nan"),
-        ((0.0, 0.0), "1", "circle.radius: must be a number, got '1'"),
-        ((0.0, 0.0), True, "circle.radius: must be a number, got True"),
-        ((0.0, math.inf), 1.0, "circle.center[1]: must be finite, got inf"),
+        ((0.0, 0.0), 0, "circle.radius: must be a finite number > 0, got 0"),
+        ((0.0, 0.0), -2, "circle.radius: must be a finite number > 0, got -2"),
+        ((0.0, 0.0), math.nan, "circle.radius: must be a finite number > 0, got nan"),
+        ((0.0, 0.0), "1", "circle.radius: must be a finite number > 0, got '1'"),
+        ((0.0, 0.0), True, "circle.radius: must be a finite number > 0, got True"),
+        ((0.0, math.inf), 1.0, "circle.center[1]: must be a finite number, got inf"),
         (
             (0.0,),
             1.0,
@@ -105,7 +105,7 @@ def test_polygon_keeps_its_orientation() -> None:
             [(0, 0), (2, 0), (1, 1), (2, 2), (0, 2), (1, 1)],
             "polygon: is self-intersecting (Ring Self-intersection[1 1])",
         ),
-        ([(0, 0), (2, 0), (math.nan, 2)], "polygon[2][0]: must be finite, got nan"),
+        ([(0, 0), (2, 0), (math.nan, 2)], "polygon[2][0]: must be a finite number, got nan"),
         (
             [(0, 0), (2, 0), (2, 2, 2)],
             "polygon[2]: must be a sequence of 2 numbers (x, y), got 3 item(s): (2, 2, 2)",
@@ -190,8 +190,8 @@ def test_world_arrays_for_the_simulator() -> None:
 @pytest.mark.parametrize(
     ("changes", "message"),
     [
-        ({"start": (0.0, math.nan, 0.0)}, "start[1]: must be finite, got nan"),
-        ({"start": (0.0, 0.0, math.inf)}, "start[2]: must be finite, got inf"),
+        ({"start": (0.0, math.nan, 0.0)}, "start[1]: must be a finite number, got nan"),
+        ({"start": (0.0, 0.0, math.inf)}, "start[2]: must be a finite number, got inf"),
         (
             {"start": (0.0, 0.0)},
             "start: must be a sequence of 3 numbers (x, y, theta), got 2 item(s): (0.0, 0.0)",
@@ -201,13 +201,13 @@ def test_world_arrays_for_the_simulator() -> None:
             "goal: must be a sequence of 2 numbers (x, y), "
             "got 3 item(s): Pose(x=1.0, y=1.0, theta=0.0)",
         ),
-        ({"goal": (1.0, None)}, "goal[1]: must be a number, got None"),
+        ({"goal": (1.0, None)}, "goal[1]: must be a finite number, got None"),
         (
             {"bounds": (0.0, 0.0, 10.0)},
             "bounds: must be a sequence of 4 numbers "
             "(xmin, ymin, xmax, ymax), got 3 item(s): (0.0, 0.0, 10.0)",
         ),
-        ({"bounds": (-50.0, -50.0, math.nan, 50.0)}, "bounds[2]: must be finite, got nan"),
+        ({"bounds": (-50.0, -50.0, math.nan, 50.0)}, "bounds[2]: must be a finite number, got nan"),
         ({"bounds": (50.0, -50.0, -50.0, 50.0)}, "bounds: xmin must be < xmax, got 50.0 >= -50.0"),
         ({"bounds": (-50.0, 5.0, 50.0, 5.0)}, "bounds: ymin must be < ymax, got 5.0 >= 5.0"),
         (
@@ -263,7 +263,7 @@ def test_world_rejects(changes: dict[str, object], message: str) -> None:
 
 
 def test_world_rejects_integers_beyond_the_float_range() -> None:
-    with pytest.raises(WorldError, match=r"^start\[2\]: must be finite, got 1000"):
+    with pytest.raises(WorldError, match=r"^start\[2\]: must be a finite number, got 1000"):
         World(start=(0.0, 0.0, 10**400), goal=FAR_GOAL)  # type: ignore[arg-type]
 
 

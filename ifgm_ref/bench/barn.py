@@ -36,6 +36,7 @@ from ifgm_ref.errors import ParameterError, WorldError
 from ifgm_ref.gazebo import load_sdf_world
 from ifgm_ref.params import SENSOR_PRESETS, RobotParams, SensorParams, SimParams, paper_ir
 from ifgm_ref.pose import Point, Pose
+from ifgm_ref.validate import POSITIVE, require
 from ifgm_ref.world import World
 
 #: BARN's start, ``run.py``'s ``INIT_POSITION = [-2, 3, 1.57]``: heading +y (1.57 ~ pi/2).
@@ -118,8 +119,7 @@ def barn_score(success: bool, time_s: float, reference_length: float) -> float:
     """
     if not success:
         return 0.0
-    if not (reference_length > 0 and math.isfinite(reference_length)):
-        raise ParameterError(f"reference_length must be finite and > 0, got {reference_length!r}")
+    require("reference_length", reference_length, POSITIVE)
     t_opt = reference_length / OPTIMAL_SPEED
     return t_opt / float(np.clip(time_s, 2.0 * t_opt, 8.0 * t_opt))
 

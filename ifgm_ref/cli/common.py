@@ -10,6 +10,7 @@ from typing import TYPE_CHECKING, NoReturn
 
 from ifgm_ref.errors import ParameterError
 from ifgm_ref.transport.external import STARTUP_TIMEOUT, TIMEOUT
+from ifgm_ref.validate import POSITIVE, violation
 
 #: Exit status of a usage error or of bad input, reported as one line on stderr.
 EXIT_USAGE = 2
@@ -42,9 +43,9 @@ def positive_float(text: str) -> float:
     try:
         value = float(text)
     except ValueError:
-        raise argparse.ArgumentTypeError(f"must be a number, got {text!r}") from None
-    if not value > 0 or value == float("inf"):
-        raise argparse.ArgumentTypeError(f"must be a finite number > 0, got {text!r}")
+        value = math.nan
+    if why := violation(value, POSITIVE, shown=repr(text)):
+        raise argparse.ArgumentTypeError(why)
     return value
 
 

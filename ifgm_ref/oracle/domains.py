@@ -43,6 +43,8 @@ from typing import Any
 
 from hypothesis import strategies as st
 
+from ifgm_ref.validate import NON_NEGATIVE, require
+
 __all__ = [
     "DOMAINS",
     "EQ3_MIN_DISTANCE",
@@ -77,8 +79,7 @@ class Interval:
     def __post_init__(self) -> None:
         if not (math.isfinite(self.low) and math.isfinite(self.high) and self.low < self.high):
             raise ValueError(f"an interval needs finite low < high, got [{self.low}, {self.high}]")
-        if not self.smallest >= 0.0:
-            raise ValueError(f"`smallest` must be >= 0, got {self.smallest!r}")
+        require("smallest", self.smallest, NON_NEGATIVE)
 
     def contains(self, value: float) -> bool:
         """Whether ``value`` lies in the interval.

@@ -40,6 +40,7 @@ from ifgm_ref.planners.tuning import ParamInfo
 from ifgm_ref.pose import Point, Pose
 from ifgm_ref.protocol import Command, EpisodeParams, Observation
 from ifgm_ref.recording import Recording
+from ifgm_ref.validate import POSITIVE, violation
 from ifgm_ref.world import Bounds, Circle, Obstacle, Polygon, World
 from ifgm_ref.worldgen.classes import placed_point, placed_pose
 
@@ -57,8 +58,8 @@ __all__ = [
 
 
 def _factor(k: float) -> float:
-    if isinstance(k, bool) or not isinstance(k, int | float) or not math.isfinite(k) or k <= 0:
-        raise ParameterError(f"the scale factor must be a finite number > 0, got {k!r}")
+    if why := violation(k, POSITIVE):
+        raise ParameterError(f"the scale factor {why}")
     return float(k)
 
 

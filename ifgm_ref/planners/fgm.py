@@ -60,6 +60,7 @@ from ifgm_ref.planners.edge_following import turn_speed
 from ifgm_ref.planners.tuning import Tuning, check_names, derived, parameter_names
 from ifgm_ref.pose import Point, Pose, wrap_angle
 from ifgm_ref.protocol import Behaviour, Command, EpisodeParams, Observation
+from ifgm_ref.validate import NON_NEGATIVE, require
 
 __all__ = [
     "FGMBranch",
@@ -229,8 +230,7 @@ def blocked_rays(
     >>> blocked_rays(scan, 2.5)[0].tolist()
     [True, True, True, True, True]
     """
-    if not (math.isfinite(inflation) and inflation >= 0):
-        raise ParameterError(f"`inflation` must be finite and >= 0, got {inflation!r}")
+    require("inflation", inflation, NON_NEGATIVE)
     angles = scan.angles
     n = len(angles)
     points = scan_points(scan)

@@ -12,13 +12,13 @@ oracle's ``scale_invariant`` check tests the consequence on whole episodes.
 
 from __future__ import annotations
 
-import math
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field, fields
 from typing import TYPE_CHECKING, Any, Self
 
 from ifgm_ref.errors import ParameterError
 from ifgm_ref.formulas import Scale, Unit, evaluate, formula_expr
+from ifgm_ref.validate import NON_NEGATIVE, POSITIVE, require
 
 if TYPE_CHECKING:
     from ifgm_ref.protocol import EpisodeParams
@@ -31,28 +31,6 @@ def derived(formula: str, unit: Unit, *, zero: bool = False) -> Any:
     """
     formula_expr(formula)  # fail at import on a bad formula
     return field(default=None, metadata={"formula": formula, "unit": unit, "zero": zero})
-
-
-def positive_param(name: str, value: object, *, allow_zero: bool = False) -> float:
-    """``value`` as a float if it is a finite number > 0 (>= 0 with ``allow_zero``).
-
-    >>> positive_param("d_th", 3)
-    3.0
-    >>> positive_param("d_th", 0.0)
-    Traceback (most recent call last):
-    ...
-    ifgm_ref.errors.ParameterError: `d_th` must be a finite number > 0, got 0.0
-    """
-    ok = (
-        not isinstance(value, bool)
-        and isinstance(value, int | float)
-        and math.isfinite(value)
-        and (value >= 0 if allow_zero else value > 0)
-    )
-    if not ok:
-        bound = ">= 0" if allow_zero else "> 0"
-        raise ParameterError(f"`{name}` must be a finite number {bound}, got {value!r}")
-    return float(value)  # type: ignore[arg-type]
 
 
 @dataclass(frozen=True)
@@ -79,7 +57,7 @@ class Tuning:
         for f in fields(self):  # type: ignore[arg-type]
             value = getattr(self, f.name)
             if value is not None:
-                positive_param(f.name, value, allow_zero=f.metadata["zero"])
+                require(f.name, value, NON_NEGATIVE if f.metadata["zero"] else POSITIVE)
 
     @classmethod
     def infos(cls) -> tuple[ParamInfo, ...]:
@@ -102,7 +80,7 @@ class Tuning:
         known = set(cls.names())
         for name, value in params.params.items():
             if name in known and value is None:  # a value given must be a number
-                positive_param(name, value)
+                require(name, value, POSITIVE)
         given = cls(**{k: v for k, v in params.params.items() if k in known})
         scale = Scale.of(params)
         return cls(

@@ -25,7 +25,6 @@ from __future__ import annotations
 import collections
 import contextlib
 import io
-import math
 import os
 import shlex
 import signal
@@ -52,6 +51,7 @@ from ifgm_ref.transport.wire import (
     quote,
     reset_message,
 )
+from ifgm_ref.validate import POSITIVE, require
 
 __all__ = [
     "STARTUP_TIMEOUT",
@@ -104,17 +104,10 @@ def timeouts(timeout: float, startup_timeout: float | None) -> tuple[float, floa
     ...
     ifgm_ref.errors.ParameterError: `startup_timeout` must be a finite number > 0, got 0
     """
-    per_reply = _seconds("timeout", timeout)
+    per_reply = require("timeout", timeout, POSITIVE)
     if startup_timeout is None:
         return per_reply, max(STARTUP_TIMEOUT, per_reply)
-    return per_reply, _seconds("startup_timeout", startup_timeout)
-
-
-def _seconds(name: str, value: object) -> float:
-    """``value`` as a float if it is a finite number > 0, else a :class:`ParameterError`."""
-    if isinstance(value, bool) or not isinstance(value, int | float) or not 0 < value < math.inf:
-        raise ParameterError(f"`{name}` must be a finite number > 0, got {value!r}")
-    return float(value)
+    return per_reply, require("startup_timeout", startup_timeout, POSITIVE)
 
 
 class ExternalPlanner:

@@ -46,6 +46,7 @@ from ifgm_ref.laserscan import LaserScan
 from ifgm_ref.params import RobotParams, SensorParams
 from ifgm_ref.pose import Point, Pose
 from ifgm_ref.protocol import Command, EpisodeParams, Observation
+from ifgm_ref.validate import POSITIVE, REAL, Domain, violation
 
 __all__ = [
     "QUOTE_LIMIT",
@@ -384,7 +385,7 @@ def parse_observe(message: Mapping[str, Any]) -> Observation:
     if not isinstance(ranges, list):
         raise ProtocolError(f"observe.scan.ranges: must be an array, got {ranges!r}")
     for i, value in enumerate(ranges):
-        if value is not None and not _is_finite_number(value):
+        if value is not None and violation(value):
             raise ProtocolError(
                 f"observe.scan.ranges[{i}]: must be a finite number or null, got {value!r}"
             )
@@ -493,21 +494,16 @@ def _no_unknown(message: Mapping[str, Any], allowed: frozenset[str], where: str)
         )
 
 
-def _is_finite_number(value: object) -> bool:
-    # bool is an int subclass, but true/false is no number; 1e400 parses to inf.
-    return isinstance(value, int | float) and not isinstance(value, bool) and math.isfinite(value)
-
-
-def _number(value: object, where: str) -> float:
-    if not _is_finite_number(value):
-        raise ProtocolError(f"{where}: must be a finite number, got {value!r}")
+def _number(value: object, where: str, domain: Domain = REAL) -> float:
+    """``value`` as a float if it is a finite number in ``domain`` (``true`` is no number;
+    1e400 parses to inf), else a :class:`ProtocolError` saying ``where``."""
+    if why := violation(value, domain):
+        raise ProtocolError(f"{where}: {why}")
     return float(value)  # type: ignore[arg-type]
 
 
 def _positive(value: object, where: str) -> float:
-    if not _is_finite_number(value) or value <= 0:  # type: ignore[operator]
-        raise ProtocolError(f"{where}: must be a finite number > 0, got {value!r}")
-    return float(value)  # type: ignore[arg-type]
+    return _number(value, where, POSITIVE)
 
 
 def _numbers(value: object, count: int, where: str) -> tuple[float, ...]:
