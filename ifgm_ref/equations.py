@@ -46,7 +46,6 @@ import math
 from ifgm_ref.errors import ParameterError
 from ifgm_ref.paper import traces
 from ifgm_ref.pose import Point, wrap_angle
-from ifgm_ref.validate import NON_NEGATIVE, POSITIVE, require
 
 __all__ = [
     "eq1_gap_midpoint",
@@ -268,7 +267,8 @@ def _arccos_argument(d1: float, phi1: float, d2: float, phi2: float) -> float:
     """The argument of FGM's arccos (:func:`fgm_gap_centre_angle`): the cosine of the angle
     from border 1 to the midpoint, after checking the borders."""
     for name, value in (("d1", d1), ("d2", d2)):
-        require(name, value, POSITIVE)
+        if not (math.isfinite(value) and value > 0):
+            raise ParameterError(f"`{name}` must be finite and > 0, got {value!r}")
     width = phi1 + phi2
     if not 0.0 <= width <= math.pi:
         raise ParameterError(
@@ -396,10 +396,15 @@ def _check_weights(
 ) -> None:
     """Raise :class:`ParameterError` unless the weights make (4) a convex combination."""
     for name, value in ((gap_name, gap), (goal_name, goal), (divisor_name, divisor)):
-        require(name, value)
-    require(divisor_name, divisor, POSITIVE)
+        if isinstance(value, bool) or not isinstance(value, int | float):
+            raise ParameterError(f"`{name}` must be a number, got {value!r}")
+        if not math.isfinite(value):
+            raise ParameterError(f"`{name}` must be finite, got {value!r}")
+    if divisor <= 0:
+        raise ParameterError(f"`{divisor_name}` must be > 0, got {divisor!r}")
     for name, value in ((gap_name, gap), (goal_name, goal)):
-        require(name, value, NON_NEGATIVE)
+        if value < 0:
+            raise ParameterError(f"`{name}` must be >= 0, got {value!r}")
     if gap == 0 and goal == 0:
         both = f"`{gap_name}` and `{goal_name}` must not both be 0 (eq. (4) would be 0/0)"
         raise ParameterError(both)
@@ -408,7 +413,8 @@ def _check_weights(
 def _check_angles(**angles: float) -> None:
     """Raise :class:`ParameterError` unless every angle is a finite number."""
     for name, value in angles.items():
-        require(name, value)
+        if not math.isfinite(value):
+            raise ParameterError(f"`{name}` must be finite, got {value!r}")
 
 
 @traces("eq4")
@@ -585,7 +591,7 @@ def eq4_final_heading_fgm(
     >>> eq4_final_heading_fgm(0.5, 0.0, alpha=1.0, beta=1.0, d_min=0.0, heading=0.0)
     Traceback (most recent call last):
     ...
-    ifgm_ref.errors.ParameterError: `d_min` must be a finite number > 0, got 0.0
+    ifgm_ref.errors.ParameterError: `d_min` must be > 0, got 0.0
     """
     _check_angles(theta_g=theta_g, theta_d=theta_d, heading=heading)
     _check_weights("alpha", alpha, "beta", beta, "d_min", d_min)

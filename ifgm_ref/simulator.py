@@ -115,7 +115,7 @@ import io
 import json
 import math
 from collections import deque
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import asdict, dataclass, field, replace
 from enum import StrEnum
 from itertools import pairwise
@@ -248,6 +248,14 @@ class Run:
         return json.dumps({"result": self.result.to_json_dict(), "trace": rows}, indent=1)
 
 
+def episode_params(
+    world: World, sim: SimParams, params: Mapping[str, Any] | None = None
+) -> EpisodeParams:
+    """What a planner is told at reset when ``world`` is run with ``sim``: the world's robot
+    and sensor, the time step, the goal tolerance and the planner's ``params``."""
+    return EpisodeParams(world.robot, world.sensor, sim.dt, dict(params or {}), sim.goal_tolerance)
+
+
 def simulate(
     world: World,
     planner: Planner,
@@ -275,7 +283,7 @@ def simulate(
     robot = world.robot
     sensor = IRSensor(world)
     checker = ClearanceChecker(world, robot.radius)
-    episode = EpisodeParams(robot, world.sensor, sim.dt, dict(params or {}), sim.goal_tolerance)
+    episode = episode_params(world, sim, params)
     planner.reset(world.start, world.goal, episode)
     stall = stall_steps(sim, episode)
     laps = lap_rule(sim, episode)

@@ -298,8 +298,8 @@ def test_fgm_gap_centre_angle_is_midpoint_angle(data: st.DataObject) -> None:
 @pytest.mark.parametrize(
     ("d1", "phi1", "d2", "phi2", "message"),
     [
-        (0.0, 0.1, 1.0, 0.1, "`d1` must be a finite number > 0"),
-        (1.0, 0.1, math.inf, 0.1, "`d2` must be a finite number > 0"),
+        (0.0, 0.1, 1.0, 0.1, "`d1` must be finite and > 0"),
+        (1.0, 0.1, math.inf, 0.1, "`d2` must be finite and > 0"),
         (1.0, 0.5, 1.0, -0.6, r"gap width `phi1 \+ phi2` must be in \[0, pi\]"),
         (1.0, 2.0, 1.0, 2.0, r"gap width `phi1 \+ phi2` must be in \[0, pi\]"),
         (2.0, math.pi / 2, 2.0, math.pi / 2, "midpoint is at the robot"),
@@ -566,14 +566,14 @@ def test_eq4_fgm_gap_share_grows_as_obstacle_nears(data: st.DataObject) -> None:
 @pytest.mark.parametrize(
     ("kwargs", "message"),
     [
-        ({"w_g": 1.0, "w_d": 1.0, "d_th": 0.0}, "`d_th` must be a finite number > 0, got 0.0"),
-        ({"w_g": 1.0, "w_d": 1.0, "d_th": -2.0}, "`d_th` must be a finite number > 0"),
-        ({"w_g": -1.0, "w_d": 1.0, "d_th": 1.0}, "`w_g` must be a finite number >= 0"),
-        ({"w_g": 1.0, "w_d": -1.0, "d_th": 1.0}, "`w_d` must be a finite number >= 0"),
+        ({"w_g": 1.0, "w_d": 1.0, "d_th": 0.0}, "`d_th` must be > 0, got 0.0"),
+        ({"w_g": 1.0, "w_d": 1.0, "d_th": -2.0}, "`d_th` must be > 0"),
+        ({"w_g": -1.0, "w_d": 1.0, "d_th": 1.0}, "`w_g` must be >= 0"),
+        ({"w_g": 1.0, "w_d": -1.0, "d_th": 1.0}, "`w_d` must be >= 0"),
         ({"w_g": 0.0, "w_d": 0.0, "d_th": 1.0}, "must not both be 0"),
-        ({"w_g": math.nan, "w_d": 1.0, "d_th": 1.0}, "`w_g` must be a finite number"),
-        ({"w_g": 1.0, "w_d": 1.0, "d_th": math.inf}, "`d_th` must be a finite number"),
-        ({"w_g": True, "w_d": 1.0, "d_th": 1.0}, "`w_g` must be a finite number"),
+        ({"w_g": math.nan, "w_d": 1.0, "d_th": 1.0}, "`w_g` must be finite"),
+        ({"w_g": 1.0, "w_d": 1.0, "d_th": math.inf}, "`d_th` must be finite"),
+        ({"w_g": True, "w_d": 1.0, "d_th": 1.0}, "`w_g` must be a number"),
     ],
 )
 @pytest.mark.parametrize("form", ["literal", "interpreted"])
@@ -586,7 +586,7 @@ def test_eq4_rejects_bad_weights(kwargs: dict[str, float], message: str, form: s
 
 
 def test_eq4_rejects_non_finite_angles() -> None:
-    with pytest.raises(ParameterError, match="`theta_d` must be a finite number"):
+    with pytest.raises(ParameterError, match="`theta_d` must be finite"):
         eq4_final_heading_literal(0.1, math.nan, w_g=1.0, w_d=1.0, d_th=1.0)
-    with pytest.raises(ParameterError, match="`heading` must be a finite number"):
+    with pytest.raises(ParameterError, match="`heading` must be finite"):
         eq4_final_heading(0.1, 0.2, w_g=1.0, w_d=1.0, d_th=1.0, heading=math.inf)

@@ -45,7 +45,7 @@ from ifgm_ref.planners.tuning import episode_values
 from ifgm_ref.protocol import EpisodeParams
 from ifgm_ref.recording import RecordingPlanner
 from ifgm_ref.scenarios import resolve_world
-from ifgm_ref.simulator import simulate
+from ifgm_ref.simulator import episode_params, simulate
 
 __all__ = [
     "VectorsSummary",
@@ -122,8 +122,7 @@ def _trace_record(spec: TraceSpec) -> TraceRecord:
     world = dataclasses.replace(resolve_world(spec.world), start=spec.start)
     sim = SimParams()
     sim = SimParams(dt=sim.dt, max_time=spec.steps * sim.dt, goal_tolerance=sim.goal_tolerance)
-    default = EpisodeParams(world.robot, world.sensor, sim.dt, {}, sim.goal_tolerance)
-    params = _effective_params(spec.planner, default)
+    params = _effective_params(spec.planner, episode_params(world, sim))
     recorder = RecordingPlanner(make_planner(spec.planner))
     run = simulate(world, recorder, sim, params=params)
     recording = recorder.recording()
