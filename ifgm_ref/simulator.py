@@ -37,13 +37,7 @@ numbers:
 * ``20*dt``: at least twenty decisions, for a coarse time step.
 
 Edge following (Bug1 round a whole obstacle) does not bring the robot nearer the goal for a
-long time, but it drives, so the disc rule never fires there. Measured on every planner in
-every built-in world, 20 generated worlds of each class and BARN's three sample worlds (944
-episodes, run with the oracle's world classes before and after the paper's head-on U and H
-traps joined them), the longest time an episode that reached the goal spent within ``r`` of
-one point was 4.7 s, under 0.4 ``T`` (Bug1 at the corners of an H; IFGM's dead-end turns:
-4.1 s); every episode that reached the goal runs exactly as without the rule, and each one
-that ran to the time limit (FGM and APF, trapped: 104, then 124 of the 944) stalls instead.
+long time, but it drives, so the disc rule never fires there.
 
 The lap rule. A robot that goes round an obstacle for ever never stays within ``r`` of one
 point, and the disc rule lets it run to the time limit (IFGM lapping a post, issue 24). The
@@ -80,32 +74,9 @@ every length scaled by a power of two the rule fires at the same step. Why these
   (the samples fall elsewhere, the follower settles); less progress than a step does not
   count.
 
-Measured with ``python benchmarks/bench_stall.py`` (issue 24) as the disc rule was, with the
-planners before Bug1's round (errata row 34), on 1,024 episodes: every planner in every
-built-in world, 20 generated worlds per class (seed 0), BARN's three sample worlds and the ten
-worlds of ``tests/worlds``, run with the lap rule off and each trace replayed through the rule.
-No episode that reached the goal (756) closes two laps the same way at all, whatever ``eps``:
-none would with ``rho`` up to ``1.5 r`` (at ``2 r`` one would, Bug1 in barn-004) or ``L``
-anywhere from ``pi r`` to ``4 pi r``. One lap would not do: with ``K = 1`` the rule would end
-63 of Bug1's 125 arrivals (those that go on to Q the way they went round). Run again with the
-rule on, every arrival runs step for step as before, the one run that reached the time limit
-(IFGM in ``tests/worlds/ifgm_h_post_livelock.json``) stalls after 42 s instead of 287 s, and no
-other stop changes. In issue 24's uniform open draws (``random_world("open", s)``, ``s`` = 5000
-to 5039, every planner) the same: every arrival as before, and IFGM's two livelocks stall after
-42 and 60 s instead of 196 and 254 s (with ``eps = 0`` after 60 and 110 s: the lapping robot
-still creeps nearer the goal by less than a step a lap).
-
-Where the rule does end arrivals: robots that went round two or more times without progress
-and then got away. In BARN's 200 worlds 7 of the 514 arrivals of Bug1, IBA and IFGM (2 to 8
-laps round a cluster of cylinders; BARN's episodes run without the lap rule,
-:data:`ifgm_ref.bench.barn.SIM`); with 5 % range noise 5 of 506 arrivals of Bug1, Bug2,
-DistBug, IBA and IFGM in the 125 worlds above, and with 5 % odometry drift 8 of 444, all of
-them Bug1 or Bug2 missing their own loop closure (2 to 6 extra laps). IBA's, IFGM's and
-DistBug's arrivals there close at most one lap without progress. Under that noise the rule
-ends 114 of the 114 runs that reached the time limit with range noise and 26 of 40 with
-drift (Bug1 lapping for ever), saving 62 % and 32 % of their time. It costs 3 us a step
-(median; 80 us at most, the rule off and the log growing), against 100 us for the whole
-simulation step.
+What each rule ends, and what it leaves alone (every arrival in the built-in, generated and
+BARN worlds, with and without noise), measured with ``benchmarks/bench_stall.py``:
+``docs/benchmark.md``, "The stall rules, measured".
 """
 
 from __future__ import annotations

@@ -24,11 +24,10 @@ from ifgm_ref.transport.loading import load_planner_factory
 
 #: Every solvable world class of :mod:`ifgm_ref.oracle.strategies`.
 ALL_CLASSES = frozenset({"open", "u", "h", "symmetric", "mixed"})
-#: The noise levels the reference planners promise (measured: ``docs/oracle.md``, "Robustness"):
-#: issue 17's target for IFGM, Gaussian range noise of 2 % of the range, 5 % of the rays
-#: dropping out, odometry drifting by 1 % of the distance (:mod:`ifgm_ref.noise`). DistBug and
-#: IBA promised half the range noise until issue 24: their loop closure, back within ``r`` of
-#: the hit point, missed at 2 %; Bug1's round closes on its whole trail (errata row 34).
+#: The noise levels the reference planners promise: Gaussian range noise of 2 % of the range,
+#: 5 % of the rays dropping out, odometry drifting by 1 % of the distance
+#: (:mod:`ifgm_ref.noise`). Measured, with the history of these levels: ``docs/oracle.md``,
+#: "Robustness".
 REFERENCE_NOISE = NoiseLevels(range=0.02, dropout=0.05, odometry=0.01)
 
 

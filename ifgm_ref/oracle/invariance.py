@@ -10,34 +10,13 @@ in order, to a fresh planner (open loop: its answers move nothing), and compares
 with the transformed recorded one (:func:`compare_answers`). A scale by a power of two is
 exact and is still run closed loop, bit for bit (``scale_test``).
 
-**Why open loop** (issue 24). The invariance checks used to run the moved or scaled problem
-itself and compare the two trajectories, within two steps of travel and turning (moved) or 1 %
-of the path length (scaled). That rejects faithful runs: the simulator rounds the moved
-problem's scans differently (1e-16), a decision that sits on a tie (two rays with equal ranges,
-as a round obstacle gives) tips, the runs part by a ray for a step, and on a long run such
-partings add up. The C IFGM, circling for 9,502 steps in a generated mixed world
-(``tests/worlds/rigid_motion_long_mixed.json``; since Bug1's round, errata row 34, it arrives
-there in 900), was 0.28 ft and 0.31 rad off its moved twin at 161 s; the reference IFGM
-circling a post for 287 s parted beyond the tolerance in each of three placements tried, at
-0.8, 77 and 86 s. Comparing only up to the first tie, found with a control run (the problem
-under another tiny motion), does not help: the control meets other ties than the moved run --
-the last of those three placements is a shift by 0.001 ft, and as a control it would have
-cleared the moved run of the second up to 86 s, 85 s past its parting.
-
-Replayed open loop, every observation the planner is handed is exactly what the simulator
-would hand it in the transformed problem in exact arithmetic: a rigid motion moves poses and
-goal and leaves each scan as it is (taken in the robot's frame), a scale multiplies lengths.
-The simulator's rounding is gone, and with it every tie between rays: the planner sees
-the same scan bit for bit (moved) or each range times ``k`` (scaled; multiplying by ``k``
-keeps equal ranges equal). What is left is the planner's own arithmetic on moved or scaled
-numbers: within 1e-12 in double, and in float32 the odd neighbouring choice
-(:data:`HEADING_TOL`). A trajectory is the planner's answers driven by the simulator, so
-answers that are the transformed answers at every step make the transformed trajectory, in
-exact arithmetic: nothing the old check asked is lost, and a frame or sign error shows at
-the first step it touches. Measured in the runs above: every answer of the reference and of
-the C port within 5e-14 rad, however long the run. The cost per example is one simulation
-and one replay (planner steps only, no ray casting), where the closed-loop check ran two
-simulations.
+**Why open loop.** Handed exactly the transformed observations, the planner meets no
+rounding of the simulator's, and with it none of the ties between rays that made two faithful
+closed-loop runs part (a round obstacle gives equal ranges; the moved scan's rounding tips
+which one is nearest). What is left is the planner's own arithmetic on moved or scaled
+numbers, which :data:`HEADING_TOL` and :data:`SPEED_TOL` bound; a frame or sign error shows
+at the first step it touches. The closed-loop checks this replaced, the runs that showed why,
+and the margins measured: ``docs/oracle.md``, "Invariance".
 """
 
 from __future__ import annotations
@@ -68,33 +47,19 @@ __all__ = [
 ]
 
 #: An answer's heading may differ from the transformed recorded one by this much (rad, 5.7
-#: degrees). An implementation in double answers within 1e-12: measured, the reference IFGM,
-#: its faithful variants and the C port, 20 drawn worlds per check (runs of up to 9,044
-#: steps) and the 9,502-step mixed world (the planners before errata row 34), at most
-#: 5.1e-14 rad; the other reference planners
-#: at most 1.8e-13 (APF). A float32 port rounds the moved or scaled numbers differently (1e-7
-#: relative) and now and then takes a neighbouring discrete choice that lies within that
-#: rounding -- the next ray (1.8 degrees, 0.031 rad), the next remembered point of the edge
-#: it follows: measured at most 0.022 rad (the float32 variant, circling a post for 2,871
-#: steps) and 0.015 rad (the C port's float build). A frame error is off by a share of the
-#: rotation (eq. (2)'s angle as a world heading: three quarters of it, over 0.1 rad for 96 %
-#: of the drawn rotations), a quadrant error by pi.
+#: degrees): above what a float32 port's rounding gives (now and then the neighbouring ray,
+#: 1.8 degrees), below a frame error (a share of the rotation) or a quadrant error (pi).
+#: Measured margins: ``docs/oracle.md``, "Invariance".
 HEADING_TOL = 0.1
 #: An answer's speed may differ from the transformed recorded one by this fraction of the
-#: robot's top speed (in the transformed problem's unit). A planner's speed follows its
-#: heading -- ``v``, 0, or ``v max(0, cos(turn still to make))``: an error of at most the
-#: heading's times ``v`` (as the conformance vectors' tolerances say) -- so the same 0.1;
-#: measured in the same runs: double at most 1.4e-13, float32 at most 0.0045.
+#: robot's top speed (in the transformed problem's unit): a planner's speed follows its
+#: heading (``v``, 0, or ``v max(0, cos(turn still to make))``), so the heading's 0.1.
 SPEED_TOL = 0.1
 #: Before an invariance check the goal moves this far (ft) off the drawn start-goal line, and
-#: the start heading turns with the line (:func:`generic`). An exactly symmetric problem (an
-#: obstacle centred on the line, the start facing along it: shrinking finds them) hands the
-#: planner an exactly symmetric scan, a tie (equal gaps, equal side beams) that it breaks by a
-#: fixed rule; the rounding of moved or scaled numbers (1e-16, 1e-7 in a float32 port) can
-#: tip such a tie either way, which no implementation can avoid (measured: the float32 port
-#: took the other of two mirror gaps round a post on the line, scaled by 0.3048, at the first
-#: step). A 0.01 ft offset breaks every exact symmetry by far more than the rounding: 0.01 ft
-#: over 35 ft turns the start 2.9e-4 rad, and a post 7 ft ahead lies 0.002 ft off the heading.
+#: the start heading turns with the line (:func:`generic`). An exactly symmetric problem hands
+#: the planner an exact tie (equal gaps, equal side beams) that the rounding of moved or scaled
+#: numbers can tip either way, which no implementation can avoid; 0.01 ft over 35 ft turns the
+#: start 2.9e-4 rad, far more than any rounding (an example: ``docs/oracle.md``, "Invariance").
 GENERIC_OFFSET = 0.01
 #: ``scale_invariant``: the factors drawn. Powers of two first (failures shrink to 2): scaling
 #: by them is exact in floating point, so the scaled run must be the original times ``k`` bit

@@ -17,7 +17,8 @@ alone picks the branch, and this module carries it out:
 * *dead end* (inside a U or an H): turn in place in 45-degree steps, 45, 90, 135, 180 degrees,
   until the corridor ahead is free as far as the paper's sensor sees (``view_range``); go that
   way to the end of the wall (section 5.2), then follow the wall round from outside with IBA
-  and regenerate the path.
+  and regenerate the path. Each phase is labelled in the trace: ``dead_end_turn``,
+  ``dead_end_escape``, ``dead_end_handover`` (errata row 35).
 
 A step is four parts, and the state (:class:`~ifgm_ref.planners.ifgm_atoms.IFGMState`, one
 immutable record: the mode, the dead-end turn, the followed point and its side, the Case-3

@@ -55,10 +55,9 @@ class IFGMParams(Tuning):
         until the corridor towards the goal is free for ``d_look`` again (errata row 24).
     w_g : float, default ``9 r``
         Gap weight of eq. (4), a length: eq. (4) weighs the gap by ``w_g / d_th``, so only a
-        length keeps the balance with the goal at every scale (the oracle's
-        ``scale_invariant`` check found a plain 9). With the default ``d_th`` = 3 r the gap
-        counts three times as much as the goal (``w_g / d_th = 3``), so the robot commits to
-        the gap.
+        length keeps the balance with the goal at every scale (errata row 29). With the
+        default ``d_th`` = 3 r the gap counts three times as much as the goal, so the robot
+        commits to the gap.
     w_d : float, default 1
         Goal weight of eq. (4), a number.
     jump : float, default ``2 r``
@@ -68,12 +67,8 @@ class IFGMParams(Tuning):
         Case-3: another obstacle pre-empts the followed edge when it is this much nearer.
     turn_done : float, default ``w dt / 2``
         A dead-end turn is done when the heading is within this angle of its target: half
-        the turn of one step. A robot turning at ``w`` and deciding every ``dt`` cannot
-        promise more (one more step would overshoot by more than it corrects), and a port's
-        rounding or a real robot's heading noise stays within it. The reference's simulated
-        robot lands on the target exactly (its last step of a turn is clipped), so the
-        tolerance changes nothing there; with an exact comparison a robot whose heading
-        is a hair off turns in place for ever.
+        the turn of one step, the most a robot turning at ``w`` and deciding every ``dt``
+        can promise; a port's rounding stays within it (errata row 32).
     """
 
     d_th: float = derived("3*r", Unit.LENGTH)

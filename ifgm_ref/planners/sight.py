@@ -38,12 +38,10 @@ class BoundaryParams(Tuning):
     standoff_margin : float, default ``Max(2 r / 3, pi r / (2 fov))``
         Free space kept between the robot's disc and the followed edge, a length: the
         follower keeps the edge at ``radius + standoff_margin`` from the robot's centre.
-        ``2 r / 3`` with the paper's 135-degree sensor or a wider one. It was ``r`` (1 ft for
-        the paper's robot); on BARN's 200 worlds IFGM then reached the goal in 90 % of them,
-        and in 97 % with ``2 r / 3`` (the paper's IR sensor): BARN's passages are little
-        wider than the robot. A narrower sensor sees less of the edge it rounds, so the
-        margin grows as the field of view shrinks: ``r`` at 90 degrees, where ``2 r / 3``
-        swept the robot into the unseen far corner of a U's arm (errata row 29).
+        ``2 r / 3`` with the paper's 135-degree sensor or a wider one, since BARN's passages
+        are little wider than the robot; a narrower sensor sees less of the edge it rounds,
+        so the margin grows as the field of view shrinks: ``r`` at 90 degrees (errata row
+        29, with what each margin gave on BARN and in a U).
     corridor_margin : float, default ``r/4``
         The path towards the goal is tested in a corridor of half-width
         ``radius + corridor_margin``: as wide as the robot, plus a little.
