@@ -57,7 +57,8 @@ class IgnoresDObs(IFGMPlanner):
 
     def reset(self, start: Pose, goal: Point, params: EpisodeParams) -> None:
         super().reset(start, goal, params)
-        self.ifgm = replace(self.ifgm, d_obs=0.0)
+        # The least d_obs the parameters admit (they must be > 0): no obstacle is that near.
+        self.ifgm = replace(self.ifgm, d_obs=math.ulp(0.0))
 
 
 @traces("t1.bug_point_robot")
