@@ -214,16 +214,20 @@ def plot_run(
     *,
     colour_by: str = "behaviour",
     unit: str = "ft",
+    mark: int | None = None,
 ) -> Figure:
     """A figure of one episode: world, path by behaviour (or branch), switches, field of view,
     and the believed path where odometry noise moved it off the true one; lengths in
-    ``unit``."""
+    ``unit``. ``mark`` is a step to point at (the oracle's first divergence)."""
     fig, ax = plt.subplots(figsize=(9.5, 5), layout="constrained")
     draw_world(ax, world, unit=unit)
     wedges = [(trace[i].x, trace[i].y, trace[i].theta) for i in switch_indices(trace)[:MAX_WEDGES]]
     draw_field_of_view(ax, world, wedges)
     draw_path(ax, trace, world.robot.radius, colour_by=colour_by, by_frequency=True)
     draw_believed_path(ax, trace)
+    if mark is not None:
+        step = trace[mark]
+        ax.plot(step.x, step.y, "X", color="red", markersize=12, label=f"step {mark}")
     # Equal scales by widening the data limits, not by shrinking the box: the layout keeps
     # its box, and the labels and the legend beside it stay within the figure.
     ax.set_aspect("equal", adjustable="datalim")

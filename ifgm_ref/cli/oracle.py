@@ -47,6 +47,14 @@ def add_oracle(sub: Subcommands) -> None:
         "counted (docs/oracle.md, 'Robustness')",
     )
     oracle.add_argument(
+        "--level",
+        default="paper",
+        choices=("paper", "reference"),
+        help="paper (the default): the paper's properties, which any valid reading passes; "
+        "reference: those and agreement with the reference IFGM step by step "
+        "(agrees_with_reference; docs/oracle.md, 'Two levels of conformance')",
+    )
+    oracle.add_argument(
         "--equations",
         metavar="MODULE",
         help="check the eqs. (1)-(4) of this module (or module:attribute), which exposes "
@@ -135,6 +143,7 @@ def run_oracle(args: argparse.Namespace) -> int:
             stop_on_failure=args.stop_on_failure,
             jobs=args.jobs,
             noise=args.noise,
+            level=args.level,
         )
     finally:
         impl.close()

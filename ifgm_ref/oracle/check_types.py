@@ -10,6 +10,7 @@ The checks themselves are registered in :data:`ifgm_ref.oracle.checks.CHECKS`.
 
 from __future__ import annotations
 
+from collections import Counter
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from enum import StrEnum
@@ -17,13 +18,22 @@ from typing import Any
 
 from hypothesis import strategies as st
 
-from ifgm_ref.errors import IfgmRefError
+from ifgm_ref.errors import IfgmRefError, ImplementationError
 from ifgm_ref.oracle.implementation import Implementation
 from ifgm_ref.simulator import Run
 from ifgm_ref.world import World
 from ifgm_ref.worldgen.draws import Draw
 
-__all__ = ["Check", "CheckFailed", "Evidence", "Kind", "PlannerFault", "Recorder"]
+__all__ = [
+    "Check",
+    "CheckFailed",
+    "Evidence",
+    "Kind",
+    "Level",
+    "PlannerFault",
+    "Recorder",
+    "levels_up_to",
+]
 
 
 class Kind(StrEnum):
@@ -31,6 +41,26 @@ class Kind(StrEnum):
 
     SIMULATION = "simulation"
     EQUATION = "equation"
+
+
+class Level(StrEnum):
+    """The two levels of conformance a check belongs to: the paper's properties, which any
+    valid reading passes, and agreement with the reference's readings, step by step."""
+
+    PAPER = "paper"
+    REFERENCE = "reference"
+
+
+def levels_up_to(level: Level | str) -> frozenset[Level]:
+    """The levels a run at ``level`` checks: the paper's always, the reference's at
+    ``"reference"``; an unknown level is an :class:`ImplementationError`.
+
+    >>> sorted(map(str, levels_up_to("reference"))), sorted(map(str, levels_up_to("paper")))
+    (['paper', 'reference'], ['paper'])
+    """
+    if level not in set(Level):
+        raise ImplementationError(f"unknown level {level!r}; known: {', '.join(Level)}")
+    return frozenset(Level) if level == Level.REFERENCE else frozenset({Level.PAPER})
 
 
 class CheckFailed(IfgmRefError):
@@ -50,17 +80,20 @@ class Evidence:
     runs: list[Run] = field(default_factory=list)
     max_time: float | None = None
     inputs: dict[str, Any] | None = None
+    #: The step of the first run the failure points at (its plot marks it), if any.
+    step: int | None = None
 
 
 @dataclass
 class Recorder:
-    """Counts the examples a check ran and keeps the evidence of the last failure (and a
-    statistical check's tally: ``summary``)."""
+    """Counts the examples a check ran and keeps the evidence of the last failure (and what
+    a passing check has to say, ``summary``, from its ``tally``)."""
 
     examples: int = 0
     worlds: set[World] = field(default_factory=set)
     evidence: Evidence | None = None
     summary: str = ""
+    tally: Counter[str] = field(default_factory=Counter)
 
 
 @dataclass(frozen=True)
@@ -69,7 +102,9 @@ class Check:
     it applies to an implementation.
 
     Under noise, ``sample`` (if any) makes the check statistical: it builds one example from
-    seeded draws (a world generator of :mod:`ifgm_ref.worldgen.classes`).
+    seeded draws (a world generator of :mod:`ifgm_ref.worldgen.classes`). ``level`` says
+    which level of conformance it belongs to; a run checks the paper's level unless asked
+    for the reference's too.
     """
 
     name: str
@@ -79,3 +114,4 @@ class Check:
     test: Callable[[Implementation, Any, Recorder], None]
     applies: Callable[[Implementation], str | None]
     sample: Callable[[Draw], Any] | None = None
+    level: Level = Level.PAPER

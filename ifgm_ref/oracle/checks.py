@@ -39,6 +39,10 @@ check                             property (applies to)
                                   (IFGM)
 ``deterministic``                 the same observations give the same commands, bit for bit
                                   (one run recorded, replayed into a fresh planner)
+``agrees_with_reference``         reference level only: replayed the reference IFGM's
+                                  observations, open loop, it answers every step as the
+                                  reference did, up to the first tie
+                                  (:mod:`ifgm_ref.oracle.conformance`) (what follows IFGM)
 ``eq1_gap_midpoint`` ...          the implementation's eqs. (1)-(4) agree with the reference
                                   within :data:`EQUATION_TOL` on inputs drawn from their
                                   domains (when it exposes them; the ``*_literal`` forms when
@@ -63,8 +67,18 @@ from hypothesis import strategies as st
 from numpy.typing import NDArray
 
 from ifgm_ref.convergence import time_bound
-from ifgm_ref.errors import ImplementationError
-from ifgm_ref.oracle.check_types import Check, CheckFailed, Evidence, Kind, PlannerFault, Recorder
+from ifgm_ref.errors import ImplementationError, present
+from ifgm_ref.oracle.check_types import (
+    Check,
+    CheckFailed,
+    Evidence,
+    Kind,
+    Level,
+    PlannerFault,
+    Recorder,
+    levels_up_to,
+)
+from ifgm_ref.oracle.conformance import compare, divergence_message, reference_episode
 from ifgm_ref.oracle.equation_checks import (
     equation_checks,
 )
@@ -86,6 +100,7 @@ from ifgm_ref.oracle.metamorphic import (
 from ifgm_ref.oracle.strategies import (
     SOLVABLE_CLASSES,
     any_solvable_worlds,
+    builtin_worlds,
     enclosed_worlds,
     gap_walls,
     placements,
@@ -100,7 +115,7 @@ from ifgm_ref.simulator import Run, StopReason, TraceStep, simulate
 from ifgm_ref.world import Polygon, World
 from ifgm_ref.worldgen.classes import GENERATORS, enclosed_world, gap_wall, placed
 
-__all__ = ["CHECKS", "FIRST_TURN", "episode", "scale_test"]
+__all__ = ["CHECKS", "FIRST_TURN", "checks_at", "episode", "scale_test"]
 
 #: ``passes_wide_gaps``: a commanded heading this far off the goal bearing (rad, 5 degrees),
 #: steering the robot away from the goal bearing or holding it there, is the robot's first
@@ -390,6 +405,29 @@ def _determinism_test(impl: Implementation, world: World, rec: Recorder) -> None
             )
 
 
+def _agrees_test(impl: Implementation, world: World, rec: Recorder) -> None:
+    """Replay the reference IFGM's episode in ``world`` into ``impl``, open loop, and compare
+    step by step (:mod:`ifgm_ref.oracle.conformance`)."""
+    rec.examples += 1
+    rec.worlds.add(world)
+    if currently_in_test_context():
+        note(f"world: {world}")
+    sim = SimParams(max_time=time_bound(world))
+    reference = reference_episode(world, sim)
+    rec.evidence = Evidence([world], [reference.run], sim.max_time)
+    where = _where(impl, world)
+    found = compare(impl, reference, where)
+    total = len(reference.recording.steps)
+    rec.tally.update(steps=total, agreed=found.steps, ties=found.tie is not None)
+    rec.summary = (
+        f"{rec.tally['agreed']} of {rec.tally['steps']} reference steps agreed; "
+        f"{rec.tally['ties']} episode(s) ended early at a tie"
+    )
+    if found.diverged:
+        rec.evidence.step = present(found.differs, "the step that differs").step
+        raise CheckFailed(divergence_message(reference, found, where))
+
+
 def _command_fields(command: Command) -> tuple[object, ...]:
     return (command.heading, command.speed, command.behaviour, command.branch, command.stop)
 
@@ -428,6 +466,12 @@ def _scale_applies(impl: Implementation) -> str | None:
 
 def _gaps_apply(impl: Implementation) -> str | None:
     return None if impl.promises.passes_wide_gaps else "it does not promise to use gaps"
+
+
+def _follows_ifgm(impl: Implementation) -> str | None:
+    if impl.promises.reference != "ifgm":
+        return "it does not claim to follow the reference IFGM's readings step by step"
+    return None
 
 
 def _always(impl: Implementation) -> str | None:
@@ -496,6 +540,28 @@ CHECKS: dict[str, Check] = {
             _determinism_test,
             _always,
         ),
+        Check(
+            "agrees_with_reference",
+            "replayed the reference IFGM's observations, it answers each step as the reference",
+            Kind.SIMULATION,
+            lambda impl: st.one_of(any_solvable_worlds(), builtin_worlds()),
+            _agrees_test,
+            _follows_ifgm,
+            level=Level.REFERENCE,
+        ),
         *equation_checks(),
     ]
 }
+
+
+def checks_at(level: Level | str) -> list[str]:
+    """The names of the checks a run at ``level`` runs: the paper's properties, or those and
+    the reference level's ``agrees_with_reference``
+    (:func:`~ifgm_ref.oracle.check_types.levels_up_to`).
+
+    >>> "agrees_with_reference" in checks_at("paper"), "agrees_with_reference" in checks_at(
+    ...     "reference")
+    (False, True)
+    """
+    levels = levels_up_to(level)
+    return [name for name, check in CHECKS.items() if check.level in levels]

@@ -60,6 +60,10 @@ class Promises:
         :data:`~ifgm_ref.oracle.robust.SUCCESS_THRESHOLD` of the worlds of each class it
         converges in, with 95 % confidence. The robust profile checks these levels; ``None``
         promises no robustness.
+    reference : str or None, default None
+        The reference planner whose readings it follows step by step: ``"ifgm"`` (the only
+        one with the margins that tell a tie from a fault) makes the reference level's
+        ``agrees_with_reference`` check apply (:mod:`ifgm_ref.oracle.conformance`).
     """
 
     converges_in: frozenset[str] = ALL_CLASSES
@@ -68,6 +72,7 @@ class Promises:
     passes_wide_gaps: bool = True
     scale_invariant: bool = True
     noise: NoiseLevels | None = None
+    reference: str | None = None
 
     def __post_init__(self) -> None:
         unknown = set(self.converges_in) - ALL_CLASSES
@@ -87,7 +92,7 @@ PROMISES: dict[str, Promises] = {
     "bug2": Promises(reports_unreachable=True, passes_wide_gaps=False),
     "distbug": Promises(reports_unreachable=True, passes_wide_gaps=False, noise=REFERENCE_NOISE),
     "iba": Promises(reports_unreachable=True, passes_wide_gaps=False, noise=REFERENCE_NOISE),
-    "ifgm": Promises(noise=REFERENCE_NOISE),  # Figure 3 has no "goal unreachable" exit
+    "ifgm": Promises(noise=REFERENCE_NOISE, reference="ifgm"),  # no "goal unreachable" exit
     # FGM steers at the *widest* gap, which beside a wall is the open space past its end.
     "fgm": Promises(
         converges_in=frozenset({"open", "symmetric"}), passes_wide_gaps=False, noise=REFERENCE_NOISE

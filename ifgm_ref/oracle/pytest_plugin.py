@@ -23,6 +23,7 @@ from typing import Any
 import pytest
 
 from ifgm_ref.errors import IfgmRefError
+from ifgm_ref.oracle.check_types import Level, levels_up_to
 from ifgm_ref.oracle.checks import CHECKS
 from ifgm_ref.oracle.equation_checks import load_equations
 from ifgm_ref.oracle.implementation import PROMISES, Implementation, Promises
@@ -66,6 +67,13 @@ def pytest_addoption(parser: pytest.Parser) -> None:
         "--ifgm-noise",
         metavar="KIND=LEVEL,...",
         help="check under these noise levels, in any profile (docs/oracle.md, 'Robustness')",
+    )
+    group.addoption(
+        "--ifgm-level",
+        default="paper",
+        choices=[str(level) for level in Level],
+        help="paper (default): the paper's properties; reference: those and agreement with "
+        "the reference IFGM step by step (agrees_with_reference)",
     )
     group.addoption(
         "--ifgm-promises",
@@ -120,6 +128,7 @@ class OracleSession:
         self.results: list[CheckResult] = []
         self.expected = _expected_failures(config.getoption("ifgm_xfails"))
         self.profile = _profile(config)
+        self.levels = levels_up_to(config.getoption("ifgm_level"))
         self.implementation = _implementation(config)
 
     def run(self, check: str) -> CheckResult:

@@ -31,8 +31,15 @@ from hypothesis.errors import Flaky
 
 from ifgm_ref.errors import ImplementationError
 from ifgm_ref.noise import NoiseLevels
-from ifgm_ref.oracle.check_types import Check, CheckFailed, Evidence, Kind, Recorder
-from ifgm_ref.oracle.checks import CHECKS
+from ifgm_ref.oracle.check_types import (
+    Check,
+    CheckFailed,
+    Evidence,
+    Kind,
+    Level,
+    Recorder,
+)
+from ifgm_ref.oracle.checks import CHECKS, checks_at
 from ifgm_ref.oracle.implementation import Implementation, Promises, promises_of
 from ifgm_ref.oracle.profiles import (
     Profile,
@@ -198,12 +205,13 @@ def run_check(
             return _result(*common, Status.UNEXPECTED_PASS, f"expected to fail: {expected_failure}")
         return _result(*common, Status.PASSED, recorder.summary)
     message = str(failure).split("\n")[0]
+    told = str(failure)  # the report file gets every line, the result the first
     if isinstance(failure, Flaky):
-        message = f"nondeterministic: a failing example passed when replayed ({message})"
+        told = message = f"nondeterministic: a failing example passed when replayed ({message})"
     folder = None
     if artifacts is not None and recorder.evidence is not None:
         folder = Path(artifacts) / _slug(impl.label) / check.name
-        write_evidence(folder, recorder.evidence, check, impl, message)
+        write_evidence(folder, recorder.evidence, check, impl, told)
     if expected_failure is not None:
         message = f"{message} (expected: {expected_failure})"
         return _result(*common, Status.EXPECTED_FAILURE, message, folder)
@@ -364,7 +372,8 @@ def write_evidence(
     for k, run in enumerate(evidence.runs):
         stem = names[min(k, len(names) - 1)] + ("_rerun" if k >= len(names) else "")
         (folder / f"{stem}_trace.csv").write_text(run.trace_csv())
-        _plot(evidence.worlds[min(k, len(names) - 1)], run, folder / f"{stem}.png")
+        mark = evidence.step if k == 0 else None
+        _plot(evidence.worlds[min(k, len(names) - 1)], run, folder / f"{stem}.png", mark)
     if evidence.worlds:
         planner = impl.label if not impl.label.startswith("cmd: ") else None
         how = f"--planner {planner}" if planner else f'--cmd "{impl.label[5:]}"'
@@ -380,11 +389,11 @@ def write_evidence(
     (folder / "report.md").write_text("\n".join(lines))
 
 
-def _plot(world: Any, run: Any, path: Path) -> None:
+def _plot(world: Any, run: Any, path: Path, mark: int | None) -> None:
     from ifgm_ref.plotting import finest_colouring, plot_run, save_figure
 
     colour_by = finest_colouring(run.trace)
-    save_figure(plot_run(world, run.trace, run.result, colour_by=colour_by), path)
+    save_figure(plot_run(world, run.trace, run.result, colour_by=colour_by, mark=mark), path)
 
 
 def _implementation(
@@ -417,6 +426,7 @@ def check_planner(
     stop_on_failure: bool = False,
     jobs: int = 1,
     noise: NoiseLevels | str | None = None,
+    level: Level | str = Level.PAPER,
 ) -> Report:
     """Check a planner implementation against every property it promises.
 
@@ -431,25 +441,24 @@ def check_planner(
         What it promises, or a built-in planner's name (default: a built-in's own, else IFGM's).
     equations : object, optional
         A module or object exposing ``eq1_gap_midpoint`` ... to check eqs. (1)-(4).
-    expected_failed_checks : mapping of str to str, optional
-        ``{check: reason}``: checks known to fail; they report "expected failure".
-    checks : iterable of str, optional
-        Run only these checks (names of :data:`ifgm_ref.oracle.checks.CHECKS`).
+    expected_failed_checks, checks : mapping of str to str, iterable of str, optional
+        ``{check: reason}``: checks known to fail ("expected failure"); run only ``checks``.
     artifacts : path or None, default "oracle-failures"
         Where counterexamples are written; ``None`` writes nothing.
     on_fail : {None, "raise", "warn"}, default None
         Raise :class:`AssertionError` or warn when a check failed or errored.
-    progress : bool, default False
-        Print each check's result on stderr as it finishes.
-    stop_on_failure : bool, default False
-        Stop after the first check that fails or errors (the rest are not reported).
+    progress, stop_on_failure : bool, default False
+        Print each check's result on stderr as it finishes; stop after the first check that
+        fails or errors (the rest are not reported).
     jobs : int, default 1
         Run the simulation checks in this many processes (the verdicts do not depend on it);
-        the planner factory must then pickle (a class, a module-level function, an
-        ``ExternalFactory``: a program under test starts anew for each check in a worker).
+        the factory must then pickle (a program under test starts anew in each worker).
     noise : NoiseLevels or str, optional
         Check under these noise levels (``"range=0.02,dropout=0.05"``), in any profile,
         instead of those promised (:mod:`ifgm_ref.oracle.robust`).
+    level : {"paper", "reference"}, default "paper"
+        The paper's properties, or those and ``agrees_with_reference``
+        (:func:`~ifgm_ref.oracle.checks.checks_at`); ``checks`` may name either level's.
 
     Returns
     -------
@@ -458,7 +467,7 @@ def check_planner(
     """
     impl = _implementation(planner, promises, equations)
     expected = dict(expected_failed_checks or {})
-    names, profile = _arguments(checks, expected, with_noise(profile, noise), jobs)
+    names, profile = _arguments(checks, expected, with_noise(profile, noise), jobs, level)
     done = _run_checks(names, impl, profile, artifacts, expected, jobs, progress, stop_on_failure)
     report = Report(impl.label, profile.name, done, *noise_tags(profile, impl.promises))
     _act_on(report, on_fail)
@@ -466,11 +475,15 @@ def check_planner(
 
 
 def _arguments(
-    checks: Iterable[str] | None, expected: Mapping[str, str], profile: Profile, jobs: int
+    checks: Iterable[str] | None,
+    expected: Mapping[str, str],
+    profile: Profile,
+    jobs: int,
+    level: Level | str,
 ) -> tuple[list[str], Profile]:
     """Validate :func:`check_planner`'s arguments; return the names of the checks to run and
     the profile."""
-    names = list(CHECKS) if checks is None else list(checks)
+    names = checks_at(level) if checks is None else list(checks)
     unknown = [n for n in [*names, *expected] if n not in CHECKS]
     if unknown:
         raise ImplementationError(f"unknown check(s) {unknown}; known: {', '.join(CHECKS)}")

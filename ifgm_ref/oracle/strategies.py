@@ -31,6 +31,7 @@ from collections.abc import Callable
 
 from hypothesis import strategies as st
 
+from ifgm_ref.scenarios import BUILTIN_WORLDS, resolve_world
 from ifgm_ref.world import Polygon, World
 from ifgm_ref.worldgen.classes import (
     enclosed_world,
@@ -101,3 +102,9 @@ SOLVABLE_CLASSES: dict[str, WorldClass] = {
 def any_solvable_worlds() -> st.SearchStrategy[World]:
     """A world of any solvable class (open first, so failures shrink towards it)."""
     return st.one_of([make() for make in SOLVABLE_CLASSES.values()])
+
+
+def builtin_worlds() -> st.SearchStrategy[World]:
+    """The built-in worlds (``ifgm-ref worlds``: the paper's scenarios reconstructed, the U
+    and H traps, the Figure 7 variants), drawn one at a time; they shrink towards the first."""
+    return st.sampled_from(sorted(BUILTIN_WORLDS)).map(resolve_world)

@@ -123,6 +123,10 @@ class IFGMPlanner:
     last_gap : Gap or None
         The gap chosen at the last step: the maximum gap, or the one steered through at the
         step before while it stays wider than ``d_th`` (errata row 19).
+    last_seen : (Percepts, IFGMState, Reading) or None
+        The last step's percepts, the state they were read in, and what
+        :func:`~ifgm_ref.planners.ifgm_atoms.read` made of them
+        (:func:`~ifgm_ref.planners.ifgm_margins.margins` measures its ties).
     """
 
     name: ClassVar[str] = "ifgm"
@@ -134,6 +138,7 @@ class IFGMPlanner:
         self.last_atoms: Atoms | None = None
         self.last_branch: Branch | None = None
         self.last_gap: Gap | None = None
+        self.last_seen: tuple[Percepts, IFGMState, Reading] | None = None
         self.reset(Pose(0.0, 0.0, 0.0), Point(0.0, 0.0), EpisodeParams())  # until reset
 
     # -- read-only views for observers ------------------------------------------------------
@@ -214,6 +219,7 @@ class IFGMPlanner:
         self.last_branch = None
         self.last_atoms = None
         self.last_gap = None
+        self.last_seen = None
 
     def step(self, observation: Observation) -> Command:
         """Decide (:meth:`act`), then never drive into a remembered obstacle (the clearance
@@ -229,7 +235,7 @@ class IFGMPlanner:
         """One step: perceive, read the atoms, let Figure 3 pick the branch, carry it out.
         The only place the state is written after :meth:`reset`."""
         state, percepts = self.perceive(self.state, observation)
-        reading = read(percepts, state)
+        reading = read(percepts, read_in := state)
         branch = decide(reading.atoms)
         if (reading.gap_mid, reading.short_look) != (state.gap_mid, state.short_look):
             state = replace(state, gap_mid=reading.gap_mid, short_look=reading.short_look)
@@ -237,6 +243,7 @@ class IFGMPlanner:
         self.state, self.last_atoms, self.last_gap, self.last_branch = (
             state, reading.atoms, reading.gap, branch
         )  # fmt: skip
+        self.last_seen = (percepts, read_in, reading)
         return command, percepts
 
     def goal_bearing(self, pose: Pose) -> float:

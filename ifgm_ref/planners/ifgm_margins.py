@@ -1,0 +1,136 @@
+"""How far each of one IFGM step's decisions was from going the other way.
+
+A port that follows the reference's readings may still decide otherwise where a decision
+sits on its threshold: a gap within rounding of ``d_th``, two gaps of equal width, two side
+beams equally open. :func:`margins` measures, for one step, the distance of every such
+quantity from the value that would flip it, so that the oracle's reference conformance
+(``agrees_with_reference``, :mod:`ifgm_ref.oracle.conformance`) can tell a port's tie from
+a port's fault. Lengths are in robot radii and angles in radians, so that one tie tolerance
+serves every robot and unit (errata row 29's rule: no absolute lengths).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ifgm_ref.flowchart import Branch
+from ifgm_ref.laserscan import Beam
+from ifgm_ref.planners.iba import beam_openness
+from ifgm_ref.planners.ifgm_atoms import IFGMState, Percepts, Reading
+from ifgm_ref.pose import distance, wrap_angle
+
+__all__ = ["DECISIONS", "margins"]
+
+#: The decisions :func:`margins` measures, and what each compares.
+DECISIONS: dict[str, str] = {
+    "at_goal": "the distance to the goal against the goal tolerance",
+    "blocked": "the corridor towards the goal against the encounter distance",
+    "close": "the nearest obstacle against d_obs",
+    "wide": "the chosen gap's width against d_th",
+    "widest_gap": "the widest gap's width against the next widest",
+    "front": "the front beam's nearest return against d_look",
+    "enclosed": "the view's farthest return against view_range",
+    "side": "an obstacle's end ray against the heading (its side)",
+    "side_beams": "the left beam's openness against the right's (the freer side)",
+    "preempt": "an obstacle's nearest return against the followed one less the margin",
+    "nearest_point": "the nearest remembered point against the next nearest",
+}
+
+
+def margins(
+    percepts: Percepts, state: IFGMState, reading: Reading, branch: Branch
+) -> dict[str, float]:
+    """The margin of every decision of :data:`DECISIONS` that a step consults on its way to
+    ``branch``, given its ``percepts``, the ``state`` they were read in and the ``reading``
+    (radii or radians, never negative; the smallest is the nearest tie).
+
+    Figure 3 consults the goal and the corridor at every step; the gap, the nearest obstacle
+    and the dead end only on meeting an obstacle; the freer side only where IBA takes over
+    or Case-3 pre-empts (where the beams are equal, the goal's side decides: its bearing is
+    the margin); the followed edge's point and the pre-emption only while following.
+
+    >>> from ifgm_ref.planners.ifgm import IFGMPlanner
+    >>> from ifgm_ref.scenarios import resolve_world
+    >>> from ifgm_ref.simulator import simulate
+    >>> from ifgm_ref.params import SimParams
+    >>> planner = IFGMPlanner()
+    >>> _ = simulate(resolve_world("post"), planner, SimParams(max_time=0.1))
+    >>> found = margins(*planner.last_seen, planner.last_branch)
+    >>> {name: round(value, 3) for name, value in found.items()}
+    {'at_goal': 59.368, 'blocked': inf}
+    """
+    sight, params = percepts.sight, percepts.params
+    r = sight.body.radius
+    found = {"at_goal": abs(sight.goal_distance - percepts.goal_tolerance) / r}
+    if not reading.short_look:
+        reach = min(params.d_look, sight.goal_distance)
+        found["blocked"] = _finite_gap(sight.goal_free_length, reach) / r
+    atoms = reading.atoms
+    if atoms.blocked and not atoms.avoiding and not atoms.turning:  # meeting an obstacle
+        found.update(_encounter(percepts, reading))
+    if branch in _TAKING_A_SIDE or (branch is Branch.DEAD_END_TURN and state.turn is None):
+        found["side_beams"] = _side_margin(percepts)
+    if state.following:
+        if state.followed is not None and percepts.clusters:
+            reach = distance(sight.pose, state.followed) - params.preempt_margin
+            found["preempt"] = min(abs(c.nearest - reach) for c in percepts.clusters) / r
+        found["nearest_point"] = _nearest_point_margin(sight.points, sight.point_distances) / r
+    return found
+
+
+def _nearest_point_margin(points: NDArray[np.float64], d: NDArray[np.float64]) -> float:
+    """How much farther the nearest remembered point elsewhere is than the nearest one (a
+    point remembered twice is no tie: either is the same point)."""
+    if len(d) < 2:
+        return math.inf
+    nearest = int(d.argmin())
+    elsewhere = np.hypot(*(points - points[nearest]).T) > 0.0
+    return float(d[elsewhere].min() - d[nearest]) if elsewhere.any() else math.inf
+
+
+#: The branches that pick the side to keep an obstacle on (IBA's freer side).
+_TAKING_A_SIDE = frozenset(
+    {Branch.CASE2_NARROW_GAP, Branch.CASE2_ONE_SIDED, Branch.TOO_CLOSE, Branch.CASE3_PREEMPT}
+)
+
+
+def _encounter(percepts: Percepts, reading: Reading) -> dict[str, float]:
+    """The margins of the decisions taken on meeting an obstacle: too close, one-sided, the
+    gap, the dead end."""
+    params, r = percepts.params, percepts.sight.body.radius
+    found: dict[str, float] = {}
+    clusters = percepts.clusters
+    if clusters:
+        found["close"] = abs(min(c.nearest for c in clusters) - params.d_obs) / r
+        found["side"] = min(abs(float(c.angles[i])) for c in clusters for i in (0, -1))
+    if reading.gap is not None:
+        found["wide"] = abs(reading.gap.width - params.d_th) / r
+    widths = sorted((g.width for g in percepts.gaps), reverse=True)
+    if len(widths) > 1:
+        found["widest_gap"] = (widths[0] - widths[1]) / r
+    view = percepts.view
+    front = view.ranges[view.beam_mask(Beam.FRONT)]
+    if len(front):
+        found["front"] = _finite_gap(float(front.min()), params.d_look) / r
+    view_range = percepts.sight.body.tuning.view_range
+    found["enclosed"] = _finite_gap(float(view.ranges.max()), view_range) / r
+    return found
+
+
+def _side_margin(percepts: Percepts) -> float:
+    """The freer side's margin: the beams' difference in openness, in radii; where they are
+    equal, the goal's bearing off the heading, whose sign decides."""
+    sight, view = percepts.sight, percepts.view
+    left, right = beam_openness(view, Beam.LEFT), beam_openness(view, Beam.RIGHT)
+    if not math.isclose(left, right, rel_tol=1e-9):
+        return abs(left - right) / sight.body.radius
+    return abs(wrap_angle(sight.bearing - sight.pose.theta))
+
+
+def _finite_gap(value: float, threshold: float) -> float:
+    """``|value - threshold|``; a return nearer than ``range_min`` (``-inf``) or none at all
+    (``+inf``) is never within rounding of a threshold."""
+    return abs(value - threshold) if math.isfinite(value) else math.inf
