@@ -1,0 +1,365 @@
+"""Mutation testing of the oracle: how many small breaks of IFGM's decision code does each
+level of conformance catch?
+
+Run from the project root::
+
+    python benchmarks/bench_mutation.py --count 100 --seed 0 [--jobs 2] [--out mutation-results]
+
+Each mutant is one change at one site of the decision code (``--files``, default IFGM's
+planner, its atoms, IBA, the edge follower, the sight, the flowchart and the percepts): a
+comparison flipped (``<`` to ``<=``, ``<`` to ``>``, ``==`` to ``!=``), an arithmetic operator
+swapped (``+``/``-``, ``*``/``/``), ``and``/``or`` swapped, a ``not`` or a unary minus
+dropped, a number moved by one (``0`` to ``1``, ``x`` to ``x + 1``), ``True``/``False``
+swapped. The sites are listed in a fixed order and ``--count`` of them drawn with ``--seed``
+(``--count 0``: all). Each mutant lives in its own copy of the package (``ast.unparse`` of the
+changed tree) and is served as a program (``ifgm-ref serve``), so that the oracle, the
+simulator and the reference it compares with stay the original. For each it reports:
+
+* ``trace``: whether any IFGM trace in the built-in worlds changed (a mutant that changes
+  none is probably equivalent there, and is not counted in the kill rates);
+* ``paper``: killed by the paper's properties (``ifgm-ref oracle``, quick profile);
+* ``reference``: killed by reference conformance (``--check agrees_with_reference``);
+* ``tests``: killed by the project's tests of the decision code (``--tests``);
+
+each with the seconds it took. A mutant that cannot even be imported or served is ``broken``:
+killed by anything, and counted apart. The kill rates are over the mutants that change a
+trace. Results go to ``--out``: ``mutants.csv`` (one row per mutant) and the summary on stdout.
+
+Why not a mutation tool: mutmut and cosmic-ray run one test command per mutant and record one
+verdict; here each mutant needs four (a trace filter and three levels), each run against the
+original oracle with the mutant as a program. The mutator below is the part a tool would
+give: about a hundred lines of :mod:`ast`.
+"""
+
+from __future__ import annotations
+
+import argparse
+import ast
+import csv
+import json
+import os
+import random
+import shlex
+import shutil
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+from collections.abc import Iterator
+from dataclasses import asdict, dataclass, field
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+PACKAGE = ROOT / "ifgm_ref"
+#: The decision code of IFGM (issue 26's list).
+FILES = (
+    "planners/ifgm.py",
+    "planners/ifgm_atoms.py",
+    "planners/iba.py",
+    "planners/boundary.py",
+    "planners/sight.py",
+    "flowchart.py",
+    "percepts/clusters.py",
+    "percepts/corridor.py",
+    "percepts/memory.py",
+    "percepts/points.py",
+)
+#: The tests that exercise the decision code.
+TESTS = (
+    "tests/test_ifgm.py tests/test_flowchart.py tests/test_flowchart_properties.py "
+    "tests/test_iba.py tests/test_percepts.py"
+)
+
+_COMPARISONS: dict[type[ast.cmpop], tuple[type[ast.cmpop], ...]] = {
+    ast.Lt: (ast.LtE, ast.Gt),
+    ast.LtE: (ast.Lt, ast.GtE),
+    ast.Gt: (ast.GtE, ast.Lt),
+    ast.GtE: (ast.Gt, ast.LtE),
+    ast.Eq: (ast.NotEq,),
+    ast.NotEq: (ast.Eq,),
+    ast.Is: (ast.IsNot,),
+    ast.IsNot: (ast.Is,),
+}
+_ARITHMETIC: dict[type[ast.operator], type[ast.operator]] = {
+    ast.Add: ast.Sub,
+    ast.Sub: ast.Add,
+    ast.Mult: ast.Div,
+    ast.Div: ast.Mult,
+}
+
+
+@dataclass(frozen=True)
+class Site:
+    """One mutation: where (file, line, column, the node's index in a walk) and what."""
+
+    file: str
+    line: int
+    column: int
+    node: int
+    operator: str
+    change: str
+
+
+def sites(file: str) -> Iterator[Site]:
+    """Every mutation of ``file``'s code (docstrings and annotations left alone)."""
+    tree = ast.parse((PACKAGE / file).read_text())
+    skipped = _docstrings_and_annotations(tree)
+    for index, node in enumerate(ast.walk(tree)):
+        if id(node) in skipped:
+            continue
+        for operator, change in _changes(node):
+            line, column = getattr(node, "lineno", 0), getattr(node, "col_offset", 0)
+            yield Site(file, line, column, index, operator, change)
+
+
+def _docstrings_and_annotations(tree: ast.AST) -> set[int]:
+    skipped: set[int] = set()
+    for node in ast.walk(tree):
+        body = getattr(node, "body", None)
+        first = body[0] if isinstance(body, list) and body else None
+        if isinstance(first, ast.Expr) and isinstance(first.value, ast.Constant):
+            skipped.add(id(first.value))
+        for annotation in (getattr(node, "annotation", None), getattr(node, "returns", None)):
+            if annotation is not None:
+                skipped.update(id(sub) for sub in ast.walk(annotation))
+    return skipped
+
+
+def _changes(node: ast.AST) -> Iterator[tuple[str, str]]:
+    """The mutations of one node, as (operator, change)."""
+    if isinstance(node, ast.Compare) and len(node.ops) == 1:
+        for new in _COMPARISONS.get(type(node.ops[0]), ()):
+            yield "comparison", f"{type(node.ops[0]).__name__} -> {new.__name__}"
+    elif isinstance(node, ast.BinOp) and type(node.op) in _ARITHMETIC:
+        new = _ARITHMETIC[type(node.op)]
+        yield "arithmetic", f"{type(node.op).__name__} -> {new.__name__}"
+    elif isinstance(node, ast.BoolOp):
+        yield "boolean", "and -> or" if isinstance(node.op, ast.And) else "or -> and"
+    elif isinstance(node, ast.UnaryOp) and isinstance(node.op, ast.Not | ast.USub):
+        yield "negation", f"drop {type(node.op).__name__}"
+    elif isinstance(node, ast.Constant) and type(node.value) in (int, float, bool):
+        if isinstance(node.value, bool):
+            yield "constant", f"{node.value} -> {not node.value}"
+        else:
+            yield "constant", f"{node.value!r} -> {node.value + 1!r}"
+
+
+def mutated_source(site: Site) -> str:
+    """``site.file`` with ``site``'s one change, as source."""
+    tree = ast.parse((PACKAGE / site.file).read_text())
+    node = list(ast.walk(tree))[site.node]
+    _, _, after = site.change.partition(" -> ")
+    if isinstance(node, ast.Compare):
+        node.ops = [getattr(ast, after)()]
+    elif isinstance(node, ast.BinOp):
+        node.op = getattr(ast, after)()
+    elif isinstance(node, ast.BoolOp):
+        node.op = ast.Or() if isinstance(node.op, ast.And) else ast.And()
+    elif isinstance(node, ast.UnaryOp):
+        _replace(tree, node, node.operand)
+    elif isinstance(node, ast.Constant):
+        node.value = (not node.value) if isinstance(node.value, bool) else node.value + 1
+    return ast.unparse(tree)
+
+
+def _replace(tree: ast.AST, old: ast.AST, new: ast.AST) -> None:
+    for parent in ast.walk(tree):
+        for name, value in ast.iter_fields(parent):
+            if value is old:
+                setattr(parent, name, new)
+            elif isinstance(value, list):
+                for k, item in enumerate(value):
+                    if item is old:
+                        value[k] = new
+
+
+# ---- the levels ----------------------------------------------------------------------------
+
+#: The trace filter: every IFGM trace in the built-in worlds, hashed (run in the copy).
+_HASH_TRACES = """
+import hashlib
+from ifgm_ref.planners import make_planner
+from ifgm_ref.scenarios import BUILTIN_WORLDS, resolve_world
+from ifgm_ref.simulator import simulate
+total = hashlib.sha256()
+for name in sorted(BUILTIN_WORLDS):
+    total.update(simulate(resolve_world(name), make_planner("ifgm")).trace_csv().encode())
+print(total.hexdigest())
+"""
+
+
+def _run(command: list[str], copy: Path | None, timeout: float) -> tuple[int, float]:
+    """Run ``command`` with the mutant's ``copy`` of the package first on the path (run from
+    the copy: ``python -m`` and ``-c`` put the working folder before ``PYTHONPATH``), or with
+    the original (``None``)."""
+    started = time.perf_counter()
+    try:
+        done = subprocess.run(
+            command, cwd=copy or ROOT, env=_env(copy), capture_output=True, timeout=timeout
+        )
+        code = done.returncode
+    except subprocess.TimeoutExpired:
+        code = -1
+    return code, time.perf_counter() - started
+
+
+def _env(copy: Path | None) -> dict[str, str]:
+    env = dict(os.environ)
+    if copy is not None:
+        env["PYTHONPATH"] = str(copy)
+    return env
+
+
+def trace_hash(copy: Path | None) -> str | None:
+    """The built-in worlds' IFGM traces, hashed; ``None`` if the package does not run."""
+    try:
+        done = subprocess.run(
+            [sys.executable, "-c", _HASH_TRACES], cwd=copy or ROOT, env=_env(copy),
+            capture_output=True, timeout=600,
+        )  # fmt: skip
+    except subprocess.TimeoutExpired:  # a mutant that loops for ever does not run either
+        return None
+    return done.stdout.decode().strip() if done.returncode == 0 else None
+
+
+def _serve(copy: Path) -> str:
+    path = shlex.quote(str(copy))
+    return f"env -C {path} PYTHONPATH={path} {sys.executable} -m ifgm_ref serve --planner ifgm"
+
+
+def _oracle(copy: Path, *extra: str) -> list[str]:
+    return [sys.executable, "-m", "ifgm_ref", "oracle", "--cmd", _serve(copy), "--jobs", "2",
+            "--stop-on-failure", "--artifacts", str(copy / "oracle-failures"), *extra]  # fmt: skip
+
+
+#: The levels, in the order they run.
+LEVELS = ("paper", "reference", "tests")
+
+
+@dataclass
+class Outcome:
+    """One mutant's trace filter ("changed", "same" or "broken"), and per level its verdict
+    ("killed", "survived", or "error": the command could not judge, exit status 2 and up)
+    and seconds."""
+
+    site: Site
+    trace: str
+    verdicts: dict[str, str] = field(default_factory=dict)
+    seconds: dict[str, float] = field(default_factory=dict)
+
+
+def judge(site: Site, original: str, levels: list[str], tests: str) -> Outcome:
+    """Build ``site``'s mutant in a copy of the package and run every level on it."""
+    started = time.perf_counter()
+    with tempfile.TemporaryDirectory(prefix="mutant-") as folder:
+        copy = Path(folder)
+        shutil.copytree(PACKAGE, copy / "ifgm_ref", ignore=shutil.ignore_patterns("__pycache__"))
+        (copy / "ifgm_ref" / site.file).write_text(mutated_source(site))
+        found = trace_hash(copy)
+        if found is None:
+            return Outcome(site, "broken", seconds={"trace": time.perf_counter() - started})
+        outcome = Outcome(site, "same" if found == original else "changed")
+        outcome.seconds["trace"] = time.perf_counter() - started
+        if outcome.trace != "changed":
+            return outcome
+        commands = {
+            "paper": (_oracle(copy), None),
+            "reference": (_oracle(copy, "--level", "reference", "--check",
+                                  "agrees_with_reference"), None),
+            # the project's ini puts its root first on the path: the copy goes before it
+            "tests": ([sys.executable, "-m", "pytest", "-x", "-q", "-n", "0", "-p",
+                       "no:cacheprovider", "-o", f"pythonpath={copy} {ROOT}",
+                       *(str(ROOT / t) for t in tests.split())], copy),
+        }  # fmt: skip
+        for level in (level for level in LEVELS if level in levels):
+            command, path = commands[level]
+            code, outcome.seconds[level] = _run(command, path, 1800)
+            outcome.verdicts[level] = {0: "survived", 1: "killed"}.get(code, "error")
+    return outcome
+
+
+# ---- the run --------------------------------------------------------------------------------
+
+
+def main() -> None:
+    """Draw the mutants, judge each, write the table and print the kill rates."""
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--count", type=int, default=100, help="mutants to draw (0: all)")
+    parser.add_argument("--seed", type=int, default=0, help="the draw's seed (default 0)")
+    parser.add_argument("--files", default=",".join(FILES), help="files under ifgm_ref/")
+    parser.add_argument("--levels", default="paper,reference,tests", help="levels to run")
+    parser.add_argument("--tests", default=TESTS, help="the test files of the tests level")
+    parser.add_argument("--out", type=Path, default=Path("mutation-results"), help="folder")
+    parser.add_argument("--list", action="store_true", help="list the sites and stop")
+    args = parser.parse_args()
+    every = [site for file in args.files.split(",") for site in sites(file)]
+    if args.list:
+        for site in every:
+            print(json.dumps(asdict(site)))
+        return
+    drawn = every if args.count == 0 else random.Random(args.seed).sample(every, args.count)
+    print(f"{len(every)} sites in {args.files}; judging {len(drawn)} (seed {args.seed})")
+    original = trace_hash(None)
+    if original is None:
+        raise SystemExit("the unmutated package does not run")
+    args.out.mkdir(parents=True, exist_ok=True)
+    outcomes = []
+    for k, site in enumerate(drawn, 1):
+        outcome = judge(site, original, args.levels.split(","), args.tests)
+        outcomes.append(outcome)
+        print(f"[{k}/{len(drawn)}] {_row(outcome)}", flush=True)
+        _write(args.out / "mutants.csv", outcomes)
+    print(_summary(outcomes))
+
+
+def _row(outcome: Outcome) -> str:
+    site = outcome.site
+    verdicts = "; ".join(
+        f"{level} {outcome.verdicts[level]} ({outcome.seconds[level]:.0f} s)"
+        for level in LEVELS
+        if level in outcome.verdicts
+    )
+    return (
+        f"{site.file}:{site.line}:{site.column} {site.change}: trace {outcome.trace} "
+        f"({outcome.seconds['trace']:.0f} s){'; ' + verdicts if verdicts else ''}"
+    )
+
+
+def _write(path: Path, outcomes: list[Outcome]) -> None:
+    with path.open("w", newline="") as out:
+        writer = csv.writer(out)
+        per_level = [f"{level}{suffix}" for level in LEVELS for suffix in ("", "_s")]
+        writer.writerow(
+            ["file", "line", "column", "operator", "change", "trace", "trace_s", *per_level]
+        )
+        for o in outcomes:
+            s = o.site
+            levels = [item for level in LEVELS for item in
+                      (o.verdicts.get(level, ""), f"{o.seconds.get(level, 0.0):.1f}")]  # fmt: skip
+            writer.writerow([s.file, s.line, s.column, s.operator, s.change, o.trace,
+                             f"{o.seconds['trace']:.1f}", *levels])  # fmt: skip
+
+
+def _summary(outcomes: list[Outcome]) -> str:
+    changed = [o for o in outcomes if o.trace == "changed"]
+    lines = [
+        f"{len(outcomes)} mutants: {len(changed)} change a trace in the built-in worlds, "
+        f"{sum(o.trace == 'same' for o in outcomes)} change none, "
+        f"{sum(o.trace == 'broken' for o in outcomes)} do not run"
+    ]
+    for level in LEVELS:
+        judged = [o.verdicts[level] for o in changed if level in o.verdicts]
+        if judged:
+            killed, errors = judged.count("killed"), judged.count("error")
+            seconds = statistics.median(o.seconds[level] for o in changed if level in o.seconds)
+            share = 100.0 * killed / len(judged)
+            lines.append(
+                f"  {level}: killed {killed} of {len(judged)} ({share:.0f} %), {errors} could "
+                f"not judge; median {seconds:.0f} s a mutant"
+            )
+    return "\n".join(lines)
+
+
+if __name__ == "__main__":
+    main()
