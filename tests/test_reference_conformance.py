@@ -125,3 +125,14 @@ def test_it_applies_only_to_what_follows_the_reference_ifgm() -> None:
         "iba", checks=["agrees_with_reference"], artifacts=None, level="reference"
     )
     assert report.results[0].message.startswith("it does not claim to follow")
+
+
+def test_every_decision_is_measured_somewhere_and_never_negative() -> None:
+    """The margins of the reference's episodes in :data:`WORLDS`: each name is one of
+    :data:`DECISIONS`, each value >= 0, and every decision is measured at some step."""
+    seen: set[str] = set()
+    for name in WORLDS:
+        for found in episode(name).margins:
+            assert set(found) <= set(DECISIONS) and min(found.values()) >= 0.0, found
+            seen.update(found)
+    assert seen == set(DECISIONS)

@@ -11,7 +11,7 @@ The checks themselves are registered in :data:`ifgm_ref.oracle.checks.CHECKS`.
 from __future__ import annotations
 
 from collections import Counter
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from enum import StrEnum
 from typing import Any
@@ -104,7 +104,8 @@ class Check:
     Under noise, ``sample`` (if any) makes the check statistical: it builds one example from
     seeded draws (a world generator of :mod:`ifgm_ref.worldgen.classes`). ``level`` says
     which level of conformance it belongs to; a run checks the paper's level unless asked
-    for the reference's too.
+    for the reference's too. ``explicit`` gives examples run every time, before the drawn
+    ones (noise-free runs only).
     """
 
     name: str
@@ -115,3 +116,4 @@ class Check:
     applies: Callable[[Implementation], str | None]
     sample: Callable[[Draw], Any] | None = None
     level: Level = Level.PAPER
+    explicit: Callable[[], Sequence[Any]] | None = None

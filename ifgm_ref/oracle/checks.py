@@ -544,10 +544,11 @@ CHECKS: dict[str, Check] = {
             "agrees_with_reference",
             "replayed the reference IFGM's observations, it answers each step as the reference",
             Kind.SIMULATION,
-            lambda impl: st.one_of(any_solvable_worlds(), builtin_worlds()),
+            lambda impl: any_solvable_worlds(),
             _agrees_test,
             _follows_ifgm,
             level=Level.REFERENCE,
+            explicit=builtin_worlds,
         ),
         *equation_checks(),
     ]

@@ -41,6 +41,7 @@ __all__ = [
     "Comparison",
     "ReferenceEpisode",
     "compare",
+    "divergence_message",
     "reference_episode",
 ]
 

@@ -26,7 +26,7 @@ from pathlib import Path
 from types import TracebackType
 from typing import Any
 
-from hypothesis import given, seed
+from hypothesis import example, given, seed
 from hypothesis.errors import Flaky
 
 from ifgm_ref.errors import ImplementationError
@@ -252,6 +252,9 @@ def _explorer(
         if progress is not None:
             progress(1)
 
+    if levels is None and check.explicit is not None:
+        for given_first in reversed(check.explicit()):
+            prop = example(given_first)(prop)
     return prop if profile.seed is None else seed(profile.seed)(prop)
 
 
