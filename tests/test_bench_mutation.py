@@ -62,3 +62,15 @@ def test_docstrings_and_annotations_are_left_alone(bench: ModuleType) -> None:
     for site in bench.sites("flowchart.py"):
         node = nodes[site.node]
         assert not (isinstance(node, ast.Constant) and isinstance(node.value, str))
+
+
+def test_the_trace_filter_tells_rounding_from_change(bench: ModuleType) -> None:
+    """Mutant #8 of seed 0 (``k == 0`` to ``k == 1`` in the clearance filter) wraps every
+    heading once more: the traces differ in the 17th digit, which is rounding, not a change."""
+    row = "15.3,20.2,0.018,0.157,-0.00045419758861878033,1.3,move_to_goal,path_regenerated"
+    wrapped = row.replace("78033", "75437")
+    assert bench.trace_change([row], [row]) == "same"
+    assert bench.trace_change([row], [wrapped]) == "rounding"
+    assert bench.trace_change([row], [row.replace("path_regenerated", "follow_edge")]) == "changed"
+    assert bench.trace_change([row], [row.replace("20.2", "20.3")]) == "changed"
+    assert bench.trace_change([row], [row, row]) == "changed"
