@@ -116,13 +116,8 @@ class IFGMPlanner:
         Bug1's round (errata row 34; a handle too).
     ifgm : IFGMParams
         The thresholds and weights of this episode.
-    last_atoms : Atoms or None
-        The flowchart atoms computed at the last step, before it acted on them.
     last_branch : Branch or None
         The branch :func:`~ifgm_ref.flowchart.decide` chose for ``last_atoms``.
-    last_gap : Gap or None
-        The gap chosen at the last step: the maximum gap, or the one steered through at the
-        step before while it stays wider than ``d_th`` (errata row 19).
     last_seen : (Percepts, IFGMState, Reading) or None
         The last step's percepts, the state they were read in, and what
         :func:`~ifgm_ref.planners.ifgm_atoms.read` made of them
@@ -135,13 +130,22 @@ class IFGMPlanner:
 
     def __init__(self) -> None:
         self.circuit = Circuit()
-        self.last_atoms: Atoms | None = None
         self.last_branch: Branch | None = None
-        self.last_gap: Gap | None = None
         self.last_seen: tuple[Percepts, IFGMState, Reading] | None = None
         self.reset(Pose(0.0, 0.0, 0.0), Point(0.0, 0.0), EpisodeParams())  # until reset
 
     # -- read-only views for observers ------------------------------------------------------
+    @property
+    def last_atoms(self) -> Atoms | None:
+        """The flowchart atoms computed at the last step, before it acted on them."""
+        return None if self.last_seen is None else self.last_seen[2].atoms
+
+    @property
+    def last_gap(self) -> Gap | None:
+        """The gap chosen at the last step: the maximum gap, or the one steered through at the
+        step before while it stays wider than ``d_th`` (errata row 19)."""
+        return None if self.last_seen is None else self.last_seen[2].gap
+
     @property
     def goal(self) -> Point:
         """The destination."""
@@ -217,8 +221,6 @@ class IFGMPlanner:
         self.goal_tolerance = params.goal_tolerance + params.robot.speed * params.dt
         self.state = IFGMState()
         self.last_branch = None
-        self.last_atoms = None
-        self.last_gap = None
         self.last_seen = None
 
     def step(self, observation: Observation) -> Command:
@@ -240,10 +242,7 @@ class IFGMPlanner:
         if (reading.gap_mid, reading.short_look) != (state.gap_mid, state.short_look):
             state = replace(state, gap_mid=reading.gap_mid, short_look=reading.short_look)
         state, command = self.transition(state, percepts, reading, branch)
-        self.state, self.last_atoms, self.last_gap, self.last_branch = (
-            state, reading.atoms, reading.gap, branch
-        )  # fmt: skip
-        self.last_seen = (percepts, read_in, reading)
+        self.state, self.last_branch, self.last_seen = state, branch, (percepts, read_in, reading)
         return command, percepts
 
     def goal_bearing(self, pose: Pose) -> float:
