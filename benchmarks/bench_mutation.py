@@ -3,7 +3,7 @@ level of conformance catch?
 
 Run from the project root::
 
-    python benchmarks/bench_mutation.py --count 100 --seed 0 [--jobs 2] [--out mutation-results]
+    python benchmarks/bench_mutation.py --count 100 --seed 0 [--out mutation-results]
 
 Each mutant is one change at one site of the decision code (``--files``, default IFGM's
 planner, its atoms, IBA, the edge follower, the sight, the flowchart and the percepts): a
@@ -18,7 +18,8 @@ simulator and the reference it compares with stay the original. For each it repo
 * ``trace``: whether any IFGM trace in the built-in worlds changed (a mutant that changes
   none, or changes only the last digits, "rounding", is probably equivalent there, and is not
   counted in the kill rates);
-* ``paper``: killed by the paper's properties (``ifgm-ref oracle``, quick profile);
+* ``paper``: killed by the paper's properties (``ifgm-ref oracle``, quick profile, the
+  first failure unshrunk: ``--stop-on-failure --no-shrink``);
 * ``reference``: killed by reference conformance (``--check agrees_with_reference``);
 * ``tests``: killed by the project's tests of the decision code (``--tests``);
 
@@ -249,7 +250,8 @@ def _serve(copy: Path) -> str:
 
 def _oracle(copy: Path, *extra: str) -> list[str]:
     return [sys.executable, "-m", "ifgm_ref", "oracle", "--cmd", _serve(copy), "--jobs", "2",
-            "--stop-on-failure", "--artifacts", str(copy / "oracle-failures"), *extra]  # fmt: skip
+            "--stop-on-failure", "--no-shrink", "--artifacts", str(copy / "oracle-failures"),
+            *extra]  # fmt: skip
 
 
 #: The levels, in the order they run.

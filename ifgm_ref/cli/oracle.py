@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import os
 import sys
+from dataclasses import replace
 from typing import TYPE_CHECKING, TextIO
 
 from ifgm_ref.cache import user_cache
@@ -55,6 +56,15 @@ def add_oracle(sub: Subcommands) -> None:
         "(agrees_with_reference; docs/oracle.md, 'Two levels of conformance')",
     )
     oracle.add_argument(
+        "--reading",
+        action="append",
+        metavar="NAME=VALUE",
+        help="the implementation's reading of one of the paper's open choices, where it is not "
+        "ours (repeatable; dead_end_side, gap_points, gap_choice, leaving_rule: docs/oracle.md, "
+        "'Readings as options'): agrees_with_reference compares it with the reference running "
+        "the same reading",
+    )
+    oracle.add_argument(
         "--equations",
         metavar="MODULE",
         help="check the eqs. (1)-(4) of this module (or module:attribute), which exposes "
@@ -92,6 +102,12 @@ def _add_run_options(oracle: argparse.ArgumentParser) -> None:
         "--stop-on-failure", action="store_true", help="stop at the first failing check"
     )
     oracle.add_argument(
+        "--no-shrink",
+        action="store_true",
+        help="report a failing example as found, without shrinking it to the simplest world "
+        "that still fails (faster where only the verdict matters: benchmarks/bench_mutation.py)",
+    )
+    oracle.add_argument(
         "--jobs",
         type=int,
         default=os.cpu_count() or 1,
@@ -106,8 +122,9 @@ def run_oracle(args: argparse.Namespace) -> int:
     """Run the checks; print the report; return 0 when every check passed (or as expected)."""
     from ifgm_ref.oracle.equation_checks import load_equations
     from ifgm_ref.oracle.implementation import Implementation
-    from ifgm_ref.oracle.profiles import PROFILE_ALIASES
+    from ifgm_ref.oracle.profiles import PROFILE_ALIASES, profile_named
     from ifgm_ref.oracle.runner import check_planner
+    from ifgm_ref.planners.ifgm_readings import parse_readings
 
     keep_hypothesis_out_of_the_working_folder()
 
@@ -132,10 +149,13 @@ def run_oracle(args: argparse.Namespace) -> int:
         impl.answers_reset()  # a program that cannot start is bad input, not 11 errors
     else:
         impl = Implementation.from_spec(args.planner, promises=args.promises, equations=equations)
+    if args.reading:
+        impl.declare_readings(parse_readings(args.reading))
     try:
+        profile = profile_named(args.profile)
         report = check_planner(
             impl,
-            profile=args.profile,
+            profile=replace(profile, shrink=False) if args.no_shrink else profile,
             checks=args.check,
             expected_failed_checks=expected,
             artifacts=args.artifacts,

@@ -6,8 +6,13 @@ import argparse
 import sys
 from typing import TYPE_CHECKING
 
+from ifgm_ref.errors import ParameterError
+
 if TYPE_CHECKING:
+    from collections.abc import Callable
+
     from ifgm_ref.cli.common import Subcommands
+    from ifgm_ref.protocol import Planner
 
 
 def add_serve(sub: Subcommands) -> None:
@@ -33,6 +38,13 @@ def add_serve(sub: Subcommands) -> None:
         help="answer velocity commands (linear, angular: ROS's Twist) instead of heading and "
         "speed, for the same robot motion",
     )
+    serve.add_argument(
+        "--reading",
+        action="append",
+        metavar="NAME=VALUE",
+        help="with --planner ifgm: run this reading of one of the paper's open choices "
+        "instead of ours (repeatable; docs/oracle.md, 'Readings as options')",
+    )
     serve.set_defaults(func=run_serve)
 
 
@@ -41,7 +53,7 @@ def run_serve(args: argparse.Namespace) -> int:
     from ifgm_ref.transport.loading import load_planner_factory
     from ifgm_ref.transport.serve import serve
 
-    factory = load_planner_factory(args.planner)
+    factory = _readings_factory(args) if args.reading else load_planner_factory(args.planner)
     if args.twist:
         from ifgm_ref.velocity import VelocityPlanner
 
@@ -50,3 +62,14 @@ def run_serve(args: argparse.Namespace) -> int:
 
         return serve(twist_factory, sys.stdin, sys.stdout, sys.stderr)
     return serve(factory, sys.stdin, sys.stdout, sys.stderr)
+
+
+def _readings_factory(args: argparse.Namespace) -> Callable[[], Planner]:
+    """The reference IFGM running the readings ``--reading`` names."""
+    from ifgm_ref.planners.ifgm import IFGMPlanner
+    from ifgm_ref.planners.ifgm_readings import Readings, parse_readings
+
+    if args.planner != "ifgm":
+        raise ParameterError(f"--reading runs with --planner ifgm only, not {args.planner!r}")
+    readings = Readings.declared(parse_readings(args.reading))
+    return lambda: IFGMPlanner(readings)

@@ -107,6 +107,7 @@ from ifgm_ref.oracle.strategies import (
 )
 from ifgm_ref.paper import traces
 from ifgm_ref.params import SimParams
+from ifgm_ref.planners.ifgm_readings import Readings, unrunnable
 from ifgm_ref.planners.tuning import ParamInfo
 from ifgm_ref.protocol import Command, Planner
 from ifgm_ref.recording import RecordingPlanner, replay
@@ -413,7 +414,7 @@ def _agrees_test(impl: Implementation, world: World, rec: Recorder) -> None:
     if currently_in_test_context():
         note(f"world: {world}")
     sim = SimParams(max_time=time_bound(world))
-    reference = reference_episode(world, sim)
+    reference = reference_episode(world, sim, Readings.declared(impl.promises.readings))
     rec.evidence = Evidence([world], [reference.run], sim.max_time)
     where = _where(impl, world)
     found = compare(impl, reference, where)
@@ -471,7 +472,7 @@ def _gaps_apply(impl: Implementation) -> str | None:
 def _follows_ifgm(impl: Implementation) -> str | None:
     if impl.promises.reference != "ifgm":
         return "it does not claim to follow the reference IFGM's readings step by step"
-    return None
+    return unrunnable(impl.promises.readings)
 
 
 def _always(impl: Implementation) -> str | None:

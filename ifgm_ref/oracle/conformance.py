@@ -28,6 +28,7 @@ from ifgm_ref.oracle.invariance import AnswerError, answer_errors
 from ifgm_ref.params import SimParams
 from ifgm_ref.planners.ifgm import IFGMPlanner
 from ifgm_ref.planners.ifgm_margins import margins
+from ifgm_ref.planners.ifgm_readings import Readings
 from ifgm_ref.protocol import Command, EpisodeParams, Observation
 from ifgm_ref.recording import Recording, RecordingPlanner
 from ifgm_ref.simulator import Run, simulate
@@ -76,8 +77,8 @@ class ReferenceEpisode:
 class _MarginRecorder(RecordingPlanner):
     """The reference IFGM, recorded, with the margins of each step's decisions."""
 
-    def __init__(self) -> None:
-        self.ifgm = IFGMPlanner()
+    def __init__(self, readings: Readings) -> None:
+        self.ifgm = IFGMPlanner(readings)
         super().__init__(self.ifgm)
         self.margins: list[Mapping[str, float]] = []
         self.atoms: list[Atoms] = []
@@ -85,14 +86,18 @@ class _MarginRecorder(RecordingPlanner):
     def step(self, observation: Observation) -> Command:
         command = super().step(observation)
         seen = present(self.ifgm.last_seen, "the step IFGM has just taken")
-        self.margins.append(margins(*seen, present(self.ifgm.last_branch, "its branch")))
+        branch = present(self.ifgm.last_branch, "its branch")
+        self.margins.append(margins(*seen, branch, apart=HEADING_TOL))
         self.atoms.append(seen[2].atoms)
         return command
 
 
-def reference_episode(world: World, sim: SimParams) -> ReferenceEpisode:
-    """Run the reference IFGM in ``world`` under ``sim``, recording it and its margins."""
-    recorder = _MarginRecorder()
+def reference_episode(
+    world: World, sim: SimParams, readings: Readings | None = None
+) -> ReferenceEpisode:
+    """Run the reference IFGM in ``world`` under ``sim`` with ``readings`` of the paper's open
+    choices (``None``: ours), recording it and its margins."""
+    recorder = _MarginRecorder(Readings() if readings is None else readings)
     run = simulate(world, recorder, sim)
     return ReferenceEpisode(
         recorder.recording(), tuple(recorder.margins), tuple(recorder.atoms), run

@@ -12,11 +12,12 @@ promises (``promises="ifgm"`` by default), the noise levels it tolerates include
 from __future__ import annotations
 
 import shlex
-from collections.abc import Callable, Sequence
-from dataclasses import dataclass, field
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass, field, replace
 
-from ifgm_ref.errors import ImplementationError
+from ifgm_ref.errors import ImplementationError, ParameterError
 from ifgm_ref.noise import NoiseLevels
+from ifgm_ref.planners.ifgm_readings import known_names
 from ifgm_ref.pose import Point, Pose
 from ifgm_ref.protocol import EpisodeParams, Planner
 from ifgm_ref.transport.external import TIMEOUT
@@ -64,6 +65,11 @@ class Promises:
         The reference planner whose readings it follows step by step: ``"ifgm"`` (the only
         one with the margins that tell a tie from a fault) makes the reference level's
         ``agrees_with_reference`` check apply (:mod:`ifgm_ref.oracle.conformance`).
+    readings : mapping of str to str, default {}
+        The readings it takes of the paper's open choices, where they are not ours
+        (:data:`~ifgm_ref.planners.ifgm_readings.OPEN_READINGS`: ``{"dead_end_side":
+        "left"}``, say): the reference runs the same readings to compare with it, or the
+        check says it cannot.
     """
 
     converges_in: frozenset[str] = ALL_CLASSES
@@ -73,8 +79,13 @@ class Promises:
     scale_invariant: bool = True
     noise: NoiseLevels | None = None
     reference: str | None = None
+    readings: Mapping[str, str] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
+        try:
+            known_names(self.readings)
+        except ParameterError as err:
+            raise ImplementationError(f"readings: {err}") from None
         unknown = set(self.converges_in) - ALL_CLASSES
         if unknown:
             raise ImplementationError(
@@ -154,6 +165,11 @@ class Implementation:
         if isinstance(promises, str):
             promises = promises_of(promises)
         return cls(factory, spec, promises, equations)
+
+    def declare_readings(self, readings: Mapping[str, str]) -> None:
+        """Declare the readings it takes of the paper's open choices (``--reading``,
+        :attr:`Promises.readings`), beside what it promises otherwise."""
+        self.promises = replace(self.promises, readings=dict(readings))
 
     @property
     def is_program(self) -> bool:

@@ -36,6 +36,7 @@ from ifgm_ref.oracle.profiles import (
     with_noise,
 )
 from ifgm_ref.oracle.runner import CheckResult, run_check, tally
+from ifgm_ref.planners.ifgm_readings import parse_readings
 from ifgm_ref.transport.external import STARTUP_TIMEOUT, TIMEOUT
 
 #: The test module whose items need an implementation.
@@ -79,6 +80,13 @@ def pytest_addoption(parser: pytest.Parser) -> None:
         "--ifgm-promises",
         metavar="PLANNER",
         help="check what this built-in planner promises (default: the built-in's own, or ifgm)",
+    )
+    group.addoption(
+        "--ifgm-reading",
+        action="append",
+        metavar="NAME=VALUE",
+        help="the implementation's reading of one of the paper's open choices, where it is not "
+        "ours (repeatable; as ifgm-ref oracle --reading)",
     )
     group.addoption(
         "--ifgm-equations",
@@ -176,14 +184,17 @@ def _implementation(config: pytest.Config) -> Implementation:
         if config.getoption("ifgm_equations"):
             equations = load_equations(config.getoption("ifgm_equations"))
         if spec is not None:
-            return Implementation.from_spec(spec, promises=promises, equations=equations)
-        return Implementation.from_command(
-            cmd,
-            timeout=config.getoption("ifgm_timeout"),
-            startup_timeout=config.getoption("ifgm_startup_timeout"),
-            promises=promises,
-            equations=equations,
-        )
+            impl = Implementation.from_spec(spec, promises=promises, equations=equations)
+        else:
+            impl = Implementation.from_command(
+                cmd,
+                timeout=config.getoption("ifgm_timeout"),
+                startup_timeout=config.getoption("ifgm_startup_timeout"),
+                promises=promises,
+                equations=equations,
+            )
+        impl.declare_readings(parse_readings(config.getoption("ifgm_reading") or []))
+        return impl
     except IfgmRefError as err:
         raise pytest.UsageError(f"ifgm-ref oracle: cannot load the implementation: {err}") from err
 

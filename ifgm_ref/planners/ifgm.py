@@ -66,6 +66,7 @@ from ifgm_ref.planners.ifgm_atoms import (
     Reading,
     read,
 )
+from ifgm_ref.planners.ifgm_readings import DeadEndSide, LeavingRule, Readings
 from ifgm_ref.planners.sight import Body, BoundaryParams, Sight, goal_bearing
 from ifgm_ref.planners.tuning import Tuning, check_names, parameter_names
 from ifgm_ref.pose import Point, Pose, distance, wrap_angle
@@ -105,6 +106,12 @@ class IFGMPlanner:
     What it holds is public for observers (traces, ``tests/test_flowchart_properties.py``):
     to be read, not written.
 
+    Parameters
+    ----------
+    readings : Readings or None
+        The readings of the paper's open choices to run (:mod:`ifgm_ref.planners.ifgm_readings`);
+        ``None``: ours, as the errata table records them.
+
     Attributes
     ----------
     state : IFGMState
@@ -128,7 +135,8 @@ class IFGMPlanner:
     tunings: ClassVar[tuple[type[Tuning], ...]] = (IFGMParams, BoundaryParams, DistBugParams)
     parameters: ClassVar[tuple[str, ...]] = parameter_names(tunings)
 
-    def __init__(self) -> None:
+    def __init__(self, readings: Readings | None = None) -> None:
+        self.readings = Readings() if readings is None else readings
         self.circuit = Circuit()
         self.last_branch: Branch | None = None
         self.last_seen: tuple[Percepts, IFGMState, Reading] | None = None
@@ -270,8 +278,9 @@ class IFGMPlanner:
             followed = self._track(sight, state.followed)
             state = replace(state, followed=followed, d_min=min(state.d_min, sight.goal_distance))
             state, may_leave = self.may_leave(state, sight)
+        gaps = gaps_between(clusters, reading=self.readings.gap_points)
         percepts = Percepts(
-            sight, view, clusters, gaps_between(clusters), may_leave, self.ifgm, self.goal_tolerance
+            sight, view, clusters, gaps, may_leave, self.ifgm, self.goal_tolerance, self.readings
         )
         return state, percepts
 
@@ -305,7 +314,9 @@ class IFGMPlanner:
                 other = FollowSide.LEFT if state.side is FollowSide.RIGHT else FollowSide.RIGHT
                 state = replace(state, turn_other_way=other)
             return state, False
-        by_progress = not state.escaped
+        by_progress = (
+            not state.escaped and self.readings.leaving_rule is LeavingRule.FREE_PATH_OR_PROGRESS
+        )
         return state, leaves(sight, state.d_min, self.step_length, by_progress=by_progress)
 
     # -- the planner ------------------------------------------------------------------------
@@ -428,9 +439,8 @@ class IFGMPlanner:
         sight = percepts.sight
         pose = sight.pose
         turn = state.turn
-        if turn is None:  # entering the dead end: turn towards the freer beam
-            side = freer_side(percepts.view, pose, sight.bearing)
-            turn = DeadEndTurn(pose.theta, 1 if side is FollowSide.RIGHT else -1, 1)
+        if turn is None:  # entering the dead end: turn towards the freer beam (errata row 17)
+            turn = DeadEndTurn(pose.theta, self._dead_end_sign(percepts), 1)
             state = replace(state, mode=Mode.DEAD_END_TURN, turn=turn)
         target = wrap_angle(turn.start + turn.sign * turn.steps * DEAD_END_STEP)
         turning = turn.escape_from is None
@@ -465,6 +475,16 @@ class IFGMPlanner:
             rel = wrap_angle(math.atan2(followed.y - pose.y, followed.x - pose.x) - pose.theta)
             state = replace(state, side=FollowSide.LEFT if rel > 0.0 else FollowSide.RIGHT)
         return self._follow(state, sight, Branch.DEAD_END_HANDOVER)
+
+    def _dead_end_sign(self, percepts: Percepts) -> int:
+        """The way the dead end turns, +1 counter-clockwise: :attr:`Readings.dead_end_side`,
+        by default towards the freer side beam (keeping the wall on the right, turning left)."""
+        way = self.readings.dead_end_side
+        if way is DeadEndSide.FREER:
+            sight = percepts.sight
+            keep = freer_side(percepts.view, sight.pose, sight.bearing)
+            return 1 if keep is FollowSide.RIGHT else -1
+        return 1 if way is DeadEndSide.LEFT else -1
 
     def side_walls(self, view: LaserScan) -> tuple[bool, bool]:
         """Whether the left and the right beam of the view have a return within ``d_look``.

@@ -26,6 +26,7 @@ from ifgm_ref.paper import traces
 from ifgm_ref.percepts.clusters import Cluster, Gap, Side
 from ifgm_ref.percepts.points import point_to_world, to_world
 from ifgm_ref.planners.edge_following import FollowSide
+from ifgm_ref.planners.ifgm_readings import GapChoice, Readings
 from ifgm_ref.planners.sight import Sight
 from ifgm_ref.planners.tuning import Tuning, derived
 from ifgm_ref.pose import Point, Pose, distance
@@ -181,6 +182,8 @@ class Percepts:
         The thresholds.
     goal_tolerance : float
         The goal counts as reached within this distance.
+    readings : Readings
+        The readings of the paper's open choices this planner runs.
     """
 
     sight: Sight
@@ -190,6 +193,7 @@ class Percepts:
     may_leave: bool
     params: IFGMParams
     goal_tolerance: float
+    readings: Readings
 
 
 @dataclass(frozen=True)
@@ -205,17 +209,21 @@ class Reading:
 
 
 def chosen_gap(
-    pose: Pose, gaps: tuple[Gap, ...], previous: Point | None, params: IFGMParams
+    pose: Pose,
+    gaps: tuple[Gap, ...],
+    previous: Point | None,
+    params: IFGMParams,
+    choice: GapChoice = GapChoice.KEEP,
 ) -> tuple[Gap | None, Point | None]:
-    """The maximum gap (section 4) -- but the gap steered through at the last step (middle
-    ``previous``) while it stays wider than ``d_th``, so that two near-equal gaps (symmetric
-    obstacles, Figure 7) do not make the robot swerve from one to the other at every step
-    (errata row 19). Returns the gap and its middle in the world frame (``None`` unless it
-    is wider than ``d_th``)."""
+    """The maximum gap (section 4) -- but, with ``GapChoice.KEEP`` (ours), the gap steered
+    through at the last step (middle ``previous``) while it stays wider than ``d_th``, so
+    that two near-equal gaps (symmetric obstacles, Figure 7) do not make the robot swerve
+    from one to the other at every step (errata row 19). Returns the gap and its middle in
+    the world frame (``None`` unless it is wider than ``d_th``)."""
     if not gaps:
         return None, None
     chosen = max(gaps, key=lambda g: g.width)
-    if previous is not None:
+    if previous is not None and choice is GapChoice.KEEP:
         for gap in gaps:
             mid = point_to_world(eq1_gap_midpoint(gap.right, gap.left), pose)
             if gap.width > params.d_th and math.dist(mid, previous) <= params.jump:
@@ -255,7 +263,9 @@ def read(percepts: Percepts, state: IFGMState) -> Reading:
     """The flowchart's atoms for ``percepts`` in ``state``, and the percepts behind them."""
     sight, params = percepts.sight, percepts.params
     pose, clusters = sight.pose, percepts.clusters
-    gap, gap_mid = chosen_gap(pose, percepts.gaps, state.gap_mid, params)
+    gap, gap_mid = chosen_gap(
+        pose, percepts.gaps, state.gap_mid, params, percepts.readings.gap_choice
+    )
     nearest = min((c.nearest for c in clusters), default=math.inf)
     sides = {c.side for c in clusters}
     one_sided = bool(clusters) and (sides == {Side.LEFT} or sides == {Side.RIGHT})

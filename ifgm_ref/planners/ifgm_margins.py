@@ -14,12 +14,13 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numpy.typing import NDArray
 
 from ifgm_ref.flowchart import Branch
 from ifgm_ref.laserscan import Beam
 from ifgm_ref.planners.iba import beam_openness
 from ifgm_ref.planners.ifgm_atoms import IFGMState, Percepts, Reading
+from ifgm_ref.planners.ifgm_readings import DeadEndSide, GapChoice
+from ifgm_ref.planners.sight import Sight
 from ifgm_ref.pose import distance, wrap_angle
 
 __all__ = ["DECISIONS", "margins"]
@@ -36,12 +37,12 @@ DECISIONS: dict[str, str] = {
     "side": "an obstacle's end ray against the heading (its side)",
     "side_beams": "the left beam's openness against the right's (the freer side)",
     "preempt": "an obstacle's nearest return against the followed one less the margin",
-    "nearest_point": "the nearest remembered point against the next nearest",
+    "nearest_point": "the nearest remembered point against the next nearest seen elsewhere",
 }
 
 
 def margins(
-    percepts: Percepts, state: IFGMState, reading: Reading, branch: Branch
+    percepts: Percepts, state: IFGMState, reading: Reading, branch: Branch, *, apart: float
 ) -> dict[str, float]:
     """The margin of every decision of :data:`DECISIONS` that a step consults on its way to
     ``branch``, given its ``percepts``, the ``state`` they were read in and the ``reading``
@@ -50,7 +51,11 @@ def margins(
     Figure 3 consults the goal and the corridor at every step; the gap, the nearest obstacle
     and the dead end only on meeting an obstacle; the freer side only where IBA takes over
     or Case-3 pre-empts (where the beams are equal, the goal's side decides: its bearing is
-    the margin); the followed edge's point and the pre-emption only while following.
+    the margin); the followed edge's point and the pre-emption only while following. Of the
+    remembered points, only those seen more than ``apart`` rad from the nearest one are
+    another choice of point to follow: a wall is remembered as a cloud of points a hair
+    apart, and following one of them rather than its neighbour turns the robot by less than
+    their angle apart (the oracle's heading tolerance is the ``apart`` that matters).
 
     >>> from ifgm_ref.planners.ifgm import IFGMPlanner
     >>> from ifgm_ref.scenarios import resolve_world
@@ -58,7 +63,7 @@ def margins(
     >>> from ifgm_ref.params import SimParams
     >>> planner = IFGMPlanner()
     >>> _ = simulate(resolve_world("post"), planner, SimParams(max_time=0.1))
-    >>> found = margins(*planner.last_seen, planner.last_branch)
+    >>> found = margins(*planner.last_seen, planner.last_branch, apart=0.01)
     >>> {name: round(value, 3) for name, value in found.items()}
     {'at_goal': 59.368, 'blocked': inf}
     """
@@ -71,23 +76,34 @@ def margins(
     atoms = reading.atoms
     if atoms.blocked and not atoms.avoiding and not atoms.turning:  # meeting an obstacle
         found.update(_encounter(percepts, reading))
-    if branch in _TAKING_A_SIDE or (branch is Branch.DEAD_END_TURN and state.turn is None):
+    readings = percepts.readings
+    if branch in _TAKING_A_SIDE or (
+        branch is Branch.DEAD_END_TURN
+        and state.turn is None
+        and readings.dead_end_side is DeadEndSide.FREER
+    ):
         found["side_beams"] = _side_margin(percepts)
+    if readings.gap_choice is GapChoice.WIDEST:  # consulted at every step, not only on meeting
+        found.update(_widest_margin(percepts))
     if state.following:
         if state.followed is not None and percepts.clusters:
             reach = distance(sight.pose, state.followed) - params.preempt_margin
             found["preempt"] = min(abs(c.nearest - reach) for c in percepts.clusters) / r
-        found["nearest_point"] = _nearest_point_margin(sight.points, sight.point_distances) / r
+        found["nearest_point"] = _nearest_point_margin(sight, apart) / r
     return found
 
 
-def _nearest_point_margin(points: NDArray[np.float64], d: NDArray[np.float64]) -> float:
-    """How much farther the nearest remembered point elsewhere is than the nearest one (a
-    point remembered twice is no tie: either is the same point)."""
+def _nearest_point_margin(sight: Sight, apart: float) -> float:
+    """How much farther the nearest remembered point seen more than ``apart`` rad from the
+    nearest one is than the nearest (``inf`` if there is none)."""
+    points, d = sight.points, sight.point_distances
     if len(d) < 2:
         return math.inf
     nearest = int(d.argmin())
-    elsewhere = np.hypot(*(points - points[nearest]).T) > 0.0
+    pose = sight.pose
+    bearings = np.arctan2(points[:, 1] - pose.y, points[:, 0] - pose.x)
+    off = np.abs(np.angle(np.exp(1j * (bearings - bearings[nearest]))))
+    elsewhere = off > apart
     return float(d[elsewhere].min() - d[nearest]) if elsewhere.any() else math.inf
 
 
@@ -108,9 +124,7 @@ def _encounter(percepts: Percepts, reading: Reading) -> dict[str, float]:
         found["side"] = min(abs(float(c.angles[i])) for c in clusters for i in (0, -1))
     if reading.gap is not None:
         found["wide"] = abs(reading.gap.width - params.d_th) / r
-    widths = sorted((g.width for g in percepts.gaps), reverse=True)
-    if len(widths) > 1:
-        found["widest_gap"] = (widths[0] - widths[1]) / r
+    found.update(_widest_margin(percepts))
     view = percepts.view
     front = view.ranges[view.beam_mask(Beam.FRONT)]
     if len(front):
@@ -118,6 +132,15 @@ def _encounter(percepts: Percepts, reading: Reading) -> dict[str, float]:
     view_range = percepts.sight.body.tuning.view_range
     found["enclosed"] = _finite_gap(float(view.ranges.max()), view_range) / r
     return found
+
+
+def _widest_margin(percepts: Percepts) -> dict[str, float]:
+    """``widest_gap``: how much wider the widest gap is than the next widest, in radii (no
+    margin with fewer than two gaps)."""
+    widths = sorted((g.width for g in percepts.gaps), reverse=True)
+    if len(widths) < 2:
+        return {}
+    return {"widest_gap": (widths[0] - widths[1]) / percepts.sight.body.radius}
 
 
 def _side_margin(percepts: Percepts) -> float:
