@@ -1,7 +1,7 @@
 """The folder where ifgm-ref keeps what it can make again: the user's cache folder.
 
 ``$XDG_CACHE_HOME/ifgm-ref``, or ``~/.cache/ifgm-ref`` (the XDG base directory convention),
-never the working folder. It holds the unpacked BARN worlds (:mod:`ifgm_ref.bench.barn`) and
+never the working folder. It holds the unpacked BARN worlds (:mod:`ifgm_ref.barn`) and
 the oracle's Hypothesis files (``ifgm-ref oracle``); deleting it loses nothing.
 """
 

@@ -17,7 +17,7 @@ What is read, and how it becomes 2D (the robot moves in the plane ``z = 0``):
 * poses are composed in 2D: x, y and yaw. Roll and pitch are ignored, which is exact for
   upright shapes (what a 2D world holds) and would be wrong for a tilted one;
 * the ``<state>`` block (the world as Gazebo last saved it) repeats model poses; it is *not*
-  read. In all 200 bundled BARN worlds (``ifgm_ref/bench/barn_worlds``) every state pose
+  read. In all 200 bundled BARN worlds (``ifgm_ref/barn_worlds``) every state pose
   equals the model's own ``<pose>`` (checked when this module was written), and a model's
   own pose is what Gazebo spawns it at.
 

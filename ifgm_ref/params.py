@@ -262,7 +262,7 @@ def jackal_lidar() -> SensorParams:
     """The 2D LiDAR of BARN's Clearpath Jackal: 270 degrees in 720 rays, 0.1 to 30 m.
 
     Units are metres. The field of view and ray count are BARN's
-    (``ifgm_ref/bench/barn_worlds/README.md``); the range is that of the Jackal's simulated
+    (``ifgm_ref/barn_worlds/README.md``); the range is that of the Jackal's simulated
     laser (30 m, more than any BARN world needs).
 
     >>> s = jackal_lidar()

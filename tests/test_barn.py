@@ -1,4 +1,4 @@
-"""BARN worlds (ifgm_ref/bench/barn.py): layouts, reference length, score, ``bench --barn``."""
+"""BARN worlds (ifgm_ref/barn.py): layouts, reference length, score, ``bench --barn``."""
 
 from __future__ import annotations
 
@@ -237,3 +237,12 @@ def test_a_gazebo_world_takes_its_start_and_goal_from_options() -> None:
     )  # fmt: skip
     assert result["reached"] is True
     assert "barn_score" in result  # still BARN's world 1, with its path
+
+
+def test_the_benchmark_imports_barn_from_where_it_lives() -> None:
+    """``ifgm_ref.bench.barn`` keeps its import path; its names are ``ifgm_ref.barn``'s."""
+    from ifgm_ref import barn
+    from ifgm_ref.bench import barn as bench_barn
+
+    for name in bench_barn.__all__:
+        assert getattr(bench_barn, name) is getattr(barn, name), name

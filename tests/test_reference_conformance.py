@@ -6,6 +6,8 @@ threshold."""
 from __future__ import annotations
 
 import functools
+import math
+import sys
 
 import pytest
 
@@ -24,7 +26,7 @@ from ifgm_ref.oracle.conformance import (
 from ifgm_ref.oracle.implementation import Implementation
 from ifgm_ref.oracle.mutants import MUTANTS
 from ifgm_ref.oracle.runner import check_planner
-from ifgm_ref.oracle.strategies import SOLVABLE_CLASSES
+from ifgm_ref.oracle.strategies import BARN_SAMPLES, SOLVABLE_CLASSES, reference_worlds
 from ifgm_ref.oracle.variants import VARIANTS
 from ifgm_ref.params import SimParams
 from ifgm_ref.planners.ifgm_margins import DECISIONS
@@ -136,3 +138,23 @@ def test_every_decision_is_measured_somewhere_and_never_negative() -> None:
             assert set(found) <= set(DECISIONS) and min(found.values()) >= 0.0, found
             seen.update(found)
     assert seen == set(DECISIONS)
+
+
+def test_barn_samples_are_replayed_every_time_and_the_reference_agrees_on_them() -> None:
+    """Item 1's BARN samples: BARN's obstacle fields, with the Jackal-sized robot and its
+    270-degree LiDAR, are explicit examples of the check, and the reference (as a program:
+    ``ifgm-ref serve``) agrees with itself on every step of them."""
+    worlds = {world.name: world for world in reference_worlds()}
+    barn = [f"barn-{n:03d}" for n in BARN_SAMPLES]
+    assert set(barn) <= set(worlds) and set(BUILTIN_WORLDS) <= set(worlds)
+    impl = Implementation.from_command(f"{sys.executable} -m ifgm_ref serve --planner ifgm")
+    try:
+        for name in barn:
+            world = worlds[name]
+            assert world.sensor.fov > math.radians(135)
+            reference = reference_episode(world, SimParams(max_time=time_bound(world)))
+            assert reference.run.result.reached, name
+            found = compare(impl, reference, name)
+            assert found.differs is None and found.steps == len(reference.recording.steps)
+    finally:
+        impl.close()

@@ -9,7 +9,7 @@ commands move nothing (open loop), so every step sees exactly what the robot saw
 ``reset`` of the JSON-lines protocol: robot, sensor, ``dt``, start, goal, parameters) and its
 unit: the replay runs in that unit with those parameters, so the reference meets the
 recorded run on the recorded terms. Any other log is replayed in metres with BARN's robot
-(:data:`ifgm_ref.bench.barn.ROBOT`: the Jackal-sized disc) unless options say otherwise,
+(:data:`ifgm_ref.barn.ROBOT`: the Jackal-sized disc) unless options say otherwise,
 ``dt`` the median time between scans (to the microsecond), the sensor read off the first
 scan (its field of view must be centred on the heading), and the goal from an option or
 ``/goal_pose``.
@@ -216,7 +216,7 @@ def setting_of(
     ``params`` replace the recorded ones."""
     if log.episode is not None:
         return _recorded_setting(log, goal, robot, dt, params)
-    from ifgm_ref.bench.barn import ROBOT, SIM
+    from ifgm_ref.barn import ROBOT, SIM
 
     goal = goal or log.goal
     if goal is None:

@@ -9,7 +9,7 @@ is rebuilt from its own seed, ``numpy.random.SeedSequence(seed, spawn_key=(class
 World ``u-0007`` is the same world whether 10 or 500 worlds per class are asked for, and
 whichever worker builds it.
 
-A BARN world (kind ``barn``: :mod:`ifgm_ref.bench.barn`) is rebuilt from its ``.world`` file
+A BARN world (kind ``barn``: :mod:`ifgm_ref.barn`) is rebuilt from its ``.world`` file
 with BARN's robot, sensor preset, start and goal, and runs with BARN's time step, success
 radius and time limit; its rows carry BARN's reference path length and score. Its shortest
 path is not computed: extremitypathfinder takes about 20 s per BARN world (~240 cylinders,

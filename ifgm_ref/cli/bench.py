@@ -216,7 +216,7 @@ def _specs(args: argparse.Namespace) -> tuple[list[WorldSpec], str]:
     from ifgm_ref.bench.tasks import barn_specs, builtin_specs, folder_specs, generated_specs
 
     if args.barn is not None:
-        from ifgm_ref.bench.barn import DEFAULT_SENSOR, bundled_barn_folder, parse_selection
+        from ifgm_ref.barn import DEFAULT_SENSOR, bundled_barn_folder, parse_selection
 
         sensor = args.sensor or DEFAULT_SENSOR
         chosen = None if args.barn_worlds is None else parse_selection(args.barn_worlds)

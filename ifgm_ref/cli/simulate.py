@@ -8,7 +8,7 @@ import json
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from ifgm_ref.bench.barn import DEFAULT_SENSOR, GazeboTask, barn_score, gazebo_task
+from ifgm_ref.barn import DEFAULT_SENSOR, GazeboTask, barn_score, gazebo_task
 from ifgm_ref.cli.common import (
     add_timeout_options,
     non_negative_int,

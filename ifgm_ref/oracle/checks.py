@@ -100,10 +100,10 @@ from ifgm_ref.oracle.metamorphic import (
 from ifgm_ref.oracle.strategies import (
     SOLVABLE_CLASSES,
     any_solvable_worlds,
-    builtin_worlds,
     enclosed_worlds,
     gap_walls,
     placements,
+    reference_worlds,
 )
 from ifgm_ref.paper import traces
 from ifgm_ref.params import SimParams
@@ -549,7 +549,7 @@ CHECKS: dict[str, Check] = {
             _agrees_test,
             _follows_ifgm,
             level=Level.REFERENCE,
-            explicit=builtin_worlds,
+            explicit=reference_worlds,
         ),
         *equation_checks(),
     ]

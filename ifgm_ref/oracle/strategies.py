@@ -31,6 +31,8 @@ from collections.abc import Callable
 
 from hypothesis import strategies as st
 
+from ifgm_ref.barn import gazebo_task
+from ifgm_ref.errors import present
 from ifgm_ref.scenarios import BUILTIN_WORLDS, resolve_world
 from ifgm_ref.world import Polygon, World
 from ifgm_ref.worldgen.classes import (
@@ -108,3 +110,16 @@ def builtin_worlds() -> list[World]:
     """The built-in worlds (``ifgm-ref worlds``: the paper's scenarios reconstructed, the U
     and H traps, the Figure 7 variants), in name order: explicit examples of a check."""
     return [resolve_world(name) for name in sorted(BUILTIN_WORLDS)]
+
+
+#: BARN's worlds replayed by reference conformance: the four kept with the tests
+#: (``tests/worlds/barn``), from the bundled set; 245 is one where IFGM needs Bug1's round.
+BARN_SAMPLES = (1, 2, 4, 245)
+
+
+def reference_worlds() -> list[World]:
+    """The built-in worlds and :data:`BARN_SAMPLES` (BARN's obstacle fields, with the
+    Jackal-sized robot and its LiDAR: :mod:`ifgm_ref.barn`): the explicit examples of
+    reference conformance, run every time."""
+    barn = [present(gazebo_task(f"barn:{n}"), "a BARN task").world for n in BARN_SAMPLES]
+    return [*builtin_worlds(), *barn]
