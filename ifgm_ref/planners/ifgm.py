@@ -280,8 +280,9 @@ class IFGMPlanner:
             state, may_leave = self.may_leave(state, sight)
         gaps = gaps_between(clusters, reading=self.readings.gap_points)
         percepts = Percepts(
-            sight, view, clusters, gaps, may_leave, self.ifgm, self.goal_tolerance, self.readings
-        )
+            sight, view, clusters, gaps, may_leave, self.ifgm, self.goal_tolerance, self.readings,
+            self.step_length,
+        )  # fmt: skip
         return state, percepts
 
     def _track(self, sight: Sight, followed: Point | None) -> Point | None:

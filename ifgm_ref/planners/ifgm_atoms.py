@@ -184,6 +184,8 @@ class Percepts:
         The goal counts as reached within this distance.
     readings : Readings
         The readings of the paper's open choices this planner runs.
+    step_length : float
+        DistBug's ``Step`` in its progress rule, one of IBA's leaving rules.
     """
 
     sight: Sight
@@ -194,6 +196,7 @@ class Percepts:
     params: IFGMParams
     goal_tolerance: float
     readings: Readings
+    step_length: float
 
 
 @dataclass(frozen=True)

@@ -16,11 +16,12 @@ import math
 import numpy as np
 
 from ifgm_ref.flowchart import Branch
-from ifgm_ref.laserscan import Beam
+from ifgm_ref.laserscan import PAPER_HALF_FOV, Beam
+from ifgm_ref.planners.distbug import DistBugRule
 from ifgm_ref.planners.iba import beam_openness
 from ifgm_ref.planners.ifgm_atoms import IFGMState, Percepts, Reading
-from ifgm_ref.planners.ifgm_readings import DeadEndSide, GapChoice
-from ifgm_ref.planners.sight import Sight
+from ifgm_ref.planners.ifgm_readings import DeadEndSide, GapChoice, LeavingRule
+from ifgm_ref.planners.sight import IN_VIEW_MARGIN, Sight
 from ifgm_ref.pose import distance, wrap_angle
 
 __all__ = ["DECISIONS", "margins"]
@@ -38,6 +39,9 @@ DECISIONS: dict[str, str] = {
     "side_beams": "the left beam's openness against the right's (the freer side)",
     "preempt": "an obstacle's nearest return against the followed one less the margin",
     "nearest_point": "the nearest remembered point against the next nearest seen elsewhere",
+    "leave": "IBA's leaving rules: the goal's bearing against the view's edge, the corridor "
+    "against the length a free path needs, where it leads against d_min, and DistBug's reach "
+    "against 0 and d_min - Step",
 }
 
 
@@ -90,7 +94,32 @@ def margins(
             reach = distance(sight.pose, state.followed) - params.preempt_margin
             found["preempt"] = min(abs(c.nearest - reach) for c in percepts.clusters) / r
         found["nearest_point"] = _nearest_point_margin(sight, apart) / r
+        found["leave"] = _leave_margin(percepts, state)
     return found
+
+
+def _leave_margin(percepts: Percepts, state: IFGMState) -> float:
+    """The nearest of IBA's leaving rules to going the other way
+    (:func:`~ifgm_ref.planners.iba.leaves`): the goal's bearing against the edge of the view
+    (rad); with the goal in view, in radii, the corridor towards it against the length a free
+    path needs, the distance that path leads to against ``d_min``, and, where the progress
+    rule is on, DistBug's reach against 0 and against ``d_min - Step``."""
+    sight = percepts.sight
+    edge = min(sight.body.fov / 2, PAPER_HALF_FOV) - IN_VIEW_MARGIN
+    off = abs(wrap_angle(sight.bearing - sight.pose.theta))
+    if off > edge:  # out of view: no rule can leave
+        return off - edge
+    d, free = sight.goal_distance, sight.goal_free_length
+    view_range = sight.body.tuning.view_range
+    lengths = [
+        _finite_gap(free, min(view_range, d)),
+        _finite_gap(d - min(free, view_range), state.d_min),
+    ]
+    progress = percepts.readings.leaving_rule is LeavingRule.FREE_PATH_OR_PROGRESS
+    if progress and not state.escaped:
+        reach = d - DistBugRule.free_range(sight)
+        lengths += [abs(reach), _finite_gap(reach, state.d_min - percepts.step_length)]
+    return min(edge - off, min(lengths) / sight.body.radius)
 
 
 def _nearest_point_margin(sight: Sight, apart: float) -> float:
