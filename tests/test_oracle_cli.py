@@ -345,3 +345,19 @@ def test_the_oracle_leaves_no_hypothesis_folder_where_it_runs(
     assert done.returncode == 0, done.stderr
     assert list(work.iterdir()) == []
     assert (tmp_path / "cache" / "ifgm-ref" / "hypothesis").is_dir()
+
+
+def test_no_shrink_reports_the_failing_example_as_found(tmp_path: Path) -> None:
+    """``--no-shrink`` drops Hypothesis's shrink phase: the failure is the same, found in fewer
+    examples than with shrinking (which runs more to simplify it)."""
+    counts = {}
+    for flags in ((), ("--no-shrink",)):
+        done = run_cli(
+            "oracle", "--planner", "ifgm_ref.oracle.mutants:PointRobot", "--check",
+            "converges_open", "--jobs", "1", "--artifacts", str(tmp_path / "out"), *flags,
+        )  # fmt: skip
+        assert done.returncode == 1, done.stderr
+        line = done.stdout.splitlines()[0]
+        assert line.split()[0] == "FAILED", line
+        counts[flags] = int(line.split("converges_open")[1].split("examples")[0])
+    assert counts[("--no-shrink",)] < counts[()], counts
