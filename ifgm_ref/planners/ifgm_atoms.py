@@ -219,19 +219,20 @@ def chosen_gap(
     choice: GapChoice = GapChoice.KEEP,
 ) -> tuple[Gap | None, Point | None]:
     """The maximum gap (section 4) -- but, with ``GapChoice.KEEP`` (ours), the gap steered
-    through at the last step (middle ``previous``) while it stays wider than ``d_th``, so
-    that two near-equal gaps (symmetric obstacles, Figure 7) do not make the robot swerve
-    from one to the other at every step (errata row 19). Returns the gap and its middle in
-    the world frame (``None`` unless it is wider than ``d_th``)."""
+    through at the last step while it stays wider than ``d_th``, so that two near-equal gaps
+    (symmetric obstacles, Figure 7) do not make the robot swerve from one to the other at
+    every step (errata row 19): of the gaps wider than ``d_th`` whose middle lies within
+    ``jump`` of the last one (``previous``), the one whose middle is nearest it. Returns the
+    gap and its middle in the world frame (``None`` unless it is wider than ``d_th``)."""
     if not gaps:
         return None, None
     chosen = max(gaps, key=lambda g: g.width)
     if previous is not None and choice is GapChoice.KEEP:
+        kept = params.jump
         for gap in gaps:
             mid = point_to_world(eq1_gap_midpoint(gap.right, gap.left), pose)
-            if gap.width > params.d_th and math.dist(mid, previous) <= params.jump:
-                chosen = gap
-                break
+            if gap.width > params.d_th and (apart := math.dist(mid, previous)) <= kept:
+                chosen, kept = gap, apart
     if chosen.width <= params.d_th:
         return chosen, None
     return chosen, point_to_world(eq1_gap_midpoint(chosen.right, chosen.left), pose)

@@ -15,14 +15,16 @@ import math
 
 import numpy as np
 
+from ifgm_ref.equations import eq1_gap_midpoint
 from ifgm_ref.flowchart import Branch
 from ifgm_ref.laserscan import PAPER_HALF_FOV, Beam
+from ifgm_ref.percepts.points import point_to_world
 from ifgm_ref.planners.distbug import DistBugRule
 from ifgm_ref.planners.iba import beam_openness
 from ifgm_ref.planners.ifgm_atoms import IFGMState, Percepts, Reading
 from ifgm_ref.planners.ifgm_readings import DeadEndSide, GapChoice, LeavingRule
 from ifgm_ref.planners.sight import IN_VIEW_MARGIN, Sight
-from ifgm_ref.pose import distance, wrap_angle
+from ifgm_ref.pose import Point, distance, wrap_angle
 
 __all__ = ["DECISIONS", "margins"]
 
@@ -33,6 +35,8 @@ DECISIONS: dict[str, str] = {
     "close": "the nearest obstacle against d_obs",
     "wide": "the chosen gap's width against d_th",
     "widest_gap": "the widest gap's width against the next widest",
+    "kept_gap": "the gap kept from the last step: each candidate's middle against jump and "
+    "its width against d_th, the nearest middle against the next",
     "front": "the front beam's nearest return against d_look",
     "enclosed": "the view's farthest return against view_range",
     "side": "an obstacle's end ray against the heading (its side)",
@@ -89,6 +93,8 @@ def margins(
         found["side_beams"] = _side_margin(percepts)
     if readings.gap_choice is GapChoice.WIDEST:  # consulted at every step, not only on meeting
         found.update(_widest_margin(percepts))
+    elif state.gap_mid is not None:
+        found.update(_kept_gap_margin(percepts, state.gap_mid))
     if state.following:
         if state.followed is not None and percepts.clusters:
             reach = distance(sight.pose, state.followed) - params.preempt_margin
@@ -161,6 +167,26 @@ def _encounter(percepts: Percepts, reading: Reading) -> dict[str, float]:
     view_range = percepts.sight.body.tuning.view_range
     found["enclosed"] = _finite_gap(float(view.ranges.max()), view_range) / r
     return found
+
+
+def _kept_gap_margin(percepts: Percepts, previous: Point) -> dict[str, float]:
+    """``kept_gap``: how near :func:`~ifgm_ref.planners.ifgm_atoms.chosen_gap`'s hold on the
+    last step's gap (middle ``previous``) was to taking another, in radii: each gap's middle
+    against ``jump`` from ``previous`` and, for those within it, its width against ``d_th``;
+    and the nearest wide middle against the next (none without a gap)."""
+    params, pose = percepts.params, percepts.sight.pose
+    near, found = [], []
+    for gap in percepts.gaps:
+        apart = math.dist(point_to_world(eq1_gap_midpoint(gap.right, gap.left), pose), previous)
+        found.append(abs(apart - params.jump))
+        if apart <= params.jump:
+            found.append(abs(gap.width - params.d_th))
+            if gap.width > params.d_th:
+                near.append(apart)
+    if len(near) > 1:
+        first, second = sorted(near)[:2]
+        found.append(second - first)
+    return {"kept_gap": min(found) / percepts.sight.body.radius} if found else {}
 
 
 def _widest_margin(percepts: Percepts) -> dict[str, float]:

@@ -169,7 +169,8 @@ static ifgm_point gap_middle(const ifgm_gap *g, const ifgm_real pose[3])
 }
 
 /* The maximum gap -- but the one steered through at the last step while it stays wider
- * than d_th (errata row 19). */
+ * than d_th (errata row 19): of the gaps wider than d_th whose middle lies within jump of
+ * the last one, the one whose middle is nearest it. */
 static void choose_gap(const ifgm_planner *p, const ifgm_real pose[3], reading *r)
 {
     const ifgm_tuning *t = &p->body.tuning;
@@ -181,15 +182,17 @@ static void choose_gap(const ifgm_planner *p, const ifgm_real pose[3], reading *
     for (int k = 1; k < p->n_gaps; k++)
         if (p->gaps[k].width > chosen->width)
             chosen = &p->gaps[k];
-    if (p->state.has_gap_mid)
+    if (p->state.has_gap_mid) {
+        ifgm_real kept = t->jump;
         for (int k = 0; k < p->n_gaps; k++) {
             ifgm_point mid = gap_middle(&p->gaps[k], pose);
-            if (p->gaps[k].width > t->d_th &&
-                hypot(mid.x - p->state.gap_mid.x, mid.y - p->state.gap_mid.y) <= t->jump) {
+            ifgm_real apart = hypot(mid.x - p->state.gap_mid.x, mid.y - p->state.gap_mid.y);
+            if (p->gaps[k].width > t->d_th && apart <= kept) {
                 chosen = &p->gaps[k];
-                break;
+                kept = apart;
             }
         }
+    }
     r->gap = chosen;
     if (chosen->width > t->d_th) {
         r->has_gap_mid = 1;
