@@ -79,6 +79,7 @@ from ifgm_ref.oracle.check_types import (
     levels_up_to,
 )
 from ifgm_ref.oracle.conformance import compare, divergence_message, reference_episode
+from ifgm_ref.oracle.dead_end import dead_end_turns, turn_errors
 from ifgm_ref.oracle.equation_checks import (
     equation_checks,
 )
@@ -111,6 +112,7 @@ from ifgm_ref.planners.ifgm_readings import Readings, unrunnable
 from ifgm_ref.planners.tuning import ParamInfo
 from ifgm_ref.protocol import Command, Planner
 from ifgm_ref.recording import RecordingPlanner, replay
+from ifgm_ref.scenarios import resolve_world
 from ifgm_ref.shapes import circle
 from ifgm_ref.simulator import Run, StopReason, TraceStep, simulate
 from ifgm_ref.world import Polygon, World
@@ -429,6 +431,18 @@ def _agrees_test(impl: Implementation, world: World, rec: Recorder) -> None:
         raise CheckFailed(divergence_message(reference, found, where))
 
 
+def _dead_end_test(impl: Implementation, world: World, rec: Recorder) -> None:
+    """Every dead end the run reports turns 45 degrees at a time (:mod:`.dead_end`)."""
+    run = episode(impl, world, rec)
+    dt = run.trace[1].t - run.trace[0].t if len(run.trace) > 1 else 0.0
+    dead_band = world.robot.max_turn_rate * dt / 2
+    for start, commanded in dead_end_turns(run.trace):
+        rec.tally.update(dead_ends=1, turns=len({round(h, 3) for h in commanded}))
+        if why := turn_errors(start, commanded, dead_band):
+            raise CheckFailed(f"{why} [{_where(impl, world)}]")
+    rec.summary = f"{rec.tally['dead_ends']} dead end(s) met, none turned otherwise"
+
+
 def _command_fields(command: Command) -> tuple[object, ...]:
     return (command.heading, command.speed, command.behaviour, command.branch, command.stop)
 
@@ -473,6 +487,10 @@ def _follows_ifgm(impl: Implementation) -> str | None:
     if impl.promises.reference != "ifgm":
         return "it does not claim to follow the reference IFGM's readings step by step"
     return unrunnable(impl.promises.readings)
+
+
+def _turns_apply(impl: Implementation) -> str | None:
+    return None if impl.promises.turns_at_dead_ends else "it does not promise IFGM's dead end"
 
 
 def _always(impl: Implementation) -> str | None:
@@ -540,6 +558,16 @@ CHECKS: dict[str, Check] = {
             _promised_worlds,
             _determinism_test,
             _always,
+        ),
+        Check(
+            "dead_end_turns",
+            "at a dead end (reported as dead_end_turn) the robot turns in 45-degree steps, "
+            "one way, 180 degrees at most",
+            Kind.SIMULATION,
+            lambda impl: st.one_of(SOLVABLE_CLASSES["u"](), SOLVABLE_CLASSES["h"]()),
+            _dead_end_test,
+            _turns_apply,
+            explicit=lambda: [resolve_world("u_trap"), resolve_world("h_block")],
         ),
         Check(
             "agrees_with_reference",

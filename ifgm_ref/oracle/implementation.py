@@ -61,6 +61,9 @@ class Promises:
         :data:`~ifgm_ref.oracle.robust.SUCCESS_THRESHOLD` of the worlds of each class it
         converges in, with 95 % confidence. The robust profile checks these levels; ``None``
         promises no robustness.
+    turns_at_dead_ends : bool, default False
+        Whether it meets a dead end by turning in 45-degree steps (section 4, Case-3; IFGM
+        only), which the ``dead_end_turns`` check reads from the branches it reports.
     reference : str or None, default None
         The reference planner whose readings it follows step by step: ``"ifgm"`` (the only
         one with the margins that tell a tie from a fault) makes the reference level's
@@ -78,6 +81,7 @@ class Promises:
     passes_wide_gaps: bool = True
     scale_invariant: bool = True
     noise: NoiseLevels | None = None
+    turns_at_dead_ends: bool = False
     reference: str | None = None
     readings: Mapping[str, str] = field(default_factory=dict)
 
@@ -103,7 +107,8 @@ PROMISES: dict[str, Promises] = {
     "bug2": Promises(reports_unreachable=True, passes_wide_gaps=False),
     "distbug": Promises(reports_unreachable=True, passes_wide_gaps=False, noise=REFERENCE_NOISE),
     "iba": Promises(reports_unreachable=True, passes_wide_gaps=False, noise=REFERENCE_NOISE),
-    "ifgm": Promises(noise=REFERENCE_NOISE, reference="ifgm"),  # no "goal unreachable" exit
+    # no "goal unreachable" exit
+    "ifgm": Promises(noise=REFERENCE_NOISE, turns_at_dead_ends=True, reference="ifgm"),
     # FGM steers at the *widest* gap, which beside a wall is the open space past its end.
     "fgm": Promises(
         converges_in=frozenset({"open", "symmetric"}), passes_wide_gaps=False, noise=REFERENCE_NOISE
