@@ -184,6 +184,7 @@ ORACLE_LAYERS = (
     (
         "ifgm_ref.oracle.checks",
         "ifgm_ref.oracle.conformance",
+        "ifgm_ref.oracle.dead_end",
         "ifgm_ref.oracle.equation_checks",
         "ifgm_ref.oracle.invariance",
         "ifgm_ref.oracle.robust",

@@ -84,7 +84,9 @@ SIMULATION_CHECKS = [name for name, check in CHECKS.items() if check.kind is Kin
 def test_every_check_gives_a_verdict(check: str, planner: str, tmp_path) -> None:
     """Promising everything, each failing planner gets a verdict with a message."""
     impl = Implementation(
-        FAILING[planner], planner, Promises(reports_unreachable=True, reference="ifgm")
+        FAILING[planner],
+        planner,
+        Promises(reports_unreachable=True, turns_at_dead_ends=True, reference="ifgm"),
     )
     result = run_check(CHECKS[check], impl, SMALL, artifacts=tmp_path)
     assert result.status in (Status.PASSED, Status.FAILED), result.line()
