@@ -431,6 +431,7 @@ def _agrees_test(impl: Implementation, world: World, rec: Recorder) -> None:
         raise CheckFailed(divergence_message(reference, found, where))
 
 
+@traces("fig3.dead_end")
 def _dead_end_test(impl: Implementation, world: World, rec: Recorder) -> None:
     """Every dead end the run reports turns 45 degrees at a time (:mod:`.dead_end`)."""
     run = episode(impl, world, rec)
