@@ -47,6 +47,25 @@ def add_oracle(sub: Subcommands) -> None:
         "range=0.02,dropout=0.05,odometry=0.01): collisions fail at once, convergence is "
         "counted (docs/oracle.md, 'Robustness')",
     )
+    _add_level_options(oracle)
+    oracle.add_argument(
+        "--equations",
+        metavar="MODULE",
+        help="check the eqs. (1)-(4) of this module (or module:attribute), which exposes "
+        "eq1_gap_midpoint ... as ifgm_ref.equations does (a --cmd program's own equations are "
+        "checked with the vectors of `ifgm-ref vectors` instead)",
+    )
+    oracle.add_argument(
+        "--promises",
+        metavar="PLANNER",
+        help="check what this built-in planner promises (default: its own, or ifgm's)",
+    )
+    _add_run_options(oracle)
+    oracle.set_defaults(func=run_oracle)
+
+
+def _add_level_options(oracle: argparse.ArgumentParser) -> None:
+    """The level of conformance, and the readings the implementation declares for it."""
     oracle.add_argument(
         "--level",
         default="paper",
@@ -64,20 +83,6 @@ def add_oracle(sub: Subcommands) -> None:
         "'Readings as options'): agrees_with_reference compares it with the reference running "
         "the same reading",
     )
-    oracle.add_argument(
-        "--equations",
-        metavar="MODULE",
-        help="check the eqs. (1)-(4) of this module (or module:attribute), which exposes "
-        "eq1_gap_midpoint ... as ifgm_ref.equations does (a --cmd program's own equations are "
-        "checked with the vectors of `ifgm-ref vectors` instead)",
-    )
-    oracle.add_argument(
-        "--promises",
-        metavar="PLANNER",
-        help="check what this built-in planner promises (default: its own, or ifgm's)",
-    )
-    _add_run_options(oracle)
-    oracle.set_defaults(func=run_oracle)
 
 
 def _add_run_options(oracle: argparse.ArgumentParser) -> None:

@@ -70,23 +70,9 @@ def pytest_addoption(parser: pytest.Parser) -> None:
         help="check under these noise levels, in any profile (docs/oracle.md, 'Robustness')",
     )
     group.addoption(
-        "--ifgm-level",
-        default="paper",
-        choices=[str(level) for level in Level],
-        help="paper (default): the paper's properties; reference: those and agreement with "
-        "the reference IFGM step by step (agrees_with_reference)",
-    )
-    group.addoption(
         "--ifgm-promises",
         metavar="PLANNER",
         help="check what this built-in planner promises (default: the built-in's own, or ifgm)",
-    )
-    group.addoption(
-        "--ifgm-reading",
-        action="append",
-        metavar="NAME=VALUE",
-        help="the implementation's reading of one of the paper's open choices, where it is not "
-        "ours (repeatable; as ifgm-ref oracle --reading)",
     )
     group.addoption(
         "--ifgm-equations",
@@ -105,7 +91,26 @@ def pytest_addoption(parser: pytest.Parser) -> None:
         metavar="DIR",
         help="where counterexamples are written (default oracle-failures)",
     )
+    _add_level_options(group)
     _add_timeout_options(group)
+
+
+def _add_level_options(group: pytest.OptionGroup) -> None:
+    """``--ifgm-level`` and the readings the implementation declares, ``--ifgm-reading``."""
+    group.addoption(
+        "--ifgm-level",
+        default="paper",
+        choices=[str(level) for level in Level],
+        help="paper (default): the paper's properties; reference: those and agreement with "
+        "the reference IFGM step by step (agrees_with_reference)",
+    )
+    group.addoption(
+        "--ifgm-reading",
+        action="append",
+        metavar="NAME=VALUE",
+        help="the implementation's reading of one of the paper's open choices, where it is not "
+        "ours (repeatable; as ifgm-ref oracle --reading)",
+    )
 
 
 def _add_timeout_options(group: pytest.OptionGroup) -> None:
