@@ -5,49 +5,14 @@ implementation breaks the property on it; the message says what was expected and
 happened (``min_clearance=-0.3 ft, but should be >= 0 [ifgm in u world]``), and the
 :class:`Evidence` (world, trace, result) goes with it for the failure report.
 
-================================  ==============================================================
-check                             property (applies to)
-================================  ==============================================================
-``collision_free``                the swept robot disc never meets an obstacle, in every world
-                                  class (planners that promise collision-freedom: all of the
-                                  paper's)
-``converges_<class>``             in every world of ``<class>`` (open, u, h, symmetric, mixed)
-                                  the robot reaches the goal within :func:`time_bound` (the
-                                  classes the planner promises; not FGM and APF in U and H)
-``reports_unreachable``           with the goal enclosed, the planner stops with
-                                  ``goal_unreachable`` within the bound (Bug1, Bug2, DistBug,
-                                  IBA; not IFGM, whose Figure 3 has no such exit)
-``rigid_motion_invariant``        rotating and translating the whole problem (after
-                                  :data:`GENERIC_OFFSET` breaks exact symmetries) moves every
-                                  answer the same way: handed the original run's observations
-                                  moved, open loop, the planner answers each step with the
-                                  recorded heading turned by the angle, within
-                                  :data:`HEADING_TOL`, the same speed within :data:`SPEED_TOL`,
-                                  and the same stop (:mod:`ifgm_ref.oracle.invariance`)
-``scale_invariant``               scaling every length of the problem by ``k`` (world, robot,
-                                  sensor, goal tolerance) scales the trajectory by ``k``: for a
-                                  power of two, the scaled run is the original times ``k`` bit
-                                  for bit, branches and stop included; otherwise, handed the
-                                  original run's observations scaled, open loop, the planner
-                                  answers the same headings and stops and ``k`` times the
-                                  speeds, within :data:`HEADING_TOL` and :data:`SPEED_TOL`
-``ignores_unseen_obstacles``      an obstacle the sensor never sees does not change the
-                                  trajectory at all (decisions depend on percepts only)
-``passes_wide_gaps``              through a wall pierced by one gap wider than ``d_th`` + 1 ft,
-                                  off the start-goal line, the robot turns towards the gap
-                                  first and goes through it (section 4, Case-1; Figure 7a/c)
-                                  (IFGM)
-``deterministic``                 the same observations give the same commands, bit for bit
-                                  (one run recorded, replayed into a fresh planner)
-``agrees_with_reference``         reference level only: replayed the reference IFGM's
-                                  observations, open loop, it answers every step as the
-                                  reference did, up to the first tie
-                                  (:mod:`ifgm_ref.oracle.conformance`) (what follows IFGM)
-``eq1_gap_midpoint`` ...          the implementation's eqs. (1)-(4) agree with the reference
-                                  within :data:`EQUATION_TOL` on inputs drawn from their
-                                  domains (when it exposes them; the ``*_literal`` forms when
-                                  it exposes those): :mod:`ifgm_ref.oracle.equation_checks`
-================================  ==============================================================
+``collision_free`` and ``converges_<class>`` (open, u, h, symmetric, mixed) in the classes
+a planner promises, ``reports_unreachable``, ``rigid_motion_invariant`` and
+``scale_invariant`` (:mod:`ifgm_ref.oracle.invariance`), ``ignores_unseen_obstacles``,
+``passes_wide_gaps`` (section 4, Case-1), ``dead_end_turns`` (Case-3's 45-degree steps:
+:mod:`ifgm_ref.oracle.dead_end`), ``deterministic``, the equations' checks
+(:mod:`ifgm_ref.oracle.equation_checks`) and, at the reference level only,
+``agrees_with_reference`` (:mod:`ifgm_ref.oracle.conformance`). Each check's sentence says
+its property; ``docs/oracle.md``, "The properties", says each in full with whom it applies to.
 
 Every simulation check runs with the simulator's defaults (``dt`` 0.1 s, goal tolerance 0.5 ft)
 and stops an episode at :func:`ifgm_ref.convergence.time_bound` of its world. A planner that
@@ -56,6 +21,7 @@ raises, or answers an invalid command, fails the check it was running.
 
 from __future__ import annotations
 
+import itertools
 import math
 from collections.abc import Sequence
 from dataclasses import replace
@@ -68,6 +34,7 @@ from numpy.typing import NDArray
 
 from ifgm_ref.convergence import time_bound
 from ifgm_ref.errors import ImplementationError, present
+from ifgm_ref.flowchart import Branch
 from ifgm_ref.oracle.check_types import (
     Check,
     CheckFailed,
@@ -369,6 +336,7 @@ def _gap_test(impl: Implementation, example: tuple[World, Polygon], rec: Recorde
             f"path passed {path.distance(gap.geometry):.2f} ft from the gap, but should go "
             f"through it [{where}]"
         )
+    _check_case1(run.trace, gap, where)
     centre = gap.geometry.centroid
     for step in run.trace[:-1]:
         if step.heading_cmd is None:  # no command recorded at this sample
@@ -389,6 +357,23 @@ def _gap_test(impl: Implementation, example: tuple[World, Polygon], rec: Recorde
                     f"({math.degrees(side):+.1f} deg) [{where}]"
                 )
             break
+
+
+def _check_case1(trace: Sequence[TraceStep], gap: Polygon, where: str) -> None:
+    """A planner that reports its branches and avoids the wall before it reaches the gap
+    (a gap wider than ``d_th``, the wall either side) takes Case-1 there: FGM steers
+    (section 4). One whose way through the gap is clear never avoids and passes."""
+    before: set[str] = set()
+    for a, b in itertools.pairwise(trace):
+        if shapely.LineString([(a.x, a.y), (b.x, b.y)]).intersects(gap.geometry):
+            break
+        before.add(a.branch or Branch.MOVE_TO_GOAL)
+    avoided = before - {Branch.MOVE_TO_GOAL, Branch.GOAL_REACHED}
+    if avoided and Branch.CASE1_GAP not in avoided:
+        raise CheckFailed(
+            f"before the gap it avoided the wall by {', '.join(sorted(avoided))}, but never "
+            f"case1_gap: a gap wider than d_th with the wall either side is Case-1 [{where}]"
+        )
 
 
 def _show_polygon(polygon: Polygon) -> str:
