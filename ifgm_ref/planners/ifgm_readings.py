@@ -15,7 +15,7 @@ check then says so (:func:`unrunnable`) instead of failing the port.
 from __future__ import annotations
 
 from collections.abc import Iterable, Mapping
-from dataclasses import dataclass, fields
+from dataclasses import dataclass
 from enum import StrEnum
 from typing import Any, Self
 
@@ -103,15 +103,6 @@ it runs: freer, left, right
             raise ParameterError(why)
         chosen: dict[str, Any] = {n: OPEN_READINGS[n].kind(v) for n, v in choices.items()}
         return cls(**chosen)
-
-    def changed(self) -> dict[str, str]:
-        """The readings that are not ours, by name (``{}`` for the reference's own)."""
-        ours = Readings()
-        return {
-            f.name: str(getattr(self, f.name))
-            for f in fields(self)
-            if getattr(self, f.name) != getattr(ours, f.name)
-        }
 
 
 @dataclass(frozen=True)
