@@ -4,6 +4,7 @@ level of conformance catch?
 Run from the project root::
 
     python benchmarks/bench_mutation.py --count 100 --seed 0 [--out mutation-results]
+    python benchmarks/bench_mutation.py --count 100 --seed 0 --only 78-100 --levels paper
 
 Each mutant is one change at one site of the decision code (``--files``, default IFGM's
 planner, its atoms, IBA, the edge follower, the sight, the flowchart and the percepts): a
@@ -11,9 +12,11 @@ comparison flipped (``<`` to ``<=``, ``<`` to ``>``, ``==`` to ``!=``), an arith
 swapped (``+``/``-``, ``*``/``/``), ``and``/``or`` swapped, a ``not`` or a unary minus
 dropped, a number moved by one (``0`` to ``1``, ``x`` to ``x + 1``), ``True``/``False``
 swapped. The sites are listed in a fixed order and ``--count`` of them drawn with ``--seed``
-(``--count 0``: all). Each mutant lives in its own copy of the package (``ast.unparse`` of the
-changed tree) and is served as a program (``ifgm-ref serve``), so that the oracle, the
-simulator and the reference it compares with stay the original. For each it reports:
+(``--count 0``: all), numbered from 1 in the order drawn; ``--only`` judges some of them
+(a run cut short resumes with ``--only 78-100``). Each mutant lives in its own copy of the
+package (``ast.unparse`` of the changed tree) and is served as a program (``ifgm-ref
+serve``), so that the oracle, the simulator and the reference it compares with stay the
+original. For each it reports:
 
 * ``trace``: whether any IFGM trace in the built-in worlds changed (a mutant that changes
   none, or changes only the last digits, "rounding", is probably equivalent there, and is not
@@ -25,7 +28,8 @@ simulator and the reference it compares with stay the original. For each it repo
 
 each with the seconds it took. A mutant that cannot even be imported or served is ``broken``:
 killed by anything, and counted apart. The kill rates are over the mutants that change a
-trace. Results go to ``--out``: ``mutants.csv`` (one row per mutant) and the summary on stdout.
+trace. Results go to ``--out``: ``mutants.csv`` (one row per mutant, its number first) and the
+summary on stdout.
 
 Why not a mutation tool: mutmut and cosmic-ray run one test command per mutant and record one
 verdict; here each mutant needs four (a trace filter and three levels), each run against the
@@ -41,6 +45,7 @@ import csv
 import json
 import os
 import random
+import re
 import shlex
 import shutil
 import statistics
@@ -266,6 +271,7 @@ class Outcome:
 
     site: Site
     trace: str
+    number: int = 0
     verdicts: dict[str, str] = field(default_factory=dict)
     seconds: dict[str, float] = field(default_factory=dict)
 
@@ -312,6 +318,7 @@ def main() -> None:
     parser.add_argument("--levels", default="paper,reference,tests", help="levels to run")
     parser.add_argument("--tests", default=TESTS, help="the test files of the tests level")
     parser.add_argument("--out", type=Path, default=Path("mutation-results"), help="folder")
+    parser.add_argument("--only", help="judge only these numbers of the draw: 78-100,5")
     parser.add_argument("--list", action="store_true", help="list the sites and stop")
     args = parser.parse_args()
     every = [site for file in args.files.split(",") for site in sites(file)]
@@ -320,18 +327,35 @@ def main() -> None:
             print(json.dumps(asdict(site)))
         return
     drawn = every if args.count == 0 else random.Random(args.seed).sample(every, args.count)
-    print(f"{len(every)} sites in {args.files}; judging {len(drawn)} (seed {args.seed})")
+    numbers = _numbers(args.only, len(drawn)) if args.only else range(1, len(drawn) + 1)
+    print(f"{len(every)} sites in {args.files}; judging {len(numbers)} of {len(drawn)} drawn "
+          f"(seed {args.seed})")  # fmt: skip
     original = traces(None)
     if original is None:
         raise SystemExit("the unmutated package does not run")
     args.out.mkdir(parents=True, exist_ok=True)
     outcomes = []
-    for k, site in enumerate(drawn, 1):
-        outcome = judge(site, original, args.levels.split(","), args.tests)
+    for k in numbers:
+        outcome = judge(drawn[k - 1], original, args.levels.split(","), args.tests)
+        outcome.number = k
         outcomes.append(outcome)
         print(f"[{k}/{len(drawn)}] {_row(outcome)}", flush=True)
         _write(args.out / "mutants.csv", outcomes)
     print(_summary(outcomes))
+
+
+def _numbers(only: str, drawn: int) -> list[int]:
+    """``--only``'s numbers ("78-100,5"), each checked to be one of the ``drawn``."""
+    numbers: list[int] = []
+    for part in only.split(","):
+        found = re.fullmatch(r"(\d+)(?:-(\d+))?", part.strip())
+        if found is None:
+            raise SystemExit(f"--only: {part!r} is not a number or a range like 78-100")
+        first, last = found.groups()
+        numbers.extend(range(int(first), int(last or first) + 1))
+    if not numbers or min(numbers) < 1 or max(numbers) > drawn:
+        raise SystemExit(f"--only: numbers must lie in 1-{drawn}, the mutants drawn")
+    return sorted(set(numbers))
 
 
 def _row(outcome: Outcome) -> str:
@@ -352,13 +376,14 @@ def _write(path: Path, outcomes: list[Outcome]) -> None:
         writer = csv.writer(out)
         per_level = [f"{level}{suffix}" for level in LEVELS for suffix in ("", "_s")]
         writer.writerow(
-            ["file", "line", "column", "operator", "change", "trace", "trace_s", *per_level]
-        )
+            ["number", "file", "line", "column", "operator", "change", "trace", "trace_s",
+             *per_level]
+        )  # fmt: skip
         for o in outcomes:
             s = o.site
             levels = [item for level in LEVELS for item in
                       (o.verdicts.get(level, ""), f"{o.seconds.get(level, 0.0):.1f}")]  # fmt: skip
-            writer.writerow([s.file, s.line, s.column, s.operator, s.change, o.trace,
+            writer.writerow([o.number, s.file, s.line, s.column, s.operator, s.change, o.trace,
                              f"{o.seconds['trace']:.1f}", *levels])  # fmt: skip
 
 

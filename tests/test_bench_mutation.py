@@ -74,3 +74,11 @@ def test_the_trace_filter_tells_rounding_from_change(bench: ModuleType) -> None:
     assert bench.trace_change([row], [row.replace("path_regenerated", "follow_edge")]) == "changed"
     assert bench.trace_change([row], [row.replace("20.2", "20.3")]) == "changed"
     assert bench.trace_change([row], [row, row]) == "changed"
+
+
+def test_only_names_numbers_of_the_draw_and_refuses_others(bench: ModuleType) -> None:
+    """``--only`` resumes a run cut short: ranges and single numbers, each a mutant drawn."""
+    assert bench._numbers("78-80,5,79", 100) == [5, 78, 79, 80]
+    for wrong in ("0", "99-101", "x", "3-"):
+        with pytest.raises(SystemExit, match="--only"):
+            bench._numbers(wrong, 100)

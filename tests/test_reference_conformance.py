@@ -23,13 +23,16 @@ from ifgm_ref.oracle.conformance import (
     divergence_message,
     reference_episode,
 )
-from ifgm_ref.oracle.implementation import Implementation
+from ifgm_ref.oracle.implementation import Implementation, promises_of
 from ifgm_ref.oracle.mutants import MUTANTS
 from ifgm_ref.oracle.runner import check_planner
 from ifgm_ref.oracle.strategies import BARN_SAMPLES, SOLVABLE_CLASSES, reference_worlds
 from ifgm_ref.oracle.variants import VARIANTS
 from ifgm_ref.params import SimParams
+from ifgm_ref.planners.ifgm import IFGMPlanner, nearest_remembered
 from ifgm_ref.planners.ifgm_margins import DECISIONS
+from ifgm_ref.planners.sight import Sight
+from ifgm_ref.pose import Point
 from ifgm_ref.scenarios import BUILTIN_WORLDS, resolve_world
 from ifgm_ref.worldgen.classes import random_world
 
@@ -100,6 +103,31 @@ def test_every_broken_variant_diverges_at_the_first_step_that_differs(mutant: st
     message = divergence_message(episode(name), found, name)
     assert message.startswith(f"step {found.differs.step} ")
     assert "no decision within" in message.split("\n")[0]
+
+
+class _Untracked(IFGMPlanner):
+    """Follows whichever remembered point is nearest, rather than the point tracked along its
+    edge: mutants #48 and #53 of ``benchmarks/bench_mutation.py``, a valid reading of the
+    paper that is not the reference's."""
+
+    def _track(self, sight: Sight, followed: Point | None) -> Point | None:
+        return nearest_remembered(sight, None, self.ifgm.jump)
+
+
+def test_an_edge_followed_by_another_rule_diverges_though_every_wall_step_is_near_a_tie(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """Along a wall the next point that is another choice lies only ``d delta**2 / 2``
+    farther: under :data:`~conformance.TIE` every step would be a tie and excuse a port that
+    tracks the edge otherwise. The followed point's own bound, the rounding, does not."""
+    impl = Implementation(_Untracked, "untracked", promises_of("ifgm"))
+    found = compare(impl, episode("fig7b"), "fig7b")
+    assert found.diverged and found.differs is not None, found
+    window = episode("fig7b").margins[found.differs.step - conformance.LOOKBACK :][:3]
+    assert 0.0 < min(m.get("nearest_point", math.inf) for m in window) <= conformance.TIE
+    monkeypatch.setattr(conformance, "POINT_TIE", conformance.TIE)
+    again = compare(impl, episode("fig7b"), "fig7b")
+    assert again.tie is not None and again.tie[0] == "nearest_point", again
 
 
 @pytest.mark.parametrize("posing", ["fgm", "iba"])

@@ -9,7 +9,8 @@ ray's or gap's heading), and, where it reports one, the same branch (``dead_end_
 accepted for the dead end's later phases: :func:`~ifgm_ref.flowchart.same_branch`).
 
 A step where the two differ is a **tie** when some decision the reference consulted there,
-or in the :data:`LOOKBACK` steps before, lay within :data:`TIE` of flipping
+or in the :data:`LOOKBACK` steps before, lay within its bound (:func:`tie_bound`: :data:`TIE`,
+or :data:`POINT_TIE` for the followed point) of flipping
 (:func:`~ifgm_ref.planners.ifgm_margins.margins`): a port's rounding may decide it the other
 way, and after that the two planners' states are no longer comparable, so the comparison
 ends there with the reason recorded. Anywhere else the step is the **first divergence**,
@@ -37,6 +38,8 @@ from ifgm_ref.world import World
 __all__ = [
     "HEADING_TOL",
     "LOOKBACK",
+    "POINT_TIE",
+    "ROUNDING",
     "SPEED_TOL",
     "TIE",
     "Comparison",
@@ -44,6 +47,7 @@ __all__ = [
     "compare",
     "divergence_message",
     "reference_episode",
+    "tie_bound",
 ]
 
 #: A heading answered within this of the reference's agrees (rad, 0.57 degrees): a third of
@@ -54,10 +58,18 @@ HEADING_TOL = 0.01
 #: A speed within this fraction of the robot's top speed agrees: the speed follows the
 #: heading (``v max(0, cos(turn still to make))``), so the heading's tolerance.
 SPEED_TOL = HEADING_TOL
+#: The most a float32 port's rounding moves a position or range a step sees, in robot radii
+#: (1e-5 of a radius for a 1 ft robot 200 ft from the origin; double's is far less).
+ROUNDING = 1e-5
 #: A decision this near its threshold is a tie a port may decide otherwise (robot radii or
-#: radians): far above double's and float32's rounding of the positions and ranges a step
-#: sees (1e-5 of a radius for a 1 ft robot 200 ft from the origin), far below a misread rule.
-TIE = 1e-3
+#: radians): a hundred times :data:`ROUNDING`, far below a misread rule.
+TIE = 100 * ROUNDING
+#: The followed point's bound (``nearest_point``): :data:`ROUNDING` itself. Along a wall the
+#: next point that is another choice (more than :data:`HEADING_TOL` away in bearing) lies
+#: only ``d HEADING_TOL**2 / 2`` farther, 8e-5 of a radius at the stand-off ``d`` = 1.7 r:
+#: under :data:`TIE` every step along a wall would be a tie, and a port that tracks the edge
+#: by another rule would be excused (docs/oracle.md, "Ties").
+POINT_TIE = ROUNDING
 #: A tie this many steps before a divergence still explains it: a side or a followed point
 #: chosen the other way shows in the headings a step or two later.
 LOOKBACK = 2
@@ -74,6 +86,12 @@ class ReferenceEpisode:
     run: Run
 
 
+def tie_bound(decision: str) -> float:
+    """How near its threshold ``decision`` (a name of
+    :data:`~ifgm_ref.planners.ifgm_margins.DECISIONS`) must be to count as a tie."""
+    return POINT_TIE if decision == "nearest_point" else TIE
+
+
 class _MarginRecorder(RecordingPlanner):
     """The reference IFGM, recorded, with the margins of each step's decisions."""
 
@@ -84,10 +102,11 @@ class _MarginRecorder(RecordingPlanner):
         self.atoms: list[Atoms] = []
 
     def step(self, observation: Observation) -> Command:
+        before = self.ifgm.state.followed if self.ifgm.state.following else None
         command = super().step(observation)
         seen = present(self.ifgm.last_seen, "the step IFGM has just taken")
         branch = present(self.ifgm.last_branch, "its branch")
-        self.margins.append(margins(*seen, branch, apart=HEADING_TOL))
+        self.margins.append(margins(*seen, branch, apart=HEADING_TOL, followed_before=before))
         self.atoms.append(seen[2].atoms)
         return command
 
@@ -109,8 +128,8 @@ class Comparison:
     """How an implementation's replay compared with the reference's episode.
 
     ``steps`` were compared and agreed. ``differs`` is the first differing step (``None``
-    when every step agreed), with ``why`` it differs; ``tie`` names the decision within
-    :data:`TIE` that explains it and its margin, or is ``None`` for a divergence.
+    when every step agreed), with ``why`` it differs; ``tie`` names the decision within its
+    :func:`tie_bound` that explains it and its margin, or is ``None`` for a divergence.
     """
 
     steps: int
@@ -135,11 +154,13 @@ def compare(impl: Implementation, reference: ReferenceEpisode, where: str) -> Co
             agreed += 1
             continue
         window = reference.margins[max(0, error.step - LOOKBACK) : error.step + 1]
-        name, margin = min(
-            ((name, value) for found in window for name, value in found.items()),
-            key=lambda item: item[1],
-        )
-        return Comparison(agreed, error, why, (name, margin) if margin <= TIE else None)
+        ties = [
+            (name, value)
+            for found in window
+            for name, value in found.items()
+            if value <= tie_bound(name)
+        ]
+        return Comparison(agreed, error, why, min(ties, key=lambda item: item[1], default=None))
     return Comparison(agreed)
 
 
@@ -183,7 +204,7 @@ def divergence_message(reference: ReferenceEpisode, found: Comparison, where: st
             f"answered with heading {got.heading:.6g} rad, speed {got.speed:.6g}, branch "
             f"{got.branch}, but the reference answered heading {want.heading:.6g} rad, speed "
             f"{want.speed:.6g}, branch {want.branch} ({found.why}), with no decision within "
-            f"{TIE:g} of a tie [{where}]",
+            f"{TIE:g} of a tie (the followed point: {POINT_TIE:g}) [{where}]",
             f"  after {found.steps} agreeing steps; the reference's atoms there: "
             f"{', '.join(held) or 'none'}",
             "  its nearest decisions (margin in radii or rad): "

@@ -42,7 +42,8 @@ DECISIONS: dict[str, str] = {
     "side": "an obstacle's end ray against the heading (its side)",
     "side_beams": "the left beam's openness against the right's (the freer side)",
     "preempt": "an obstacle's nearest return against the followed one less the margin",
-    "nearest_point": "the nearest remembered point against the next nearest seen elsewhere",
+    "nearest_point": "the followed point tracked along its edge: the nearest candidate "
+    "against the next nearest seen elsewhere, and a nearer point elsewhere against jump",
     "leave": "IBA's leaving rules: the goal's bearing against the view's edge, the corridor "
     "against the length a free path needs, where it leads against d_min, and DistBug's reach "
     "against 0 and d_min - Step",
@@ -50,7 +51,13 @@ DECISIONS: dict[str, str] = {
 
 
 def margins(
-    percepts: Percepts, state: IFGMState, reading: Reading, branch: Branch, *, apart: float
+    percepts: Percepts,
+    state: IFGMState,
+    reading: Reading,
+    branch: Branch,
+    *,
+    apart: float,
+    followed_before: Point | None,
 ) -> dict[str, float]:
     """The margin of every decision of :data:`DECISIONS` that a step consults on its way to
     ``branch``, given its ``percepts``, the ``state`` they were read in and the ``reading``
@@ -59,9 +66,11 @@ def margins(
     Figure 3 consults the goal and the corridor at every step; the gap, the nearest obstacle
     and the dead end only on meeting an obstacle; the freer side only where IBA takes over
     or Case-3 pre-empts (where the beams are equal, the goal's side decides: its bearing is
-    the margin); the followed edge's point and the pre-emption only while following. Of the
-    remembered points, only those seen more than ``apart`` rad from the nearest one are
-    another choice of point to follow: a wall is remembered as a cloud of points a hair
+    the margin); the followed edge's point and the pre-emption only while following. The
+    followed point is tracked from ``followed_before``, the one followed at the step before
+    (``None`` if none), as :meth:`~ifgm_ref.planners.ifgm.IFGMPlanner.perceive` tracks it.
+    Of the remembered points, only those seen more than ``apart`` rad from the one tracked
+    are another choice of point to follow: a wall is remembered as a cloud of points a hair
     apart, and following one of them rather than its neighbour turns the robot by less than
     their angle apart (the oracle's heading tolerance is the ``apart`` that matters).
 
@@ -71,7 +80,7 @@ def margins(
     >>> from ifgm_ref.params import SimParams
     >>> planner = IFGMPlanner()
     >>> _ = simulate(resolve_world("post"), planner, SimParams(max_time=0.1))
-    >>> found = margins(*planner.last_seen, planner.last_branch, apart=0.01)
+    >>> found = margins(*planner.last_seen, planner.last_branch, apart=0.01, followed_before=None)
     >>> {name: round(value, 3) for name, value in found.items()}
     {'at_goal': 59.368, 'blocked': inf}
     """
@@ -99,7 +108,10 @@ def margins(
         if state.followed is not None and percepts.clusters:
             reach = distance(sight.pose, state.followed) - params.preempt_margin
             found["preempt"] = min(abs(c.nearest - reach) for c in percepts.clusters) / r
-        found["nearest_point"] = _nearest_point_margin(sight, apart) / r
+        if state.followed is not None:
+            found["nearest_point"] = (
+                _tracking_margin(sight, state.followed, followed_before, params.jump, apart) / r
+            )
         found["leave"] = _leave_margin(percepts, state)
     return found
 
@@ -128,18 +140,34 @@ def _leave_margin(percepts: Percepts, state: IFGMState) -> float:
     return min(edge - off, min(lengths) / sight.body.radius)
 
 
-def _nearest_point_margin(sight: Sight, apart: float) -> float:
-    """How much farther the nearest remembered point seen more than ``apart`` rad from the
-    nearest one is than the nearest (``inf`` if there is none)."""
+def _tracking_margin(
+    sight: Sight, tracked: Point, before: Point | None, jump: float, apart: float
+) -> float:
+    """How near the choice of ``tracked`` (:func:`~ifgm_ref.planners.ifgm.nearest_remembered`
+    from ``before``) came to another point seen more than ``apart`` rad from it: the
+    candidates are the remembered points within ``jump`` of ``before`` (all of them when
+    there is no ``before`` or none is within it); the nearest candidate elsewhere is that
+    much farther than ``tracked``, and a point elsewhere nearer than ``tracked`` but not a
+    candidate lies that much beyond ``jump`` from ``before`` (``inf`` if neither exists)."""
     points, d = sight.points, sight.point_distances
-    if len(d) < 2:
-        return math.inf
-    nearest = int(d.argmin())
     pose = sight.pose
     bearings = np.arctan2(points[:, 1] - pose.y, points[:, 0] - pose.x)
-    off = np.abs(np.angle(np.exp(1j * (bearings - bearings[nearest]))))
-    elsewhere = off > apart
-    return float(d[elsewhere].min() - d[nearest]) if elsewhere.any() else math.inf
+    towards = math.atan2(tracked.y - pose.y, tracked.x - pose.x)
+    elsewhere = np.abs(np.angle(np.exp(1j * (bearings - towards)))) > apart
+    d_tracked = distance(pose, tracked)
+    found = [math.inf]
+    candidates = np.ones(len(d), dtype=bool)
+    if before is not None:
+        from_before = np.hypot(points[:, 0] - before.x, points[:, 1] - before.y)
+        if (from_before <= jump).any():
+            candidates = from_before <= jump
+            outside = elsewhere & ~candidates & (d < d_tracked)
+            if outside.any():
+                found.append(float(from_before[outside].min()) - jump)
+    inside = elsewhere & candidates
+    if inside.any():
+        found.append(float(d[inside].min()) - d_tracked)
+    return min(found)
 
 
 #: The branches that pick the side to keep an obstacle on (IBA's freer side).
