@@ -105,14 +105,24 @@ def margins(
     elif state.gap_mid is not None:
         found.update(_kept_gap_margin(percepts, state.gap_mid))
     if state.following:
-        if state.followed is not None and percepts.clusters:
-            reach = distance(sight.pose, state.followed) - params.preempt_margin
+        found.update(_following(percepts, state, followed_before, apart))
+    return found
+
+
+def _following(
+    percepts: Percepts, state: IFGMState, before: Point | None, apart: float
+) -> dict[str, float]:
+    """The margins of the decisions taken while following an edge: Case-3's pre-emption, the
+    followed point tracked from ``before`` (:func:`_tracking_margin`) and IBA's leaving
+    rules."""
+    sight, params, followed = percepts.sight, percepts.params, state.followed
+    r = sight.body.radius
+    found = {"leave": _leave_margin(percepts, state)}
+    if followed is not None:
+        found["nearest_point"] = _tracking_margin(sight, followed, before, params.jump, apart) / r
+        if percepts.clusters:
+            reach = distance(sight.pose, followed) - params.preempt_margin
             found["preempt"] = min(abs(c.nearest - reach) for c in percepts.clusters) / r
-        if state.followed is not None:
-            found["nearest_point"] = (
-                _tracking_margin(sight, state.followed, followed_before, params.jump, apart) / r
-            )
-        found["leave"] = _leave_margin(percepts, state)
     return found
 
 
