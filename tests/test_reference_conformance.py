@@ -9,6 +9,7 @@ import functools
 import math
 import sys
 
+import numpy as np
 import pytest
 
 from ifgm_ref.convergence import time_bound
@@ -30,9 +31,10 @@ from ifgm_ref.oracle.strategies import BARN_SAMPLES, SOLVABLE_CLASSES, reference
 from ifgm_ref.oracle.variants import VARIANTS
 from ifgm_ref.params import SimParams
 from ifgm_ref.planners.ifgm import IFGMPlanner, nearest_remembered
-from ifgm_ref.planners.ifgm_margins import DECISIONS
-from ifgm_ref.planners.sight import Sight
-from ifgm_ref.pose import Point
+from ifgm_ref.planners.ifgm_margins import DECISIONS, _tracking_margin
+from ifgm_ref.planners.sight import Body, BoundaryParams, Sight
+from ifgm_ref.pose import Point, Pose
+from ifgm_ref.protocol import EpisodeParams
 from ifgm_ref.scenarios import BUILTIN_WORLDS, resolve_world
 from ifgm_ref.worldgen.classes import random_world
 
@@ -103,6 +105,25 @@ def test_every_broken_variant_diverges_at_the_first_step_that_differs(mutant: st
     message = divergence_message(episode(name), found, name)
     assert message.startswith(f"step {found.differs.step} ")
     assert "no decision within" in message.split("\n")[0]
+
+
+def test_the_followed_points_margin_is_that_of_tracking_it_from_the_last_one() -> None:
+    """The followed point ``A`` was tracked from ``before``: of the points within ``jump`` of
+    it, ``B`` (elsewhere in bearing) is the next choice; ``C``, nearer the robot than ``A``
+    but just beyond ``jump`` from ``before``, is nearer still to being chosen; ``A``'s
+    neighbour a hair away in bearing is no other choice at all."""
+    before, a, b, c = Point(2.0, 1.0), Point(2.0, 1.1), Point(2.0, 1.3), Point(1.45, 1.0)
+    neighbour = Point(2.0005, 1.1)
+    body = Body.of(Point(10.0, 0.0), EpisodeParams(), BoundaryParams.paper())
+    pose = Pose(0.0, 0.0, 0.0)
+
+    def margin(*points: Point) -> float:
+        sight = Sight(pose, body, np.array(points, dtype=float), 0.0)
+        return _tracking_margin(sight, a, before, 0.5, HEADING_TOL)
+
+    assert margin(a, neighbour, b) == pytest.approx(math.hypot(*b) - math.hypot(*a))
+    assert margin(a, neighbour, b, c) == pytest.approx(0.05)
+    assert margin(a, neighbour) == math.inf
 
 
 class _Untracked(IFGMPlanner):
