@@ -308,7 +308,7 @@ def test_every_step_of_an_episode_takes_the_branch_the_guards_choose(
     while an edge is followed (section 4.1, Case-3)."""
     planner = IFGMPlanner()
     planner.reset(start.pose, start.goal, EPISODE)
-    memory = PerceptMemory(BoundaryParams.paper().memory_horizon)
+    memory = PerceptMemory(BoundaryParams.paper().memory_horizon, EPISODE.dt)
     observation = start
     for i in range(len(later) + 1):
         pose, goal = observation.pose, observation.goal

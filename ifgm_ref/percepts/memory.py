@@ -23,10 +23,16 @@ from ifgm_ref.pose import Pose
 class PerceptMemory:
     """World-frame obstacle points seen in the last ``horizon`` seconds.
 
+    Scans come every ``period`` seconds (the time step). The scan taken exactly ``horizon``
+    before the newest is kept, and the one before it forgotten: the edge is decided half a
+    period out, so that the rounding of the times never decides it (``t - horizon`` equals
+    an earlier scan's time up to the last bit at every step when ``horizon`` is a whole
+    number of periods; a float32 port and a double one would forget different scans).
+
     Examples
     --------
     >>> import math
-    >>> memory = PerceptMemory(horizon=1.0)
+    >>> memory = PerceptMemory(horizon=1.0, period=0.1)
     >>> scan = LaserScan(-0.5, 0.5, 0.5, 0.0, 10.0, [math.inf, 2.0, math.inf])
     >>> memory.add(0.0, Pose(0.0, 0.0, 0.0), scan)
     >>> memory.add(0.5, Pose(1.0, 0.0, 0.0), scan)
@@ -37,8 +43,9 @@ class PerceptMemory:
     [[3.0, 0.0], [1.0, 2.0]]
     """
 
-    def __init__(self, horizon: float) -> None:
+    def __init__(self, horizon: float, period: float) -> None:
         self.horizon = horizon
+        self.period = period
         #: Each remembered scan's time and number of points, oldest first.
         self._scans: deque[tuple[float, int]] = deque()
         #: The points, oldest first, are ``_buffer[_start:_end]``; new ones go after them.
@@ -52,14 +59,14 @@ class PerceptMemory:
 
     def add_points(self, t: float, points: NDArray[np.float64]) -> None:
         """Remember world-frame obstacle ``points`` seen at time ``t``; forget those seen
-        more than ``horizon`` seconds before it."""
+        more than ``horizon`` seconds before it (half a period out: see the class)."""
         n = len(points)
         if self._end + n > len(self._buffer):
             self._make_room(points)
         self._buffer[self._end : self._end + n] = points
         self._end += n
         self._scans.append((t, n))
-        while self._scans and self._scans[0][0] < t - self.horizon:
+        while self._scans and self._scans[0][0] < t - self.horizon - self.period / 2:
             self._start += self._scans.popleft()[1]
 
     def _make_room(self, points: NDArray[np.float64]) -> None:

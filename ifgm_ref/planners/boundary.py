@@ -238,7 +238,7 @@ class BoundaryPlanner:
         check_names(params.params, self.parameters, self.name)
         tuning = BoundaryParams.for_episode(params)
         self.body = Body.of(goal, params, tuning)
-        self.memory = PerceptMemory(tuning.memory_horizon)
+        self.memory = PerceptMemory(tuning.memory_horizon, params.dt)
         self.follower.reset()
         self.rule.reset(start, goal, params)
         self.circuit.reset()

@@ -206,7 +206,7 @@ class IFGMPlanner:
         check_names(params.params, self.parameters, self.name)
         tuning = BoundaryParams.for_episode(params)
         self.body = Body.of(goal, params, tuning)
-        self.memory = PerceptMemory(tuning.memory_horizon)
+        self.memory = PerceptMemory(tuning.memory_horizon, params.dt)
         self.step_length = DistBugParams.for_episode(params).step_length
         self.circuit.reset()
         p = IFGMParams.for_episode(params)

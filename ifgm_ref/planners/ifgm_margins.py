@@ -18,11 +18,12 @@ import numpy as np
 from ifgm_ref.equations import eq1_gap_midpoint
 from ifgm_ref.flowchart import Branch
 from ifgm_ref.laserscan import PAPER_HALF_FOV, Beam
+from ifgm_ref.percepts.clusters import Gap
 from ifgm_ref.percepts.points import point_to_world
 from ifgm_ref.planners.distbug import DistBugRule
 from ifgm_ref.planners.iba import beam_openness
 from ifgm_ref.planners.ifgm_atoms import IFGMState, Percepts, Reading
-from ifgm_ref.planners.ifgm_readings import DeadEndSide, GapChoice, LeavingRule
+from ifgm_ref.planners.ifgm_readings import DeadEndSide, GapChoice, GapReading, LeavingRule
 from ifgm_ref.planners.sight import IN_VIEW_MARGIN, Sight
 from ifgm_ref.pose import Point, distance, wrap_angle
 
@@ -35,6 +36,8 @@ DECISIONS: dict[str, str] = {
     "close": "the nearest obstacle against d_obs",
     "wide": "the chosen gap's width against d_th",
     "widest_gap": "the widest gap's width against the next widest",
+    "gap_ends": "where Case-1 steers through the gap: its closest pair of returns against the "
+    "next closest pair whose middle lies elsewhere",
     "kept_gap": "the gap kept from the last step: each candidate's middle against jump and "
     "its width against d_th, the nearest middle against the next",
     "front": "the front beam's nearest return against d_look",
@@ -66,7 +69,8 @@ def margins(
     Figure 3 consults the goal and the corridor at every step; the gap, the nearest obstacle
     and the dead end only on meeting an obstacle; the freer side only where IBA takes over
     or Case-3 pre-empts (where the beams are equal, the goal's side decides: its bearing is
-    the margin); the followed edge's point and the pre-emption only while following. The
+    the margin); the ends of the gap only where Case-1 steers through it; the followed edge's
+    point and the pre-emption only while following. The
     followed point is tracked from ``followed_before``, the one followed at the step before
     (``None`` if none), as :meth:`~ifgm_ref.planners.ifgm.IFGMPlanner.perceive` tracks it.
     Of the remembered points, only those seen more than ``apart`` rad from the one tracked
@@ -104,9 +108,30 @@ def margins(
         found.update(_widest_margin(percepts))
     elif state.gap_mid is not None:
         found.update(_kept_gap_margin(percepts, state.gap_mid))
+    nearest_pair = readings.gap_points is GapReading.NEAREST
+    if branch is Branch.CASE1_GAP and reading.gap is not None and nearest_pair:
+        found.update(_gap_ends_margin(percepts, reading.gap, apart))
     if state.following:
         found.update(_following(percepts, state, followed_before, apart))
     return found
+
+
+def _gap_ends_margin(percepts: Percepts, gap: Gap, apart: float) -> dict[str, float]:
+    """``gap_ends``: how much wider than ``gap`` the next closest pair of returns of its two
+    obstacles is, among the pairs whose middle lies more than ``apart`` rad (seen from the
+    robot) from ``gap``'s, in radii. Two parallel faces have many closest pairs: rounding
+    picks one, and the robot steers at its middle (eq. 1)."""
+    at = next((k for k, g in enumerate(percepts.gaps) if g == gap), None)
+    if at is None:
+        return {}
+    right, left = percepts.clusters[at].xy, percepts.clusters[at + 1].xy
+    middle = np.asarray(eq1_gap_midpoint(gap.right, gap.left))
+    pairs = np.linalg.norm(right[:, None, :] - left[None, :, :], axis=2)
+    middles = (right[:, None, :] + left[None, :, :]) / 2.0
+    elsewhere = np.linalg.norm(middles - middle, axis=2) > apart * float(np.hypot(*middle))
+    if not elsewhere.any():
+        return {}
+    return {"gap_ends": float(pairs[elsewhere].min() - gap.width) / percepts.sight.body.radius}
 
 
 def _following(

@@ -14,7 +14,7 @@ static int boundary_init(ifgm_boundary_planner *p, ifgm_rule rule, const ifgm_ep
     p->progress.step_length = p->body.tuning.step_length;
     ifgm_follower_reset(&p->follower);
     ifgm_circuit_reset(&p->circuit);
-    ifgm_memory_clear(&p->memory, p->body.tuning.memory_horizon);
+    ifgm_memory_clear(&p->memory, p->body.tuning.memory_horizon, e->dt);
     return IFGM_OK;
 }
 

@@ -49,7 +49,7 @@ int ifgm_init(ifgm_planner *p, const ifgm_episode *e, const ifgm_tuning *tuning)
     p->iba.step_length = p->body.tuning.step_length;
     ifgm_follower_reset(&p->follower);
     ifgm_circuit_reset(&p->circuit);
-    ifgm_memory_clear(&p->memory, p->body.tuning.memory_horizon);
+    ifgm_memory_clear(&p->memory, p->body.tuning.memory_horizon, e->dt);
     /* Within the tolerance plus one step of travel the robot drives onto the goal. */
     p->goal_tolerance = e->goal_tolerance + e->speed * e->dt;
     ifgm_state fresh = {0};

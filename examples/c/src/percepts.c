@@ -72,9 +72,10 @@ void ifgm_scan_points_of(ifgm_scan_points *out, const ifgm_real *ranges, int n,
     out->n = k;
 }
 
-void ifgm_memory_clear(ifgm_memory *memory, ifgm_real horizon)
+void ifgm_memory_clear(ifgm_memory *memory, ifgm_real horizon, ifgm_real period)
 {
     memory->horizon = horizon;
+    memory->period = period;
     memory->start = memory->end = 0;
     memory->scan_first = memory->scan_count = 0;
 }
@@ -112,7 +113,7 @@ void ifgm_memory_add(ifgm_memory *m, ifgm_real t, const ifgm_real pose[3],
     m->scan_t[slot] = t;
     m->scan_size[slot] = n;
     m->scan_count++;
-    while (m->scan_count > 0 && m->scan_t[m->scan_first] < t - m->horizon)
+    while (m->scan_count > 0 && m->scan_t[m->scan_first] < t - m->horizon - m->period / 2)
         forget_oldest(m);
 }
 

@@ -75,7 +75,7 @@ void ifgm_scan_points_of(ifgm_scan_points *out, const ifgm_real *ranges, int n,
 /* The obstacle points of the last `horizon` seconds, world frame, oldest first
  * (PerceptMemory): a short-lived record of the robot's own percepts, not a map. */
 typedef struct {
-    ifgm_real horizon;
+    ifgm_real horizon, period; /* period: the time between scans */
     int start, end; /* the live points are x[start..end), y[start..end) */
     int scan_first, scan_count; /* a ring of the remembered scans' times and sizes */
     ifgm_real scan_t[IFGM_MAX_SCANS];
@@ -83,10 +83,11 @@ typedef struct {
     ifgm_real x[IFGM_MAX_POINTS], y[IFGM_MAX_POINTS];
 } ifgm_memory;
 
-/* Forget everything; remember `horizon` seconds from now on. */
-void ifgm_memory_clear(ifgm_memory *memory, ifgm_real horizon);
+/* Forget everything; remember `horizon` seconds of scans taken every `period` from now on. */
+void ifgm_memory_clear(ifgm_memory *memory, ifgm_real horizon, ifgm_real period);
 /* Remember `points` (robot frame) seen at time t from `pose`; forget the scans seen more
- * than `horizon` before t. If they do not fit the buffers (an episode whose times jump, on
+ * than `horizon` before t, the edge decided half a period out (the scan exactly `horizon`
+ * old is kept, whatever the rounding of the times). If they do not fit the buffers (an episode whose times jump, on
  * a build sized too small), the oldest scans are forgotten first. */
 void ifgm_memory_add(ifgm_memory *memory, ifgm_real t, const ifgm_real pose[3],
                      const ifgm_scan_points *points);
