@@ -70,13 +70,13 @@ def margins(
     and the dead end only on meeting an obstacle; the freer side only where IBA takes over
     or Case-3 pre-empts (where the beams are equal, the goal's side decides: its bearing is
     the margin); the ends of the gap only where Case-1 steers through it; the followed edge's
-    point and the pre-emption only while following. The
-    followed point is tracked from ``followed_before``, the one followed at the step before
-    (``None`` if none), as :meth:`~ifgm_ref.planners.ifgm.IFGMPlanner.perceive` tracks it.
-    Of the remembered points, only those seen more than ``apart`` rad from the one tracked
-    are another choice of point to follow: a wall is remembered as a cloud of points a hair
-    apart, and following one of them rather than its neighbour turns the robot by less than
-    their angle apart (the oracle's heading tolerance is the ``apart`` that matters).
+    point and the pre-emption only while following. The followed point is tracked from
+    ``followed_before``, the one followed the step before (``None`` if none), as
+    :meth:`~ifgm_ref.planners.ifgm.IFGMPlanner.perceive` tracks it. Of the remembered points,
+    only those seen more than ``apart`` rad from the one tracked are another choice of point
+    to follow: a wall is remembered as a cloud of points a hair apart, and following one of
+    them rather than its neighbour turns the robot by less than their angle apart (the
+    oracle's heading tolerance is the ``apart`` that matters).
 
     >>> from ifgm_ref.planners.ifgm import IFGMPlanner
     >>> from ifgm_ref.scenarios import resolve_world
@@ -108,8 +108,7 @@ def margins(
         found.update(_widest_margin(percepts))
     elif state.gap_mid is not None:
         found.update(_kept_gap_margin(percepts, state.gap_mid))
-    nearest_pair = readings.gap_points is GapReading.NEAREST
-    if branch is Branch.CASE1_GAP and reading.gap is not None and nearest_pair:
+    if branch is Branch.CASE1_GAP and reading.gap is not None:
         found.update(_gap_ends_margin(percepts, reading.gap, apart))
     if state.following:
         found.update(_following(percepts, state, followed_before, apart))
@@ -120,9 +119,10 @@ def _gap_ends_margin(percepts: Percepts, gap: Gap, apart: float) -> dict[str, fl
     """``gap_ends``: how much wider than ``gap`` the next closest pair of returns of its two
     obstacles is, among the pairs whose middle lies more than ``apart`` rad (seen from the
     robot) from ``gap``'s, in radii. Two parallel faces have many closest pairs: rounding
-    picks one, and the robot steers at its middle (eq. 1)."""
+    picks one, and the robot steers at its middle (eq. 1). The printed reading's gaps run
+    between the obstacles' means, a choice of no pair (no margin)."""
     at = next((k for k, g in enumerate(percepts.gaps) if g == gap), None)
-    if at is None:
+    if at is None or percepts.readings.gap_points is not GapReading.NEAREST:
         return {}
     right, left = percepts.clusters[at].xy, percepts.clusters[at + 1].xy
     middle = np.asarray(eq1_gap_midpoint(gap.right, gap.left))
