@@ -269,15 +269,16 @@ class Outcome:
     ("killed", "survived", or "error": the command could not judge, exit status 2 and up)
     and seconds."""
 
+    number: int
     site: Site
     trace: str
-    number: int = 0
     verdicts: dict[str, str] = field(default_factory=dict)
     seconds: dict[str, float] = field(default_factory=dict)
 
 
-def judge(site: Site, original: list[str], levels: list[str], tests: str) -> Outcome:
-    """Build ``site``'s mutant in a copy of the package and run every level on it."""
+def judge(number: int, site: Site, original: list[str], levels: list[str], tests: str) -> Outcome:
+    """Build ``site``'s mutant (``number`` of the draw) in a copy of the package and run
+    every level on it."""
     started = time.perf_counter()
     with tempfile.TemporaryDirectory(prefix="mutant-") as folder:
         copy = Path(folder)
@@ -285,8 +286,9 @@ def judge(site: Site, original: list[str], levels: list[str], tests: str) -> Out
         (copy / "ifgm_ref" / site.file).write_text(mutated_source(site))
         found = traces(copy)
         if found is None:
-            return Outcome(site, "broken", seconds={"trace": time.perf_counter() - started})
-        outcome = Outcome(site, trace_change(original, found))
+            seconds = {"trace": time.perf_counter() - started}
+            return Outcome(number, site, "broken", seconds=seconds)
+        outcome = Outcome(number, site, trace_change(original, found))
         outcome.seconds["trace"] = time.perf_counter() - started
         if outcome.trace != "changed":
             return outcome
@@ -336,8 +338,7 @@ def main() -> None:
     args.out.mkdir(parents=True, exist_ok=True)
     outcomes = []
     for k in numbers:
-        outcome = judge(drawn[k - 1], original, args.levels.split(","), args.tests)
-        outcome.number = k
+        outcome = judge(k, drawn[k - 1], original, args.levels.split(","), args.tests)
         outcomes.append(outcome)
         print(f"[{k}/{len(drawn)}] {_row(outcome)}", flush=True)
         _write(args.out / "mutants.csv", outcomes)

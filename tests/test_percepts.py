@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 
 import numpy as np
 import pytest
@@ -67,13 +68,12 @@ def test_one_point_to_the_world_is_the_arrays_transform_to_the_bit(
 
 @pytest.mark.parametrize("rounded", [float, lambda t: float(np.float32(t))])
 def test_the_memory_keeps_the_scan_exactly_its_horizon_old_whatever_the_rounding(
-    rounded: object,
+    rounded: Callable[[float], float],
 ) -> None:
     """Errata row 20: with scans every 0.1 s and an 8 s horizon, the memory holds the last 81
     scans at every step, in doubles and in float32 times alike. Compared with ``t - 8``
     itself, the scan exactly 8 s old was forgotten at 97 of these 320 steps in doubles and 56
     in float32: a port's rounding decided what it remembered."""
-    assert callable(rounded)
     memory = PerceptMemory(horizon=8.0, period=0.1)
     for k in range(400):
         memory.add_points(rounded(k * 0.1), np.array([[float(k), 0.0]]))

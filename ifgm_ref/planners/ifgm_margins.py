@@ -121,8 +121,10 @@ def _gap_ends_margin(percepts: Percepts, gap: Gap, apart: float) -> dict[str, fl
     robot) from ``gap``'s, in radii. Two parallel faces have many closest pairs: rounding
     picks one, and the robot steers at its middle (eq. 1). The printed reading's gaps run
     between the obstacles' means, a choice of no pair (no margin)."""
+    if percepts.readings.gap_points is not GapReading.NEAREST:
+        return {}
     at = next((k for k, g in enumerate(percepts.gaps) if g == gap), None)
-    if at is None or percepts.readings.gap_points is not GapReading.NEAREST:
+    if at is None:
         return {}
     right, left = percepts.clusters[at].xy, percepts.clusters[at + 1].xy
     middle = np.asarray(eq1_gap_midpoint(gap.right, gap.left))
