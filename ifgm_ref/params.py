@@ -189,6 +189,8 @@ AUTO: Final = "auto"
 DT: Final = 0.1
 #: The default goal tolerance, ft (the same two).
 GOAL_TOLERANCE: Final = 0.5
+#: The engines that move the robot (:mod:`ifgm_ref.engine`); the first is the default.
+ENGINES: Final = ("kinematic", "mujoco")
 
 
 @dataclass(frozen=True)
@@ -216,6 +218,14 @@ class SimParams:
         :mod:`ifgm_ref.simulator`, thresholds in :mod:`ifgm_ref.laps`); ``None`` or 0 turns
         this rule off. With both rules off a robot that makes no progress runs to
         ``max_time``.
+    engine : str, default "kinematic"
+        What senses and moves the robot (:mod:`ifgm_ref.engine`): ``kinematic``, the paper's
+        instant robot, or ``mujoco``, a robot with mass on the MuJoCo physics engine
+        (:mod:`ifgm_ref.physics`).
+    body : str or None, default None
+        The ``mujoco`` engine's robot body (:data:`ifgm_ref.physics.bodies.BODIES`:
+        ``paper`` or ``jackal``); ``None`` takes the Jackal for BARN's robot and the
+        paper's otherwise. The kinematic engine has no body.
     """
 
     dt: float = DT
@@ -223,10 +233,18 @@ class SimParams:
     goal_tolerance: float = GOAL_TOLERANCE
     stall_time: float | Literal["auto"] | None = AUTO
     stall_laps: int | None = 2
+    engine: str = ENGINES[0]
+    body: str | None = None
 
     def __post_init__(self) -> None:
         require("dt", self.dt, POSITIVE)
         require("max_time", self.max_time, POSITIVE)
+        if self.engine not in ENGINES:
+            raise ParameterError(
+                f"`engine` must be one of {', '.join(ENGINES)}, got {self.engine!r}"
+            )
+        if self.body is not None and not isinstance(self.body, str):
+            raise ParameterError(f"`body` must be a body's name or None, got {self.body!r}")
         require("goal_tolerance", self.goal_tolerance, POSITIVE)
         if self.stall_time is not None and self.stall_time != AUTO:
             if isinstance(self.stall_time, str):

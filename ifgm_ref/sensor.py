@@ -148,9 +148,14 @@ class IRSensor:
         LaserScan
             ``rays`` ranges in ft from ``angle_min`` to ``angle_max``, REP 117 encoded.
         """
-        params = self._params
         x, y, theta = pose
-        ranges = self._caster.cast_fan((x, y), theta, self._fan)
+        return self.reading(self._caster.cast_fan((x, y), theta, self._fan))
+
+    def reading(self, ranges: NDArray[np.float64]) -> LaserScan:
+        """The scan of the exact ``ranges`` of :attr:`angles` (``inf`` where nothing is hit,
+        modified in place): noise added, REP 117 encoded, as :meth:`scan` returns it. An
+        engine that casts its own rays (:mod:`ifgm_ref.physics`) reads them so."""
+        params = self._params
         if self._noise.active:
             self._noise.apply(ranges)
             np.maximum(ranges, 0.0, out=ranges)

@@ -3,7 +3,9 @@
 Each step the sensor scans from the current pose, the planner answers a command from that
 observation alone (no map), the robot moves by one time step (:func:`ifgm_ref.robot.advance`)
 and the disc swept between the two poses is checked for collision exactly
-(:class:`ifgm_ref.collision.ClearanceChecker`). An episode ends when the robot's centre is
+(:class:`ifgm_ref.collision.ClearanceChecker`). That is the default, ``kinematic`` engine;
+``SimParams(engine="mujoco")`` senses and moves a robot with mass on MuJoCo instead, under
+the same loop and rules (:mod:`ifgm_ref.engine`). An episode ends when the robot's centre is
 within ``goal_tolerance`` of the goal, the swept disc meets an obstacle, the robot's centre
 leaves the world's bounds, the planner sends an invalid command or asks to stop, the robot
 stalls, or the time limit passes.
@@ -92,7 +94,7 @@ from enum import StrEnum
 from itertools import pairwise
 from typing import Any
 
-from ifgm_ref.collision import ClearanceChecker
+from ifgm_ref.engine import Engine, make_engine
 from ifgm_ref.formulas import Scale, evaluate
 from ifgm_ref.laps import LapRule, LapWatch
 from ifgm_ref.noise import Actuation, Odometry
@@ -100,8 +102,6 @@ from ifgm_ref.params import SimParams
 from ifgm_ref.pose import Pose, distance, wrap_angle
 from ifgm_ref.progress import progress_bar
 from ifgm_ref.protocol import Command, EpisodeParams, Observation, Planner
-from ifgm_ref.robot import advance
-from ifgm_ref.sensor import IRSensor
 from ifgm_ref.world import World
 
 
@@ -251,21 +251,19 @@ def simulate(
         Show a progress bar over simulated time on stderr; ``None`` shows it only on a terminal.
     """
     sim = sim or SimParams()
-    robot = world.robot
-    sensor = IRSensor(world)
-    checker = ClearanceChecker(world, robot.radius)
+    engine = make_engine(world, sim)
     episode = episode_params(world, sim, params)
     planner.reset(world.start, world.goal, episode)
     stall = stall_steps(sim, episode)
     laps = lap_rule(sim, episode)
     pose = Pose(*world.start)
     recent = deque([pose], maxlen=(stall or 0) + 1)  # the last stall + 1 positions
-    state = _Episode(pose, recent, checker.pose_clearance(pose), Odometry(world.robot))
+    state = _Episode(pose, recent, engine.pose_clearance(pose), Odometry(world.robot), engine)
     if laps is not None:
         state.laps = LapWatch.start(laps, world.goal)
-    stop, detail = _drive(state, world, planner, sim, sensor, checker, stall, progress)
+    stop, detail = _drive(state, world, planner, sim, stall, progress)
     end = round(state.steps * sim.dt, 12)
-    last = _sample(end, state.pose, None, checker.pose_clearance(state.pose), state.believed)
+    last = _sample(end, state.pose, None, engine.pose_clearance(state.pose), state.believed)
     state.trace.append(last)
     result = Result(
         planner=planner.name,
@@ -285,13 +283,14 @@ def simulate(
 @dataclass
 class _Episode:
     """An episode in progress: the robot's pose, the last few positions (for the disc rule),
-    the positions logged for the lap rule (``None`` when it is off), the trace so far, the
-    path length, the least clearance and the steps taken."""
+    its odometry's noise, the engine, the positions logged for the lap rule (``None`` when it
+    is off), the trace so far, the path length, the least clearance and the steps taken."""
 
     pose: Pose
     recent: deque[Pose]
     min_clearance: float
     odometry: Odometry
+    engine: Engine
     laps: LapWatch | None = None
     trace: list[TraceStep] = field(default_factory=list)
     path_length: float = 0.0
@@ -299,8 +298,8 @@ class _Episode:
 
     @property
     def believed(self) -> Pose:
-        """The pose the planner is told (the true one but for odometry noise)."""
-        return self.odometry.believed(self.pose)
+        """The pose the planner is told: the engine's odometry, with odometry noise."""
+        return self.odometry.believed(self.engine.odometry(self.pose))
 
     def move(
         self, t: float, command: Command, believed: Pose, new_pose: Pose, clearance: float
@@ -322,8 +321,6 @@ def _drive(
     world: World,
     planner: Planner,
     sim: SimParams,
-    sensor: IRSensor,
-    checker: ClearanceChecker,
     stall: int | None,
     progress: bool | None,
 ) -> tuple[str, str | None]:
@@ -348,7 +345,8 @@ def _drive(
             if state.laps is not None and state.laps.stalled(state.pose, state.path_length):
                 return StopReason.STALLED, state.laps.detail
             believed = state.believed
-            command = planner.step(Observation(t, believed, world.goal, sensor.scan(state.pose)))
+            scan = state.engine.scan(state.pose)
+            command = planner.step(Observation(t, believed, world.goal, scan))
             detail = _problem(command)
             if detail is not None:
                 return StopReason.INVALID_COMMAND, detail
@@ -358,14 +356,11 @@ def _drive(
             if state.odometry.drift:  # the heading controller knows the believed heading only
                 heading = state.odometry.true_heading(executed.heading)
                 executed = replace(executed, heading=heading)
-            new_pose = advance(
-                state.pose, executed, world.robot, sim.dt, turn_scale=turn, speed_scale=speed
-            )
-            clearance = checker.segment_clearance(state.pose, new_pose)
+            new_pose, clearance, collided = state.engine.move(state.pose, executed, turn, speed)
             state.move(t, command, believed, new_pose, clearance)
             if state.steps % 100 == 0:
                 bar.update(100)
-            if clearance < 0.0:
+            if collided:
                 return StopReason.COLLISION, None
             if world.bounds is not None and not world.bounds.contains(state.pose):
                 return StopReason.OUT_OF_BOUNDS, None

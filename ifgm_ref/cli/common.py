@@ -5,10 +5,14 @@ from __future__ import annotations
 import argparse
 import math
 from collections.abc import Callable
+from dataclasses import replace
 from pathlib import Path
 from typing import TYPE_CHECKING, NoReturn
 
+from ifgm_ref.engine import require_physics
 from ifgm_ref.errors import ParameterError
+from ifgm_ref.params import ENGINES, SimParams
+from ifgm_ref.physics.bodies import BODIES
 from ifgm_ref.transport.external import STARTUP_TIMEOUT, TIMEOUT
 from ifgm_ref.validate import POSITIVE, violation
 
@@ -139,3 +143,30 @@ def numbers(count: int) -> Callable[[str], tuple[float, ...]]:
         return values
 
     return parse
+
+
+def add_engine_options(parser: argparse.ArgumentParser) -> None:
+    """``--engine`` and ``--body``: what senses and moves the robot (docs/physics.md)."""
+    parser.add_argument(
+        "--engine",
+        choices=ENGINES,
+        default=ENGINES[0],
+        help="what moves the robot: kinematic (default: the paper's instant robot) or mujoco (a "
+        "robot with mass on the MuJoCo physics engine; pip install 'ifgm-ref[physics]')",
+    )
+    parser.add_argument(
+        "--body",
+        choices=sorted(BODIES),
+        help="with --engine mujoco: the robot's body (default: jackal for BARN's robot, paper "
+        "otherwise)",
+    )
+
+
+def with_engine(sim: SimParams, args: argparse.Namespace) -> SimParams:
+    """``sim`` with the engine and body of ``--engine`` and ``--body`` (checked now, before any
+    run: MuJoCo installed, a body only for the mujoco engine)."""
+    if args.body is not None and args.engine != "mujoco":
+        raise ParameterError("--body applies to --engine mujoco only")
+    if args.engine == "mujoco":
+        require_physics()
+    return replace(sim, engine=args.engine, body=args.body)

@@ -10,11 +10,13 @@ from typing import TYPE_CHECKING
 
 from ifgm_ref.barn import DEFAULT_SENSOR, GazeboTask, barn_score, gazebo_task
 from ifgm_ref.cli.common import (
+    add_engine_options,
     add_timeout_options,
     non_negative_int,
     numbers,
     output_folder,
     positive_float,
+    with_engine,
 )
 from ifgm_ref.errors import ParameterError
 from ifgm_ref.noise import KINDS, NoiseLevels
@@ -69,6 +71,7 @@ def add_simulate(sub: Subcommands) -> None:
         "planner's stop fails): for CI scripts",
     )
     _add_output_options(sim)
+    add_engine_options(sim)
     _add_gazebo_options(sim)
     sim.set_defaults(func=run_simulate)
 
@@ -156,6 +159,7 @@ def run_simulate(args: argparse.Namespace) -> int:
         if args.goal_tolerance is None
         else args.goal_tolerance,
     )
+    sim = with_engine(sim, args)
     if (args.planner is None) == (args.cmd is None):
         raise ParameterError("give exactly one of --planner NAME and --cmd 'PROGRAM'")
     check_outputs(args)  # before the run, not after it

@@ -1,0 +1,121 @@
+"""Engines: what senses and moves the robot of an episode, kinematic or physical.
+
+The simulator (:mod:`ifgm_ref.simulator`) runs the same loop whatever the engine: scan, tell
+the planner the pose, execute its command for one time step, check. An engine does the three
+things that depend on the robot's physics:
+
+* :meth:`Engine.scan`: the range scan from the robot's true pose;
+* :meth:`Engine.odometry`: the pose the robot's own odometry gives (before the noise models
+  of :mod:`ifgm_ref.noise`, which the simulator adds in either engine);
+* :meth:`Engine.move`: one time step under a command; the new true pose, the clearance of the
+  path swept and whether the robot collided.
+
+Two engines (:data:`ifgm_ref.params.ENGINES`, ``--engine`` on the command line):
+
+``kinematic`` (default)
+    The paper's robot as the paper simulates it: it turns, then drives, at once
+    (:func:`ifgm_ref.robot.advance`); its odometry is exact; a collision is a swept disc that
+    meets an obstacle (:class:`ifgm_ref.collision.ClearanceChecker`).
+``mujoco``
+    A differential-drive robot with mass on the MuJoCo physics engine
+    (:mod:`ifgm_ref.physics`, the ``physics`` extra): wheels, velocity actuators with force
+    limits, acceleration limits, wheel odometry, contacts.
+"""
+
+from __future__ import annotations
+
+import importlib.util
+from typing import TYPE_CHECKING, Protocol
+
+from ifgm_ref.collision import ClearanceChecker
+from ifgm_ref.errors import ParameterError
+from ifgm_ref.laserscan import LaserScan
+from ifgm_ref.pose import Pose
+from ifgm_ref.protocol import Command
+from ifgm_ref.robot import advance
+from ifgm_ref.sensor import IRSensor
+from ifgm_ref.world import World
+
+if TYPE_CHECKING:
+    from ifgm_ref.params import SimParams
+
+#: What to install for ``--engine mujoco`` (one line, as the command line prints it).
+PHYSICS_HINT = (
+    "the mujoco engine needs MuJoCo: pip install 'ifgm-ref[physics]' "
+    "(from a clone: pip install -e '.[physics]')"
+)
+
+
+class Engine(Protocol):
+    """What senses and moves the robot (see the module docstring)."""
+
+    def scan(self, pose: Pose) -> LaserScan:
+        """The scan from the robot at its true ``pose``."""
+
+    def odometry(self, pose: Pose) -> Pose:
+        """The pose the robot's odometry gives when its true pose is ``pose``."""
+
+    def move(
+        self, pose: Pose, command: Command, turn_scale: float, speed_scale: float
+    ) -> tuple[Pose, float, bool]:
+        """Execute ``command`` for one time step from the true ``pose``: the new true pose,
+        the clearance of the path swept, and whether the robot collided on the way.
+        ``turn_scale`` and ``speed_scale`` are the actuation noise's factors."""
+
+    def pose_clearance(self, pose: Pose) -> float:
+        """The clearance of the robot standing at ``pose``."""
+
+
+class KinematicEngine:
+    """The paper's robot: :func:`~ifgm_ref.robot.advance`, exact odometry, the swept disc."""
+
+    def __init__(self, world: World, dt: float) -> None:
+        self.robot = world.robot
+        self.dt = dt
+        self.sensor = IRSensor(world)
+        self.checker = ClearanceChecker(world, world.robot.radius)
+
+    def scan(self, pose: Pose) -> LaserScan:
+        """The exact scan from ``pose`` (:class:`~ifgm_ref.sensor.IRSensor`)."""
+        return self.sensor.scan(pose)
+
+    def odometry(self, pose: Pose) -> Pose:
+        """Exact: the true ``pose``."""
+        return pose
+
+    def move(
+        self, pose: Pose, command: Command, turn_scale: float, speed_scale: float
+    ) -> tuple[Pose, float, bool]:
+        """Turn, then drive (:func:`~ifgm_ref.robot.advance`); the straight segment's
+        clearance."""
+        new_pose = advance(
+            pose, command, self.robot, self.dt, turn_scale=turn_scale, speed_scale=speed_scale
+        )
+        clearance = self.checker.segment_clearance(pose, new_pose)
+        return new_pose, clearance, clearance < 0.0
+
+    def pose_clearance(self, pose: Pose) -> float:
+        """The exact clearance of the disc at ``pose``."""
+        return self.checker.pose_clearance(pose)
+
+
+def make_engine(world: World, sim: SimParams) -> Engine:
+    """The engine ``sim.engine`` for ``world``, stepped at ``sim.dt``.
+
+    Raises
+    ------
+    ParameterError
+        For ``mujoco`` when MuJoCo is not installed (the message says what to install).
+    """
+    if sim.engine == "kinematic":
+        return KinematicEngine(world, sim.dt)
+    require_physics()
+    from ifgm_ref.physics.engine import MujocoEngine
+
+    return MujocoEngine(world, sim.dt, sim.body)
+
+
+def require_physics() -> None:
+    """Raise a :class:`ParameterError` that says what to install when MuJoCo is missing."""
+    if importlib.util.find_spec("mujoco") is None:
+        raise ParameterError(PHYSICS_HINT)

@@ -1,0 +1,153 @@
+"""The two robot bodies of the MuJoCo engine: the paper's robot and a Jackal-like one.
+
+A body is a differential-drive robot: a cylindrical chassis of the world's robot radius ``r``
+(the disc the planners are told of, and the only part that meets obstacles), two driven wheels
+on the chassis' diameter (so the robot turns about its centre, as the kinematic robot does),
+and one caster behind. Velocity actuators drive the wheels within a force limit; the heading
+controller's wheel speeds are limited to the body's linear and angular accelerations.
+
+Every number has its source (the dataclass fields say which). Lengths of the body are given
+relative to ``r``, so one preset fits its robot at any size; masses are in kg, and the
+length unit is the world's, so gravity is given in that unit.
+
+The Jackal (BARN's robot; ``ifgm_ref/barn_worlds/README.md``). From Clearpath's
+``jackal_description/urdf/jackal.urdf.xacro``: chassis 16.523 kg with ``izz = 0.4485`` kg m^2,
+four wheels of 0.477 kg, radius 0.098 m, track 0.37559 m, tyre friction 0.5. From
+``jackal_control/config/control.yaml`` (the velocity controller BARN runs): at most 20 m/s^2
+and 25 rad/s^2. The Jackal is skid-steered on four wheels; here its two wheels of a side are
+one wheel of twice the mass, and a caster carries the rest, which is the differential drive
+the issue asks for. Its 0.42 x 0.31 m chassis box is replaced by the disc of BARN's robot
+(``ifgm_ref.barn.ROBOT``, radius 0.22 m: half its width), the outline the planners know.
+
+The paper's robot. The paper gives no mass, size or motors beyond "cylindrical shaped robot"
+on stepper motors (section 4). We take a Pioneer 3-DX class platform, the usual indoor
+research robot of its time: 9 kg, wheels of 0.0975 m radius (Adept MobileRobots' datasheet),
+a chassis of the paper robot's 1 ft radius, in feet (gravity 32.174 ft/s^2). Its
+accelerations are our choice: full speed in a quarter of a second and full turn rate in a
+tenth, near the kinematic robot's instant response (the paper's motors step at once), so
+that what physics changes is mass, contact and integration, not a slow controller.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from ifgm_ref.errors import ParameterError
+from ifgm_ref.params import RobotParams
+
+#: Standard gravity, m/s^2 and ft/s^2 (9.80665 m/s^2 / 0.3048 m/ft).
+GRAVITY_M = 9.80665
+GRAVITY_FT = GRAVITY_M / 0.3048
+
+
+@dataclass(frozen=True)
+class Body:
+    """A differential-drive body for a disc robot of radius ``r`` (see the module docstring).
+
+    Parameters
+    ----------
+    name : str
+        The preset's name (``--body`` on the command line).
+    chassis_mass : float
+        Chassis mass, kg (wheels apart).
+    chassis_izz : float or None
+        Chassis moment of inertia about the vertical axis, kg length^2; ``None`` takes that of
+        a uniform disc of radius ``r``.
+    wheel_mass : float
+        Mass of one driven wheel, kg.
+    wheel_radius : float
+        Wheel radius relative to ``r``.
+    track : float
+        Distance between the two wheels' mid-planes, relative to ``r`` (< 2).
+    friction : float
+        Tyre friction coefficient (the caster has none).
+    max_accel : float
+        Largest linear acceleration, length/s^2 (the world's length unit).
+    max_angular_accel : float
+        Largest angular acceleration, rad/s^2.
+    gravity : float
+        Gravity in the world's length unit per s^2.
+    """
+
+    name: str
+    chassis_mass: float
+    chassis_izz: float | None
+    wheel_mass: float
+    wheel_radius: float
+    track: float
+    friction: float
+    max_accel: float
+    max_angular_accel: float
+    gravity: float
+
+    def __post_init__(self) -> None:
+        if not 0.0 < self.track < 2.0 - self.wheel_width_ratio:
+            raise ParameterError(f"`track` must be in (0, 2 - wheel width), got {self.track!r}")
+
+    #: Wheel width relative to ``r`` (the Jackal's 0.040 m wheels on its 0.22 m disc).
+    wheel_width_ratio = 0.040 / 0.22
+
+    def scaled_track(self, robot: RobotParams) -> float:
+        """Wheel separation of this body on ``robot``, in its length unit."""
+        return self.track * robot.radius
+
+    def scaled_wheel(self, robot: RobotParams) -> float:
+        """Wheel radius of this body on ``robot``, in its length unit."""
+        return self.wheel_radius * robot.radius
+
+
+#: BARN's Jackal (module docstring): the urdf's masses and wheels, control.yaml's limits, on
+#: BARN's 0.22 m disc.
+JACKAL = Body(
+    name="jackal",
+    chassis_mass=16.523,
+    chassis_izz=0.4485,
+    wheel_mass=2 * 0.477,
+    wheel_radius=0.098 / 0.22,
+    track=0.37559 / 0.22,
+    friction=0.5,
+    max_accel=20.0,
+    max_angular_accel=25.0,
+    gravity=GRAVITY_M,
+)
+
+#: The paper's robot (module docstring): a 9 kg Pioneer 3-DX class body on the 1 ft disc, in
+#: feet. Accelerations: the default robot's speed in 0.25 s and turn rate in 0.1 s.
+PAPER = Body(
+    name="paper",
+    chassis_mass=9.0 - 2 * 0.5,
+    chassis_izz=None,
+    wheel_mass=0.5,
+    wheel_radius=0.0975 / 0.3048,
+    track=1.25,
+    friction=0.8,
+    max_accel=RobotParams().speed / 0.25,
+    max_angular_accel=RobotParams().max_turn_rate / 0.1,
+    gravity=GRAVITY_FT,
+)
+
+#: The bodies by name (``--body NAME``).
+BODIES = {body.name: body for body in (PAPER, JACKAL)}
+
+
+def body_for(robot: RobotParams) -> Body:
+    """The default body of ``robot``: the Jackal for BARN's robot (metres), else the paper's.
+
+    >>> from ifgm_ref.barn import ROBOT
+    >>> body_for(ROBOT).name, body_for(RobotParams()).name
+    ('jackal', 'paper')
+    """
+    from ifgm_ref.barn import ROBOT
+
+    return JACKAL if math.isclose(robot.radius, ROBOT.radius) else PAPER
+
+
+def body_named(name: str) -> Body:
+    """The body called ``name``; a :class:`ParameterError` names the choices otherwise."""
+    try:
+        return BODIES[name]
+    except KeyError:
+        raise ParameterError(
+            f"unknown body {name!r}; choose one of {', '.join(sorted(BODIES))}"
+        ) from None
