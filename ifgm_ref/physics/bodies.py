@@ -3,8 +3,9 @@
 A body is a differential-drive robot: a cylindrical chassis of the world's robot radius ``r``
 (the disc the planners are told of, and the only part that meets obstacles), two driven wheels
 on the chassis' diameter (so the robot turns about its centre, as the kinematic robot does),
-and one caster behind. Velocity actuators drive the wheels within a force limit; the heading
-controller's wheel speeds are limited to the body's linear and angular accelerations.
+and a frictionless caster in front and one behind. Velocity actuators drive the wheels within
+a force limit; the heading controller's wheel speeds are limited to the body's linear and
+angular accelerations.
 
 Every number has its source (the dataclass fields say which). Lengths of the body are given
 relative to ``r``, so one preset fits its robot at any size; masses are in kg, and the
@@ -12,11 +13,12 @@ length unit is the world's, so gravity is given in that unit.
 
 The Jackal (BARN's robot; ``ifgm_ref/barn_worlds/README.md``). From Clearpath's
 ``jackal_description/urdf/jackal.urdf.xacro``: chassis 16.523 kg with ``izz = 0.4485`` kg m^2,
-four wheels of 0.477 kg, radius 0.098 m, track 0.37559 m, tyre friction 0.5. From
+four wheels of 0.477 kg, radius 0.098 m, track 0.37559 m, tyre friction 0.5 (its Gazebo
+``mu1``/``mu2``). From
 ``jackal_control/config/control.yaml`` (the velocity controller BARN runs): at most 20 m/s^2
 and 25 rad/s^2. The Jackal is skid-steered on four wheels; here its two wheels of a side are
-one wheel of twice the mass, and a caster carries the rest, which is the differential drive
-the issue asks for. Its 0.42 x 0.31 m chassis box is replaced by the disc of BARN's robot
+one wheel of twice the mass, and the casters carry the rest: a differential drive. Its
+0.42 x 0.31 m chassis box is replaced by the disc of BARN's robot
 (``ifgm_ref.barn.ROBOT``, radius 0.22 m: half its width), the outline the planners know.
 
 The paper's robot. The paper gives no mass, size or motors beyond "cylindrical shaped robot"

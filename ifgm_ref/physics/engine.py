@@ -20,8 +20,14 @@ One episode step of ``dt`` seconds (the planner's decision period) is:
    along the path of the substeps' positions (:class:`~ifgm_ref.collision.ClearanceChecker`,
    exact), so that a trace's clearance and collision agree as in the kinematic engine.
 
-**Odometry** integrates the wheels' turned angles, substep by substep (the midpoint rule), as a
-robot's encoders would; wheel slip makes it drift from the true pose. **Sensing** casts the
+**Odometry** is the Jackal's (``jackal_control/config/control.yaml``: its
+``ekf_localization`` fuses the wheels' velocities with the IMU's yaw): the heading is the
+IMU's, the chassis' true heading (an ideal gyro), and the position advances by the distance
+the wheels' encoders count, ``R (dphi_l + dphi_r) / 2`` per substep, along the mean heading
+of the substep. Tyre slip (the wheels spin up faster than the robot) makes the position
+drift from the truth; the heading does not drift. Wheel encoders alone drift in heading too:
+about half a degree per sharp 45-degree turn of the paper's body, which the fused odometry
+of real robots exists to avoid. **Sensing** casts the
 scan's rays with MuJoCo's ray function (``mj_multiRay``) from the sensor site at the robot's
 centre, horizontally along the chassis' heading, against the obstacles only; the ranges then
 go through the same noise and REP 117 encoding as the kinematic sensor
@@ -147,7 +153,8 @@ class MujocoEngine:
         return self.sensor.reading(ranges)
 
     def odometry(self, pose: Pose) -> Pose:
-        """The wheel odometry's pose (``pose``, the true one, is not used)."""
+        """The odometry's pose: encoders and gyro (module docstring; ``pose``, the true one,
+        is not used)."""
         return self._odometry
 
     def move(
@@ -171,8 +178,8 @@ class MujocoEngine:
             self.data.ctrl[0] = (v - w * track / 2) / wheel
             self.data.ctrl[1] = (v + w * track / 2) / wheel
             mujoco.mj_step(self.model, self.data)
-            self._update_odometry(track, wheel)
             now = self.true_pose()
+            self._update_odometry(wheel, now.theta)
             clearance = min(clearance, self.checker.segment_clearance(previous, now))
             previous = now
             collided = collided or self._touching()
@@ -192,17 +199,15 @@ class MujocoEngine:
         turn = min(max(wanted, -limit), limit) * turn_scale
         return min(command.speed, robot.speed) * speed_scale, turn / dt
 
-    def _update_odometry(self, track: float, wheel: float) -> None:
+    def _update_odometry(self, wheel: float, heading: float) -> None:
+        """Advance the odometry by the wheels' distance along the mean of its heading and the
+        gyro's new ``heading`` (module docstring)."""
         left, right = self._read_wheels()
-        dl = (left - self._wheel_angles[0]) * wheel
-        dr = (right - self._wheel_angles[1]) * wheel
+        ds = ((left - self._wheel_angles[0]) + (right - self._wheel_angles[1])) * wheel / 2
         self._wheel_angles = (left, right)
         x, y, theta = self._odometry
-        ds, dtheta = (dl + dr) / 2, (dr - dl) / track
-        mid = theta + dtheta / 2
-        self._odometry = Pose(
-            x + ds * math.cos(mid), y + ds * math.sin(mid), wrap_angle(theta + dtheta)
-        )
+        mid = theta + wrap_angle(heading - theta) / 2
+        self._odometry = Pose(x + ds * math.cos(mid), y + ds * math.sin(mid), heading)
 
     def _touching(self) -> bool:
         """Whether the chassis is in contact with an obstacle (the only geoms it can touch)."""

@@ -5,7 +5,8 @@ H included) its triangles (a constrained Delaunay triangulation of its outline,
 :func:`shapely.constrained_delaunay_triangles`), each extruded into a prism mesh, which is
 convex, as MuJoCo's collision needs. The robot is the body of :mod:`ifgm_ref.physics.bodies`
 on a free joint: a chassis cylinder of radius ``r`` clear of the floor, two driven wheels on
-its diameter, a frictionless caster sphere behind.
+its diameter, a frictionless caster sphere in front and one behind (docs/physics.md says
+why).
 
 Which geoms touch which (MuJoCo's ``contype``/``conaffinity`` bits): wheels and caster meet
 only the floor, the chassis meets only the obstacles, obstacles meet neither the floor nor
