@@ -55,6 +55,14 @@ class Unit(StrEnum):
     TIME = "s"
     ANGLE = "rad"
     NUMBER = "1"
+    #: A speed (DWA's velocity limits): a length per second.
+    SPEED = "length/s"
+    #: An acceleration (DWA's acceleration limits): a length per second squared.
+    ACCELERATION = "length/s^2"
+    #: A turn rate, rad/s.
+    TURN_RATE = "rad/s"
+    #: An angular acceleration, rad/s^2.
+    TURN_ACCELERATION = "rad/s^2"
 
     @property
     def length_power(self) -> int:
@@ -63,8 +71,10 @@ class Unit(StrEnum):
 
         >>> Unit.LENGTH.length_power, Unit.TIME.length_power, Unit.LENGTH4.length_power
         (1, 0, 4)
+        >>> Unit.SPEED.length_power, Unit.ACCELERATION.length_power, Unit.TURN_RATE.length_power
+        (1, 1, 0)
         """
-        return {Unit.LENGTH: 1, Unit.LENGTH4: 4}.get(self, 0)
+        return {Unit.LENGTH: 1, Unit.LENGTH4: 4, Unit.SPEED: 1, Unit.ACCELERATION: 1}.get(self, 0)
 
 
 class Scale(NamedTuple):

@@ -29,6 +29,15 @@ PAPER_VALUES = {
     "alpha": 8.0, "beta": 1.0, "inflation_margin": 0.5, "d_th": 3.0, "d_obs": 1.6610738255,
     "d_look": 8.0, "w_g": 9.0, "w_d": 1.0, "jump": 2.0, "preempt_margin": 0.5, "view_range": 15.0,
     "k_att": 1.0, "eta": 50.0, "d0": 5.0, "stop_margin": 0.5, "turn_done": math.pi / 40,
+    # dwa came with the model: its formulas give BARN's values for BARN's robot
+    # (tests/test_dwa.py); these are what they give the paper's 1 ft robot.
+    "resolution": 1 / 4.4, "obstacle_range": 50 / 4.4, "raytrace_range": 60 / 4.4,
+    "inflation_radius": 6 / 4.4, "cost_decay": 2 / 4.4, "local_size": 200 / 4.4,
+    "max_vel_x": 197 / 298, "min_vel_x": 197 / 1490, "max_vel_theta": math.pi / 4,
+    "min_in_place_vel_theta": math.pi / 20, "acc_lim_x": 1970 / 298, "acc_lim_theta": 5.0,
+    "sim_time": 4.0, "sim_granularity": 0.4 / 4.4, "angular_sim_granularity": 0.02,
+    "vx_samples": 6.0, "vtheta_samples": 20.0, "pdist_scale": 0.75, "gdist_scale": 1.0,
+    "occdist_scale": 0.1, "heading_lookahead": 6.5 / 4.4, "planner_period": 0.1,
 }  # fmt: skip
 
 

@@ -16,6 +16,7 @@ from ifgm_ref.planners.apf import APFPlanner
 from ifgm_ref.planners.bug1 import Bug1Planner
 from ifgm_ref.planners.bug2 import Bug2Planner
 from ifgm_ref.planners.distbug import DistBugPlanner
+from ifgm_ref.planners.dwa import DWAPlanner
 from ifgm_ref.planners.fgm import FGMPlanner
 from ifgm_ref.planners.iba import IBAPlanner
 from ifgm_ref.planners.ifgm import IFGMPlanner
@@ -85,6 +86,12 @@ PLANNERS: dict[str, PlannerInfo] = {
         "artificial potential field (Khatib 1986; Table 1): goal attracts, returns repel; "
         "trapped by U, H and symmetric obstacles",
         APFPlanner.tunings,
+    ),
+    "dwa": PlannerInfo(
+        DWAPlanner,
+        "BARN's baseline, ROS move_base DWA (Fox, Burgard & Thrun 1997): keeps a costmap of its "
+        "own scans, plans on it, scores a dynamic window",
+        DWAPlanner.tunings,
     ),
     "straight": PlannerInfo(StraightPlanner, "steer straight at the goal; no avoidance"),
 }
