@@ -22,6 +22,7 @@ from typing import Any, TypeVar
 
 from ifgm_ref.bench.tasks import NOISE_FREE, Condition, Row, WorldSpec, run_world
 from ifgm_ref.errors import ParameterError
+from ifgm_ref.params import ENGINES, SimParams
 from ifgm_ref.progress import progress_bar
 
 #: What a task's function returns.
@@ -101,6 +102,27 @@ def map_tasks(
     return [results[k] for k in range(len(tasks))]
 
 
+def check_engine(engine: str, body: str | None) -> None:
+    """Refuse an engine or body that cannot run, before any task does: one error, not an
+    ``error`` row per episode (a worker would record the engine's failure as the planner's).
+
+    >>> check_engine("kinematic", "paper")
+    Traceback (most recent call last):
+    ...
+    ifgm_ref.errors.ParameterError: `body` applies to the mujoco engine only, got 'paper'
+    """
+    SimParams(engine=engine, body=body)  # an unknown engine
+    if body is not None and engine != "mujoco":
+        raise ParameterError(f"`body` applies to the mujoco engine only, got {body!r}")
+    if engine == "mujoco":
+        from ifgm_ref.engine import require_physics
+        from ifgm_ref.physics.bodies import body_named
+
+        require_physics()
+        if body is not None:
+            body_named(body)
+
+
 def run_bench(
     specs: Sequence[WorldSpec],
     planners: Sequence[str],
@@ -113,6 +135,8 @@ def run_bench(
     progress: bool | None = None,
     on_rows: Callable[[list[Row]], None] | None = None,
     record: str | None = None,
+    engine: str = ENGINES[0],
+    body: str | None = None,
 ) -> list[Row]:
     """Every planner in every world under every noise condition: the rows, world by world in
     ``specs`` order (then condition by condition, planner by planner).
@@ -131,9 +155,12 @@ def run_bench(
     on_rows : called with each world's rows as they arrive (in completion order).
     record : a folder to write every episode to as a ROS bag
         (:func:`~ifgm_ref.bench.tasks.bag_path`); the workers must reach it.
+    engine, body : what moves the robot in every episode (``kinematic`` or ``mujoco``) and the
+        mujoco engine's body (``None``: the world's default); :class:`~ifgm_ref.params.SimParams`.
     """
+    check_engine(engine, body)
     names, noises = tuple(planners), tuple(conditions)
-    tasks = [(spec, names, max_time, noises, noise_seed, record) for spec in specs]
+    tasks = [(spec, names, max_time, noises, noise_seed, record, engine, body) for spec in specs]
     results = map_tasks(
         run_world, tasks, jobs=jobs, scheduler=scheduler, progress=progress, on_result=on_rows
     )

@@ -26,6 +26,10 @@ the planner, the noise level or the worker. So the planners meet the same draws,
 step (common random numbers: a difference between them is theirs, not the dice's), and the
 levels of one kind are coupled: the rays a 2 % dropout loses are among those a 5 % one does,
 and range noise of 10 % is that of 5 %, doubled.
+
+Every episode of a task runs on the task's engine (:mod:`ifgm_ref.engine`: ``kinematic``, the
+default, or ``mujoco``) with its body: they travel in the task's arguments, as plain names, so
+a worker process needs no setting of its own; each row says its engine.
 """
 
 from __future__ import annotations
@@ -47,7 +51,7 @@ from ifgm_ref.bench.optimal import optimal_path
 from ifgm_ref.convergence import time_bound
 from ifgm_ref.errors import WorldError
 from ifgm_ref.noise import NoiseLevels
-from ifgm_ref.params import SimParams
+from ifgm_ref.params import ENGINES, SimParams
 from ifgm_ref.protocol import Command, EpisodeParams, Observation, Planner
 from ifgm_ref.recording import RecordingPlanner
 from ifgm_ref.scenarios import BUILTIN_WORLDS
@@ -157,7 +161,8 @@ class Row:
     ``noise_kind`` and ``noise_level`` the point of a noise sweep it belongs to (``none``
     and 0 for the sweep's noise-free baseline; empty outside a sweep); ``noise_seed`` the
     seed of its noise generators (empty without noise): ``ifgm-ref simulate WORLD --noise
-    NOISE --noise-seed NOISE_SEED`` replays it.
+    NOISE --noise-seed NOISE_SEED`` replays it. ``engine`` is what moved the robot
+    (:data:`~ifgm_ref.params.ENGINES`: ``simulate --engine ENGINE`` replays it).
     """
 
     planner: str
@@ -181,6 +186,7 @@ class Row:
     noise_kind: str | None = None
     noise_level: float | None = None
     noise_seed: int | None = None
+    engine: str = ENGINES[0]
 
     @classmethod
     def columns(cls) -> tuple[str, ...]:
@@ -283,10 +289,13 @@ def run_world(
     conditions: Sequence[Condition] = (NOISE_FREE,),
     seed: int = 0,
     record: str | None = None,
+    engine: str = ENGINES[0],
+    body: str | None = None,
 ) -> list[Row]:
     """Build ``spec``'s world, find its shortest path, run each planner there under each noise
     condition: one row each, condition by condition, planner by planner; with ``record`` (a
-    folder), each episode is also written there as a ROS bag (:func:`bag_path`).
+    folder), each episode is also written there as a ROS bag (:func:`bag_path`). The robot is
+    moved by ``engine`` with ``body`` (:class:`~ifgm_ref.params.SimParams`).
 
     The time limit is ``max_time`` s or, by default, the oracle's convergence budget for the
     world (:func:`ifgm_ref.convergence.time_bound`: Bug1's path bound driven slowly); for a
@@ -306,6 +315,7 @@ def run_world(
             optimal = optimal_length(world, sim.goal_tolerance)
         except WorldError:
             optimal = None
+    sim = dataclasses.replace(sim, engine=engine, body=body)
     return [
         _episode(
             spec,
@@ -353,7 +363,7 @@ def _episode(
         return Row(
             planner, spec.name, spec.kind, False, False, ERROR, math.nan, math.nan, optimal,
             None, None, math.nan, timed.decisions, None, f"{type(err).__name__}: {err}",
-            reference, None if reference is None else 0.0, **noise,
+            reference, None if reference is None else 0.0, **noise, engine=sim.engine,
         )  # fmt: skip
     if recorder is not None and bag is not None:
         from ifgm_ref.bags.write import write_bag
@@ -382,4 +392,5 @@ def _episode(
         if reference is None
         else barn.barn_score(result.reached, result.time_s, reference),
         **noise,
+        engine=sim.engine,
     )

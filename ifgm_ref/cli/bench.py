@@ -8,8 +8,16 @@ import sys
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from ifgm_ref.cli.common import names, non_negative_int, output_folder, positive_float
+from ifgm_ref.cli.common import (
+    add_engine_options,
+    names,
+    non_negative_int,
+    output_folder,
+    positive_float,
+    with_engine,
+)
 from ifgm_ref.errors import ParameterError
+from ifgm_ref.params import SimParams
 
 if TYPE_CHECKING:
     from ifgm_ref.bench.tasks import Condition, WorldSpec
@@ -63,6 +71,7 @@ def add_bench(sub: Subcommands) -> None:
         "results (docs/benchmark.md)",
     )
     _add_run_options(bench)
+    add_engine_options(bench)
     _add_noise_options(bench)
     bench.set_defaults(func=run_bench)
 
@@ -154,14 +163,15 @@ def run_bench(args: argparse.Namespace) -> int:
     from ifgm_ref.bench.runner import run_bench as run_tasks
     from ifgm_ref.bench.tasks import Row
 
-    _check_args(args)
+    sim = _check_args(args)
     conditions = _conditions(args)
     specs, source = _specs(args)
     where = f"Dask scheduler {args.scheduler}" if args.scheduler else f"{args.jobs} process(es)"
     points = f" x {len(conditions)} noise levels" if args.noise_sweep is not None else ""
     planners = f"{len(args.planners)} planner{'s' if len(args.planners) != 1 else ''}"
     worlds = f"{len(specs)} world{'s' if len(specs) != 1 else ''}"
-    print(f"bench: {planners} x {worlds}{points} ({source}) on {where}", file=sys.stderr)
+    engine = f", {sim.engine} engine" if sim.engine != "kinematic" else ""
+    print(f"bench: {planners} x {worlds}{points} ({source}) on {where}{engine}", file=sys.stderr)
     if args.record is not None:
         output_folder("--record", args.record, is_folder=True)
     partial = Path(args.out) / PARTIAL
@@ -180,6 +190,8 @@ def run_bench(args: argparse.Namespace) -> int:
             progress=None,
             on_rows=lambda done: write_csv(partial, Row.columns(), done, append=True),
             record=args.record,
+            engine=sim.engine,
+            body=sim.body,
         )
     except KeyboardInterrupt:
         print(f"interrupted: the rows so far are in {partial}", file=sys.stderr)
@@ -196,8 +208,9 @@ def run_bench(args: argparse.Namespace) -> int:
     return 0
 
 
-def _check_args(args: argparse.Namespace) -> None:
-    """Refuse what cannot run, before anything runs: one error, not one per episode."""
+def _check_args(args: argparse.Namespace) -> SimParams:
+    """Refuse what cannot run, before anything runs: one error, not one per episode. The
+    simulation parameters of ``--engine`` and ``--body``, the rest of them the defaults."""
     from ifgm_ref.bench.optimal import require_pathfinder
     from ifgm_ref.transport.loading import load_planner
 
@@ -207,8 +220,10 @@ def _check_args(args: argparse.Namespace) -> None:
             if getattr(args, option) is not None:
                 flag = "--" + option.replace("_", "-")
                 raise ParameterError(f"{flag} applies to BARN worlds only: give --barn [DIR]")
+    engine = with_engine(SimParams(), args)  # MuJoCo missing is one error now, too
     for planner in args.planners:
         load_planner(planner)  # a bad name or factory is one error now, not one per episode
+    return engine
 
 
 def _specs(args: argparse.Namespace) -> tuple[list[WorldSpec], str]:
@@ -294,12 +309,21 @@ def _header(
             "",
             f"- worlds: {source}",
             f"- planners: {', '.join(args.planners)}",
+            f"- engine: {_engine_line(args)}",
             *_noise_lines(args, conditions),
             f"- episode time limit: {limit}",
             f"- ran on: {where}; {machine()}",
             f"- wall time: {wall:.1f} s for {episodes} episodes",
         ]
     )
+
+
+def _engine_line(args: argparse.Namespace) -> str:
+    """What moved the robot (the rows' ``engine``), and its body."""
+    if args.engine != "mujoco":
+        return f"{args.engine} (the paper's instant robot)"
+    body = args.body or "the Jackal in BARN's worlds, the paper's robot in the others"
+    return f"mujoco (a robot with mass on the MuJoCo physics engine), body: {body}"
 
 
 def _noise_lines(args: argparse.Namespace, conditions: list[Condition]) -> list[str]:
