@@ -9,9 +9,10 @@ from dataclasses import replace
 from typing import TYPE_CHECKING, TextIO
 
 from ifgm_ref.cache import user_cache
-from ifgm_ref.cli.common import add_timeout_options
+from ifgm_ref.cli.common import add_engine_options, add_timeout_options, with_engine
 from ifgm_ref.errors import ParameterError
 from ifgm_ref.noise import KINDS
+from ifgm_ref.params import SimParams
 
 if TYPE_CHECKING:
     from ifgm_ref.cli.common import Subcommands
@@ -24,7 +25,8 @@ def add_oracle(sub: Subcommands) -> None:
         help="check a planner against the oracle's properties (docs/oracle.md)",
         description="Run the oracle's property checks against a built-in or Python planner "
         "(--planner) or a program speaking the JSON-lines protocol (--cmd), noise-free or under "
-        "noise (--profile robust, --noise). Prints each "
+        "noise (--profile robust, --noise), on the kinematic robot or one with mass (--engine "
+        "mujoco). Prints each "
         "check's line on stderr as it finishes, then the report on stdout: every check's line "
         "and a summary (only the summary when stdout is the terminal that showed the lines). "
         "Exit status 0 when every check passed (or failed as expected), 1 otherwise. "
@@ -48,6 +50,7 @@ def add_oracle(sub: Subcommands) -> None:
         "counted (docs/oracle.md, 'Robustness')",
     )
     _add_level_options(oracle)
+    add_engine_options(oracle)
     oracle.add_argument(
         "--equations",
         metavar="MODULE",
@@ -157,7 +160,8 @@ def run_oracle(args: argparse.Namespace) -> int:
     if args.reading:
         impl.declare_readings(parse_readings(args.reading))
     try:
-        profile = profile_named(args.profile)
+        sim = with_engine(SimParams(), args)  # MuJoCo installed, a body only on it
+        profile = replace(profile_named(args.profile), engine=sim.engine, body=sim.body)
         report = check_planner(
             impl,
             profile=replace(profile, shrink=False) if args.no_shrink else profile,

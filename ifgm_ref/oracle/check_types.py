@@ -12,14 +12,16 @@ from __future__ import annotations
 
 from collections import Counter
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from enum import StrEnum
 from typing import Any
 
 from hypothesis import strategies as st
 
+from ifgm_ref.convergence import time_bound
 from ifgm_ref.errors import IfgmRefError, ImplementationError
 from ifgm_ref.oracle.implementation import Implementation
+from ifgm_ref.params import SimParams
 from ifgm_ref.simulator import Run
 from ifgm_ref.world import World
 from ifgm_ref.worldgen.draws import Draw
@@ -87,13 +89,28 @@ class Evidence:
 @dataclass
 class Recorder:
     """Counts the examples a check ran and keeps the evidence of the last failure (and what
-    a passing check has to say, ``summary``, from its ``tally``)."""
+    a passing check has to say, ``summary``, from its ``tally``).
+
+    ``sim`` is what every episode of the check starts from: the engine and body of the
+    profile (:meth:`~ifgm_ref.oracle.profiles.Profile.sim`; kinematic by default).
+    """
 
     examples: int = 0
     worlds: set[World] = field(default_factory=set)
     evidence: Evidence | None = None
     summary: str = ""
     tally: Counter[str] = field(default_factory=Counter)
+    sim: SimParams = field(default_factory=SimParams)
+
+    @property
+    def physical(self) -> bool:
+        """Whether the check's episodes run on a robot with mass (not the kinematic engine)."""
+        return self.sim.engine != SimParams().engine
+
+    def sim_for(self, world: World) -> SimParams:
+        """The settings of an episode in ``world``: :attr:`sim` stopped at the world's
+        :func:`~ifgm_ref.convergence.time_bound`."""
+        return replace(self.sim, max_time=time_bound(world))
 
 
 @dataclass(frozen=True)

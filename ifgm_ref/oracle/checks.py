@@ -15,8 +15,9 @@ a planner promises, ``reports_unreachable``, ``rigid_motion_invariant`` and
 its property; ``docs/oracle.md``, "The properties", says each in full with whom it applies to.
 
 Every simulation check runs with the simulator's defaults (``dt`` 0.1 s, goal tolerance 0.5 ft)
-and stops an episode at :func:`ifgm_ref.convergence.time_bound` of its world. A planner that
-raises, or answers an invalid command, fails the check it was running.
+on the profile's engine (``Recorder.sim``; kinematic by default, ``docs/oracle.md``, "On the
+physical robot") and stops an episode at :func:`ifgm_ref.convergence.time_bound` of its world.
+A planner that raises, or answers an invalid command, fails the check it was running.
 """
 
 from __future__ import annotations
@@ -55,6 +56,7 @@ from ifgm_ref.oracle.invariance import (
     EXACT_SCALES,
     ROUNDED_SCALES,
     compare_answers,
+    compare_exactly,
     generic,
 )
 from ifgm_ref.oracle.metamorphic import (
@@ -106,10 +108,11 @@ def episode(
     params: dict[str, object] | None = None,
 ) -> Run:
     """Run a fresh planner of ``impl`` (or ``planner``) in ``world`` up to its time bound
-    (or under ``sim``), with the planner parameters ``params`` (none by default)."""
+    on the check's engine (``recorder.sim``), or under ``sim``, with the planner parameters
+    ``params`` (none by default)."""
     recorder.examples += 1
     recorder.worlds.add(world)
-    sim = sim or SimParams(max_time=time_bound(world))
+    sim = sim or recorder.sim_for(world)
     max_time = sim.max_time
     if currently_in_test_context():  # not in a statistical check's seeded examples
         note(f"world: {world}")
@@ -228,14 +231,17 @@ def scale_test(
 
     ``params`` (planner parameters by name, none by default) are scaled by their units in
     ``infos`` (:func:`ifgm_ref.oracle.metamorphic.scale_params`). Both problems get the
-    original world's time bound and ``dt``; the goal tolerance scales.
+    original world's time bound and ``dt``; the goal tolerance scales. On a robot with mass
+    (``rec.sim``'s engine not kinematic) the physics is not scale-free, so a power of two is
+    replayed open loop too, and its answers compared bit for bit
+    (:func:`~ifgm_ref.oracle.invariance.compare_exactly`).
     """
     world, k = generic(example[0]), example[1]
     scaled = scale_world(world, k)
-    sim = SimParams(max_time=time_bound(world))
+    sim = rec.sim_for(world)
     scaled_params = None if params is None else scale_params(params, infos, k)
     where = f"{_where(impl, world)}, scaled by k={k!r}"
-    if is_power_of_two(k):
+    if is_power_of_two(k) and not rec.physical:
         first = episode(impl, world, rec, sim=sim, params=params)
         second = episode(impl, scaled, rec, sim=scale_sim(sim, k), params=scaled_params)
         rec.evidence = Evidence([world, scaled], [first, second], sim.max_time)
@@ -245,6 +251,9 @@ def scale_test(
     first = episode(impl, world, rec, planner=recorder, sim=sim, params=params)
     rec.evidence = Evidence([world, scaled], [first], sim.max_time)
     expected = scaled_recording(recorder.recording(), k, scaled_params)
+    if is_power_of_two(k):  # on a robot with mass: the planner's half, still exact
+        compare_exactly(impl, expected, f"scaled by k={k!r}", where, rec)
+        return
     compare_answers(impl, expected, f"scaled by k={k!r}", where, rec)
 
 
@@ -295,7 +304,7 @@ def _unseen_test(
     get the first world's time bound, so they are comparable step for step.
     """
     world, direction, beyond, radius = example
-    sim = SimParams(max_time=time_bound(world))
+    sim = rec.sim_for(world)
     first = episode(impl, world, rec, sim=sim)
     xy = np.vstack((_poses(first.trace)[:, :2], world.start.position, tuple(world.goal)))
     centre = xy.mean(axis=0)
@@ -400,7 +409,7 @@ def _agrees_test(impl: Implementation, world: World, rec: Recorder) -> None:
     rec.worlds.add(world)
     if currently_in_test_context():
         note(f"world: {world}")
-    sim = SimParams(max_time=time_bound(world))
+    sim = rec.sim_for(world)
     reference = reference_episode(world, sim, Readings.declared(impl.promises.readings))
     rec.evidence = Evidence([world], [reference.run], sim.max_time)
     where = _where(impl, world)

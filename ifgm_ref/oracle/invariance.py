@@ -8,7 +8,9 @@ exchange (:func:`~ifgm_ref.oracle.metamorphic.moved_recording`,
 :func:`~ifgm_ref.oracle.metamorphic.scaled_recording`), hands the transformed observations,
 in order, to a fresh planner (open loop: its answers move nothing), and compares each answer
 with the transformed recorded one (:func:`compare_answers`). A scale by a power of two is
-exact and is still run closed loop, bit for bit (``scale_test``).
+exact and is still run closed loop, bit for bit (``scale_test``); on a robot with mass (the
+``mujoco`` engine), whose physics is not scale-free, it is replayed open loop and its answers
+compared bit for bit (:func:`compare_exactly`).
 
 **Why open loop.** Handed exactly the transformed observations, the planner meets no
 rounding of the simulator's, and with it none of the ties between rays that made two faithful
@@ -43,6 +45,7 @@ __all__ = [
     "AnswerError",
     "answer_errors",
     "compare_answers",
+    "compare_exactly",
     "generic",
 ]
 
@@ -70,6 +73,9 @@ GENERIC_OFFSET = 0.01
 EXACT_SCALES = (2.0, 0.5, 4.0, 0.25, 8.0)
 #: See :data:`EXACT_SCALES`.
 ROUNDED_SCALES = (0.3048, 0.22, 3.7)
+#: The fields of a command that :func:`compare_exactly` compares: what moves the robot, the
+#: branch and the stop (those the closed-loop exact comparison of ``scale_test`` compares).
+EXACT_FIELDS = ("heading", "speed", "turn_rate", "branch", "stop")
 
 
 def generic(world: World) -> World:
@@ -151,3 +157,41 @@ def compare_answers(
             f"{want.stop!r}, within {HEADING_TOL:g} rad and {SPEED_TOL:g} of the top speed "
             f"(off by {error.heading:.3g} rad and {error.speed:.3g}) [{where}]"
         )
+
+
+def compare_exactly(
+    impl: Implementation, expected: Recording, how: str, where: str, rec: Recorder
+) -> None:
+    """Raise :class:`CheckFailed` at the first replayed step whose answer is not the expected
+    one bit for bit (:data:`EXACT_FIELDS`): the planner's half of an exact relation (a scale
+    by a power of two), where the simulator's half does not hold (a robot with mass).
+
+    ``how``, ``where`` and the count in ``rec`` as for :func:`compare_answers`; the check's
+    summary counts these replays, and says why the closed-loop run was left out.
+    """
+    rec.examples += 1
+    for error in answer_errors(impl, expected, where):
+        want, got = error.expected, error.answered
+        differ = [
+            f"{name}={_shown(getattr(got, name))} (should be {_shown(getattr(want, name))})"
+            for name in EXACT_FIELDS
+            if getattr(got, name) != getattr(want, name)
+        ]
+        if differ:
+            raise CheckFailed(
+                f"{how} (a power of two: exact), the original run's step {error.step} "
+                f"(t={error.observation.t:.1f} s, replayed open loop) was answered otherwise: "
+                f"{', '.join(differ)}; speeds should be exactly k times the original's, "
+                f"headings, branches and stops equal [{where}]"
+            )
+    rec.tally.update(exact_replays=1)
+    rec.summary = (
+        f"{rec.tally['exact_replays']} power-of-two scale(s) replayed open loop and answered "
+        "bit for bit; the scaled run itself is not compared: on a robot with mass (gravity, "
+        "masses, acceleration limits in absolute units) the physics is not scale-free"
+    )
+
+
+def _shown(value: object) -> str:
+    """``value`` as a failure message shows it: a branch (a string enum) as its name."""
+    return repr(str(value)) if isinstance(value, str) else repr(value)

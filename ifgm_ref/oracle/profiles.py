@@ -4,6 +4,8 @@
 noise-free; ``robust`` runs the quick profile's 50 under the noise levels the implementation
 promises (:attr:`~ifgm_ref.oracle.implementation.Promises.noise`), and :func:`with_noise` puts
 given levels on any profile: a robustness run (:mod:`ifgm_ref.oracle.robust`).
+:func:`on_engine` runs any profile's simulations on another engine (:mod:`ifgm_ref.engine`):
+the robot with mass of ``mujoco`` (``docs/oracle.md``, "On the physical robot").
 """
 
 from __future__ import annotations
@@ -12,15 +14,20 @@ from dataclasses import dataclass, replace
 
 from hypothesis import HealthCheck, Phase, settings
 
+from ifgm_ref.engine import require_physics
 from ifgm_ref.errors import ImplementationError
 from ifgm_ref.noise import NoiseLevels
 from ifgm_ref.oracle.implementation import Promises
+from ifgm_ref.params import ENGINES, SimParams
+from ifgm_ref.physics.bodies import BODIES
 
 __all__ = [
     "PROFILES",
     "PROFILE_ALIASES",
     "Profile",
+    "engine_tag",
     "noise_tags",
+    "on_engine",
     "profile_named",
     "with_noise",
 ]
@@ -37,6 +44,11 @@ class Profile:
     ``noise`` puts those noise levels in every world simulated; a ``robust`` profile without
     its own levels checks those the implementation promises (:meth:`levels`). Either makes a
     robustness run (:mod:`ifgm_ref.oracle.robust`).
+
+    ``engine`` senses and moves the robot in every episode the checks simulate
+    (:data:`ifgm_ref.params.ENGINES`: ``kinematic``, the default, or ``mujoco``), with the
+    ``mujoco`` engine's ``body`` (``None``: the robot's default). It changes no draw: the
+    same examples run on either engine.
     """
 
     name: str
@@ -46,6 +58,29 @@ class Profile:
     seed: int | None = None
     noise: NoiseLevels | None = None
     robust: bool = False
+    engine: str = ENGINES[0]
+    body: str | None = None
+
+    def __post_init__(self) -> None:
+        if self.engine not in ENGINES:
+            raise ImplementationError(
+                f"`engine` must be one of {', '.join(ENGINES)}, got {self.engine!r}"
+            )
+        if self.body is not None and (self.engine != "mujoco" or self.body not in BODIES):
+            raise ImplementationError(
+                f"`body` must be one of {', '.join(sorted(BODIES))} with engine 'mujoco', got "
+                f"{self.body!r} with engine {self.engine!r}"
+            )
+
+    @property
+    def physical(self) -> bool:
+        """Whether its episodes run on a robot with mass (not the kinematic engine)."""
+        return self.engine != ENGINES[0]
+
+    def sim(self) -> SimParams:
+        """The simulation settings every episode of its checks starts from: the engine and
+        body; each episode sets its own time bound."""
+        return SimParams(engine=self.engine, body=self.body)
 
     @property
     def is_robustness_run(self) -> bool:
@@ -141,6 +176,36 @@ def with_noise(profile: Profile | str, noise: NoiseLevels | str | None) -> Profi
     if not levels.on:
         raise ImplementationError(f"noise {noise!r} turns no noise on: leave it out")
     return replace(profile, noise=levels)
+
+
+def on_engine(profile: Profile | str, engine: str | None, body: str | None = None) -> Profile:
+    """``profile`` (or the one named) simulating on ``engine`` with ``body`` (``None``: as it
+    is). The ``mujoco`` engine needs MuJoCo installed: a
+    :class:`~ifgm_ref.errors.ParameterError` says what to install otherwise.
+
+    >>> on_engine("quick", "mujoco", "jackal").sim().engine
+    'mujoco'
+    >>> on_engine("quick", "kinematic", "jackal")  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    ifgm_ref.errors.ImplementationError: `body` must be one of jackal, paper with engine ...
+    """
+    profile = profile_named(profile) if isinstance(profile, str) else profile
+    if engine is None and body is None:
+        return profile
+    engine = profile.engine if engine is None else engine
+    if engine == "mujoco":
+        require_physics()
+    return replace(profile, engine=engine, body=body)
+
+
+def engine_tag(profile: Profile) -> str:
+    """The engine ``profile`` simulates on, and its body if one was chosen.
+
+    >>> engine_tag(on_engine("quick", "mujoco", "jackal")), engine_tag(profile_named("quick"))
+    ('mujoco (body jackal)', 'kinematic')
+    """
+    return profile.engine + (f" (body {profile.body})" if profile.body else "")
 
 
 def noise_tags(profile: Profile, promises: Promises) -> tuple[str | None, str]:

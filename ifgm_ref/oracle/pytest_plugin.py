@@ -11,8 +11,9 @@ or against a program in any language that speaks the JSON-lines protocol
 
 The pytest header names the implementation, the profile and the promises (and, in a
 robustness run, ``--ifgm-profile robust`` or ``--ifgm-noise``, the noise levels checked and
-promised); a missing or unimportable implementation stops the run with a usage error before
-any test runs; the terminal summary says how much was checked.
+promised; with ``--ifgm-engine mujoco``, the engine); a missing or unimportable
+implementation stops the run with a usage error before any test runs; the terminal summary
+says how much was checked.
 """
 
 from __future__ import annotations
@@ -31,11 +32,15 @@ from ifgm_ref.oracle.profiles import (
     PROFILE_ALIASES,
     PROFILES,
     Profile,
+    engine_tag,
     noise_tags,
+    on_engine,
     profile_named,
     with_noise,
 )
 from ifgm_ref.oracle.runner import CheckResult, run_check, tally
+from ifgm_ref.params import ENGINES
+from ifgm_ref.physics.bodies import BODIES
 from ifgm_ref.planners.ifgm_readings import parse_readings
 from ifgm_ref.transport.external import STARTUP_TIMEOUT, TIMEOUT
 
@@ -92,6 +97,7 @@ def pytest_addoption(parser: pytest.Parser) -> None:
         help="where counterexamples are written (default oracle-failures)",
     )
     _add_level_options(group)
+    _add_engine_options(group)
     _add_timeout_options(group)
 
 
@@ -110,6 +116,23 @@ def _add_level_options(group: pytest.OptionGroup) -> None:
         metavar="NAME=VALUE",
         help="the implementation's reading of one of the paper's open choices, where it is not "
         "ours (repeatable; as ifgm-ref oracle --reading)",
+    )
+
+
+def _add_engine_options(group: pytest.OptionGroup) -> None:
+    """``--ifgm-engine`` and ``--ifgm-body``: what senses and moves the robot of every episode
+    (docs/oracle.md, "On the physical robot")."""
+    group.addoption(
+        "--ifgm-engine",
+        default=ENGINES[0],
+        choices=ENGINES,
+        help="what moves the robot: kinematic (default) or mujoco, a robot with mass "
+        "(docs/oracle.md, 'On the physical robot')",
+    )
+    group.addoption(
+        "--ifgm-body",
+        choices=sorted(BODIES),
+        help="with --ifgm-engine mujoco: the robot's body (default: the robot's own)",
     )
 
 
@@ -205,11 +228,17 @@ def _implementation(config: pytest.Config) -> Implementation:
 
 
 def _profile(config: pytest.Config) -> Profile:
-    """The profile of ``--ifgm-profile``, with the levels of ``--ifgm-noise`` if given."""
+    """The profile of ``--ifgm-profile``, with the levels of ``--ifgm-noise`` if given, on the
+    engine of ``--ifgm-engine`` and ``--ifgm-body``."""
     try:
-        return with_noise(config.getoption("ifgm_profile"), config.getoption("ifgm_noise"))
+        profile = with_noise(config.getoption("ifgm_profile"), config.getoption("ifgm_noise"))
     except IfgmRefError as err:
         raise pytest.UsageError(f"ifgm-ref oracle: --ifgm-noise: {err}") from err
+    engine, body = config.getoption("ifgm_engine"), config.getoption("ifgm_body")
+    try:
+        return on_engine(profile, engine, body)
+    except IfgmRefError as err:
+        raise pytest.UsageError(f"ifgm-ref oracle: --ifgm-engine {engine}: {err}") from err
 
 
 def _suite_requested(items: list[pytest.Item]) -> bool:
@@ -254,6 +283,8 @@ def pytest_report_header(config: pytest.Config) -> list[str]:
     checked, promised = noise_tags(profile, PROMISES.get(promises or "ifgm", Promises()))
     if checked is not None:
         lines.append(f"ifgm-ref oracle: noise {checked} checked, {promised} promised")
+    if profile.physical:
+        lines.append(f"ifgm-ref oracle: engine {engine_tag(profile)}")
     return lines
 
 

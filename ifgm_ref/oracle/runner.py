@@ -8,7 +8,9 @@ implementation crashed, hung or answered garbage: it could not be checked). A fa
 folder under ``artifacts``: the shrunk counterexample as a world file, the trace (CSV), a
 plot, and a ``report.md`` that says how to replay it with ``ifgm-ref simulate``. Under noise
 (the ``robust`` profile, or ``noise=``) the same checks run on noisy worlds, and those about
-convergence count successes instead (:mod:`ifgm_ref.oracle.robust`).
+convergence count successes instead (:mod:`ifgm_ref.oracle.robust`). A profile on another
+engine (:func:`~ifgm_ref.oracle.profiles.on_engine`) runs every simulation there: the robot
+with mass of ``mujoco`` (``docs/oracle.md``, "On the physical robot").
 """
 
 from __future__ import annotations
@@ -43,11 +45,13 @@ from ifgm_ref.oracle.checks import CHECKS, checks_at
 from ifgm_ref.oracle.implementation import Implementation, Promises, promises_of
 from ifgm_ref.oracle.profiles import (
     Profile,
+    engine_tag,
     noise_tags,
     profile_named,
     with_noise,
 )
 from ifgm_ref.oracle.robust import noisy_examples, run_statistical
+from ifgm_ref.params import SimParams
 from ifgm_ref.protocol import Planner
 from ifgm_ref.worldfile import save_world
 
@@ -104,7 +108,8 @@ class Report:
     A robustness run also says which noise levels it checked (``noise``, as
     :meth:`~ifgm_ref.noise.NoiseLevels.tags` writes them: ``"none"`` when the implementation
     promised none) and which the implementation promises (``promised``); ``noise`` is ``None``
-    for a noise-free run.
+    for a noise-free run. ``engine`` names the engine the simulations ran on, and its body if
+    one was chosen (:func:`engine_tag`).
     """
 
     implementation: str
@@ -112,6 +117,7 @@ class Report:
     results: tuple[CheckResult, ...] = field(default_factory=tuple)
     noise: str | None = None
     promised: str = "none"
+    engine: str = "kinematic"
 
     @property
     def ok(self) -> bool:
@@ -131,6 +137,8 @@ class Report:
             counts[r.status] = counts.get(r.status, 0) + 1
         verdicts = ", ".join(f"{n} {status}" for status, n in counts.items())
         how = f"profile {self.profile}"
+        if self.engine != "kinematic":
+            how += f", engine {self.engine}"
         if self.noise is not None:
             how += f", noise {self.noise} checked, {self.promised} promised"
         return f"{self.implementation} ({how}): {tally(self.results)}: {verdicts}"
@@ -179,7 +187,7 @@ def run_check(
     reason = check.applies(impl) or _noise_reason(check, profile, levels)
     if reason is not None:
         return CheckResult(check.name, Status.NOT_APPLICABLE, message=reason)
-    recorder = Recorder()
+    recorder = Recorder(sim=profile.sim())
     explore = _explorer(check, impl, profile, levels, recorder, progress)
     started = time.perf_counter()
     failure: Exception | None = None
@@ -211,7 +219,7 @@ def run_check(
     folder = None
     if artifacts is not None and recorder.evidence is not None:
         folder = Path(artifacts) / _slug(impl.label) / check.name
-        write_evidence(folder, recorder.evidence, check, impl, told)
+        write_evidence(folder, recorder.evidence, check, impl, told, sim=recorder.sim)
     if expected_failure is not None:
         message = f"{message} (expected: {expected_failure})"
         return _result(*common, Status.EXPECTED_FAILURE, message, folder)
@@ -364,9 +372,11 @@ def _result(
 
 
 def write_evidence(
-    folder: Path, evidence: Evidence, check: Check, impl: Implementation, message: str
-) -> None:
-    """Write a failure's counterexample: world files, traces, plots and ``report.md``."""
+    folder: Path, evidence: Evidence, check: Check, impl: Implementation, message: str,
+    *, sim: SimParams | None = None,
+) -> None:  # fmt: skip
+    """Write a failure's counterexample: world files, traces, plots and ``report.md``, whose
+    replay commands run on ``sim``'s engine and body (default: kinematic)."""
     folder.mkdir(parents=True, exist_ok=True)
     lines = [f"# {check.name}: failed", "", f"Property: {check.sentence}.", "", message, ""]
     if evidence.inputs is not None:
@@ -383,6 +393,8 @@ def write_evidence(
         planner = impl.label if not impl.label.startswith("cmd: ") else None
         how = f"--planner {planner}" if planner else f'--cmd "{impl.label[5:]}"'
         limit = f" --max-time {evidence.max_time:.6g}" if evidence.max_time else ""
+        if sim is not None and sim.engine != SimParams().engine:  # replay on the same engine
+            limit += f" --engine {sim.engine}" + (f" --body {sim.body}" if sim.body else "")
         lines += ["Replay:", ""]
         for name in names:
             lines.append(
@@ -441,7 +453,7 @@ def check_planner(
         A factory returning a new planner (a class will do), an :class:`Implementation`, or a
         spec: a built-in name or ``module:attribute``.
     profile : {"quick", "standard", "thorough", "robust"} or Profile, default "quick"
-        Examples per check: 50, 200, 1000, or 50 under the noise levels the planner promises.
+        Examples per check (50, 200, 1000; robust: 50 under the promised noise), on its engine.
     promises : Promises or str, optional
         What it promises, or a built-in planner's name (default: a built-in's own, else IFGM's).
     equations : object, optional
@@ -474,9 +486,15 @@ def check_planner(
     expected = dict(expected_failed_checks or {})
     names, profile = _arguments(checks, expected, with_noise(profile, noise), jobs, level)
     done = _run_checks(names, impl, profile, artifacts, expected, jobs, progress, stop_on_failure)
-    report = Report(impl.label, profile.name, done, *noise_tags(profile, impl.promises))
+    report = _report(impl, profile, done)
     _act_on(report, on_fail)
     return report
+
+
+def _report(impl: Implementation, profile: Profile, done: tuple[CheckResult, ...]) -> Report:
+    """The report of the results ``done``: the noise levels and the engine they ran under."""
+    tags = noise_tags(profile, impl.promises)
+    return Report(impl.label, profile.name, done, *tags, engine=engine_tag(profile))
 
 
 def _arguments(
