@@ -93,15 +93,21 @@ def test_the_odometry_keeps_the_true_heading_and_counts_the_wheels() -> None:
     assert 0.0 < error < 0.05 * 6.0  # tyres slip a little over 6 s at ~1 ft/s
 
 
-def test_driving_into_a_wall_is_a_collision_at_contact() -> None:
-    wall = Polygon(((5.0, -5.0), (6.0, -5.0), (6.0, 5.0), (5.0, 5.0)))
-    world = World(start=Pose(0.0, 0.0, 0.0), goal=Point(10.0, 8.0), obstacles=(wall,))
+def _drive_straight(world: World, steps: int) -> tuple[Pose, float, bool]:
+    """Command heading 0 at 1.3 ft/s for up to ``steps`` steps of 0.1 s, or until a collision."""
     engine = MujocoEngine(world, 0.1)
-    pose, collided = world.start, False
-    for _ in range(100):
+    pose, clearance, collided = world.start, math.inf, False
+    for _ in range(steps):
         pose, clearance, collided = engine.move(pose, Command(0.0, 1.3), 1.0, 1.0)
         if collided:
             break
+    return pose, clearance, collided
+
+
+def test_driving_into_a_wall_is_a_collision_at_contact() -> None:
+    wall = Polygon(((5.0, -5.0), (6.0, -5.0), (6.0, 5.0), (5.0, 5.0)))
+    world = World(start=Pose(0.0, 0.0, 0.0), goal=Point(10.0, 8.0), obstacles=(wall,))
+    pose, clearance, collided = _drive_straight(world, steps=100)
     assert collided
     # The disc touches the wall's face at x = 5: its centre one radius before it.
     assert pose.x == pytest.approx(5.0 - world.robot.radius, abs=0.01)
@@ -128,12 +134,7 @@ def test_ifgm_leaves_the_u_trap_on_the_physical_robot() -> None:
 
 def test_a_circle_and_a_polygon_are_both_obstacles_for_the_chassis() -> None:
     post = World(start=Pose(0, 0, 0), goal=Point(10, 0), obstacles=(Circle((3.0, 0.0), 0.5),))
-    engine = MujocoEngine(post, 0.1)
-    pose, collided = post.start, False
-    for _ in range(40):
-        pose, _, collided = engine.move(pose, Command(0.0, 1.3), 1.0, 1.0)
-        if collided:
-            break
+    pose, _, collided = _drive_straight(post, steps=40)
     assert collided
     assert pose.x == pytest.approx(3.0 - 0.5 - post.robot.radius, abs=0.01)
 
