@@ -83,7 +83,7 @@ def _speed(trace: list[TraceStep], k: int, dt: float) -> float:
     if k == 0:
         return 0.0
     a, b = trace[k - 1], trace[k]
-    return float(((b.x - a.x) ** 2 + (b.y - a.y) ** 2) ** 0.5 / dt)
+    return math.hypot(b.x - a.x, b.y - a.y) / dt
 
 
 def classify(
@@ -100,9 +100,7 @@ def classify(
         "branch": trace[last].branch or "",
     }
     if run.result.stop_reason != "collision":
-        detail = (run.result.detail or "").split(":")[0]
-        kind = "time_limit" if run.result.stop_reason == "time_limit" else f"stall: {detail}"
-        return out | {"kind": kind}
+        return out | {"kind": _end_kind(str(run.result.stop_reason), run.result.detail)}
     # The braking before the contact: the decisions, back from it, that each asked for less
     # speed than the robot had; the first of them is where the robot was asked to slow.
     start = last
@@ -123,10 +121,16 @@ def classify(
     }
 
 
+def _end_kind(stop_reason: str, detail: str | None) -> str:
+    """The kind of a miss other than a collision: the stall's rule, or the stop reason."""
+    if stop_reason == "stalled":
+        return f"stall: {(detail or '').split(':')[0]}"
+    return stop_reason
+
+
 def _unrun(row: Row) -> dict[str, object]:
     """A miss other than a collision, from its row alone (no branch: it was not run again)."""
-    detail = (row.detail or "").split(":")[0]
-    kind = f"stall: {detail}" if row.stop_reason == "stalled" else row.stop_reason
+    kind = _end_kind(row.stop_reason, row.detail)
     return {"world": row.world, "planner": row.planner, "engine": row.engine,
             "stop_reason": row.stop_reason, "kind": kind}  # fmt: skip
 
