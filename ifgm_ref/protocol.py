@@ -25,6 +25,21 @@ from ifgm_ref.pose import Point, Pose, wrap_angle
 from ifgm_ref.validate import POSITIVE, require
 
 
+class PlannerStop(StrEnum):
+    """The reasons a planner may give to end its episode (:attr:`Command.stop`).
+
+    Only the world decides arrival: the simulator ends an episode with ``goal_reached`` when
+    the robot's true centre is within the goal tolerance, and never because a planner says so.
+    A planner may only give up (``goal_unreachable``: it has proved the goal enclosed) or
+    declare itself done (``done``: it believes it has arrived, or has nothing more to do),
+    which ends the episode as a stop, not an arrival. Any other value, the simulator's own
+    reasons included, is an invalid command.
+    """
+
+    GOAL_UNREACHABLE = "goal_unreachable"
+    DONE = "done"
+
+
 class Behaviour(StrEnum):
     """The two top-level behaviours of the Bug family and of IFGM (sections 2.1 and 4)."""
 
@@ -94,7 +109,8 @@ class Command:
     branch : str, optional
         The decision branch taken at this step (IFGM: the Figure 3 flowchart branch).
     stop : str, optional
-        Set to end the episode with this stop reason, e.g. ``"goal_unreachable"``.
+        Set to end the episode with this stop reason: one of :class:`PlannerStop`
+        (``"goal_unreachable"`` or ``"done"``); any other value is an invalid command.
     turn_rate : float, optional
         Set for a velocity command, ROS's ``geometry_msgs/Twist`` (``speed`` is then its
         ``linear.x`` and ``turn_rate`` its ``angular.z``, rad/s, positive to the left): the
@@ -177,7 +193,17 @@ class Command:
             )
         if self.turn_rate is not None and not math.isfinite(self.turn_rate):
             return f"angular velocity={self.turn_rate!r}, but should be finite"
+        if self.stop is not None and self.stop not in PLANNER_STOPS:
+            allowed = ", ".join(repr(str(stop)) for stop in PLANNER_STOPS)
+            return (
+                f"stop={self.stop!r}, but should be one of {allowed} (only the robot's true "
+                "position decides an arrival)"
+            )
         return None
+
+
+#: The values :attr:`Command.stop` may take, in the order messages list them.
+PLANNER_STOPS = tuple(PlannerStop)
 
 
 @runtime_checkable

@@ -100,7 +100,7 @@ class Quitter(StraightPlanner):
         if self.fault:
             raise RuntimeError("broken on purpose")
         command = super().step(observation)
-        return replace(command, speed=0.0, stop="gave_up") if self.quit_now else command
+        return replace(command, speed=0.0, stop="done") if self.quit_now else command
 
 
 class EveryKth:
@@ -141,7 +141,7 @@ def test_two_misses_in_50_pass_and_three_fail(k: int, status: Status, tmp_path: 
     assert result.status is status, result.line()
     passed = 50 - math.ceil(50 / k)
     assert result.message.startswith(f"{passed} of 50 worlds passed"), result.message
-    assert f"missed: {50 - passed} gave_up" in result.message
+    assert f"missed: {50 - passed} done" in result.message
     if status is Status.FAILED:
         saved = load_world(result.artifacts / "world.json")
         assert saved.sensor.noise_rel == 0.02 and saved.sensor.dropout == 0.05

@@ -18,7 +18,7 @@ from ifgm_ref.planners.fgm import FGMPlanner
 from ifgm_ref.planners.ifgm import IFGMPlanner
 from ifgm_ref.planners.straight import StraightPlanner
 from ifgm_ref.pose import Point, Pose, distance
-from ifgm_ref.protocol import Command, EpisodeParams, Observation
+from ifgm_ref.protocol import Command, EpisodeParams, Observation, PlannerStop
 from ifgm_ref.scenarios import resolve_world
 from ifgm_ref.shapes import rectangle
 from ifgm_ref.simulator import TRACE_FIELDS, StopReason, TraceStep, simulate, stall_steps
@@ -248,11 +248,22 @@ def test_invalid_command_stops_with_detail(command: Command, detail: str) -> Non
     assert result.detail is not None and detail in result.detail
 
 
-def test_planner_can_stop_with_its_own_reason() -> None:
-    planner = ScriptedPlanner(Command(heading=0.0, speed=1.0, stop="goal_unreachable"))
+@pytest.mark.parametrize("stop", list(PlannerStop))
+def test_planner_can_stop_with_its_own_reason(stop: PlannerStop) -> None:
+    planner = ScriptedPlanner(Command(heading=0.0, speed=1.0, stop=stop))
     result = simulate(FREE, planner).result
-    assert result.stop_reason == "goal_unreachable"
+    assert result.stop_reason == stop
     assert not result.reached and result.steps == 0
+
+
+@pytest.mark.parametrize("claim", [*StopReason, "arrived", ""])
+def test_a_planner_cannot_claim_the_simulators_reasons(claim: str) -> None:
+    """A planner that says ``goal_reached`` (or any reason not its own) standing far from the
+    goal has sent an invalid command: only the robot's true position decides an arrival."""
+    planner = ScriptedPlanner(Command(heading=0.0, speed=0.0, stop=claim))
+    result = simulate(FREE, planner).result
+    assert (result.stop_reason, result.reached) == (StopReason.INVALID_COMMAND, False)
+    assert result.detail is not None and f"stop={claim!r}" in result.detail
 
 
 def test_leaving_the_bounds_stops_the_episode() -> None:

@@ -40,7 +40,7 @@ from ifgm_ref.planners.edge_following import FollowSide, follow_heading, turn_sp
 from ifgm_ref.planners.sight import Body, BoundaryParams, Sight, goal_bearing
 from ifgm_ref.planners.tuning import Tuning, check_names, parameter_names
 from ifgm_ref.pose import Point, Pose, wrap_angle
-from ifgm_ref.protocol import Behaviour, Command, EpisodeParams, Observation
+from ifgm_ref.protocol import Behaviour, Command, EpisodeParams, Observation, PlannerStop
 
 __all__ = [
     "GOAL_UNREACHABLE",
@@ -60,7 +60,7 @@ CLEAR_STEP = math.pi / 12
 CLEAR_STEPS = 6
 
 #: Stop reason of a planner that has proved the goal cannot be reached.
-GOAL_UNREACHABLE = "goal_unreachable"
+GOAL_UNREACHABLE = PlannerStop.GOAL_UNREACHABLE
 
 #: How a planner picks the side to follow an obstacle on: from the scan, the pose and the
 #: goal's bearing.
