@@ -3,11 +3,18 @@
 import json
 import sys
 
-for line in sys.stdin:
-    kind = json.loads(line)["type"]
-    if kind == "bye":
-        break
-    reply = {"type": "ready"} if kind == "reset" else {
-        "type": "command", "linear": 0, "angular": 0, "stop": "goal_reached"}
-    sys.stdout.write(json.dumps(reply) + "\n")
-    sys.stdout.flush()
+
+def main() -> None:
+    """Answer every message of the protocol; every command claims the goal."""
+    for line in sys.stdin:
+        kind = json.loads(line)["type"]
+        if kind == "bye":
+            break
+        reply = {"type": "ready"} if kind == "reset" else {
+            "type": "command", "linear": 0, "angular": 0, "stop": "goal_reached"}
+        sys.stdout.write(json.dumps(reply) + "\n")
+        sys.stdout.flush()
+
+
+if __name__ == "__main__":
+    main()
