@@ -15,7 +15,10 @@ Two engines (:data:`ifgm_ref.params.ENGINES`, ``--engine`` on the command line):
 ``kinematic`` (default)
     The paper's robot as the paper simulates it: it turns, then drives, at once
     (:func:`ifgm_ref.robot.advance`); its odometry is exact; a collision is a swept disc that
-    meets an obstacle (:class:`ifgm_ref.collision.ClearanceChecker`).
+    meets an obstacle (:class:`ifgm_ref.collision.ClearanceChecker`). Given a robot with
+    finite ``braking`` or ``acceleration``, its speed moves towards the command at exactly
+    those rates (:func:`ifgm_ref.robot.ramp`): the dynamics a braking governor assumes,
+    without physics.
 ``mujoco``
     A differential-drive robot with mass on the MuJoCo physics engine
     (:mod:`ifgm_ref.physics`, the ``physics`` extra): wheels, velocity actuators with force
@@ -25,6 +28,7 @@ Two engines (:data:`ifgm_ref.params.ENGINES`, ``--engine`` on the command line):
 from __future__ import annotations
 
 import importlib.util
+import math
 from typing import TYPE_CHECKING, Protocol
 
 from ifgm_ref.collision import ClearanceChecker
@@ -32,12 +36,12 @@ from ifgm_ref.errors import ParameterError
 from ifgm_ref.laserscan import LaserScan
 from ifgm_ref.pose import Pose
 from ifgm_ref.protocol import Command
-from ifgm_ref.robot import advance
+from ifgm_ref.robot import advance, ramp
 from ifgm_ref.sensor import IRSensor
 from ifgm_ref.world import World
 
 if TYPE_CHECKING:
-    from ifgm_ref.params import SimParams
+    from ifgm_ref.params import RobotParams, SimParams
 
 #: What to install for ``--engine mujoco`` (one line, as the command line prints it).
 PHYSICS_HINT = (
@@ -48,6 +52,10 @@ PHYSICS_HINT = (
 
 class Engine(Protocol):
     """What senses and moves the robot (see the module docstring)."""
+
+    #: The robot the planners are told: the world's, or as the engine's body makes it (its
+    #: outline's disc and its braking and acceleration, :mod:`ifgm_ref.physics.bodies`).
+    robot: RobotParams
 
     def scan(self, pose: Pose) -> LaserScan:
         """The scan from the robot at its true ``pose``."""
@@ -74,6 +82,9 @@ class KinematicEngine:
         self.dt = dt
         self.sensor = IRSensor(world)
         self.checker = ClearanceChecker(world, world.robot.radius)
+        #: The robot's speed, for a robot with finite braking or acceleration.
+        self.speed = 0.0
+        self._instant = self.robot.stops_at_once and self.robot.acceleration == math.inf
 
     def scan(self, pose: Pose) -> LaserScan:
         """The exact scan from ``pose`` (:class:`~ifgm_ref.sensor.IRSensor`)."""
@@ -86,10 +97,21 @@ class KinematicEngine:
     def move(
         self, pose: Pose, command: Command, turn_scale: float, speed_scale: float
     ) -> tuple[Pose, float, bool]:
-        """Turn, then drive (:func:`~ifgm_ref.robot.advance`); the straight segment's
+        """Turn, then drive (:func:`~ifgm_ref.robot.advance`, after
+        :func:`~ifgm_ref.robot.ramp` for a robot with finite dynamics); the straight segment's
         clearance."""
+        travel = None
+        if not self._instant:
+            target = min(command.speed, self.robot.speed) * speed_scale
+            travel, self.speed = ramp(self.speed, target, self.robot, self.dt)
         new_pose = advance(
-            pose, command, self.robot, self.dt, turn_scale=turn_scale, speed_scale=speed_scale
+            pose,
+            command,
+            self.robot,
+            self.dt,
+            turn_scale=turn_scale,
+            speed_scale=speed_scale,
+            travel=travel,
         )
         clearance = self.checker.segment_clearance(pose, new_pose)
         return new_pose, clearance, clearance < 0.0

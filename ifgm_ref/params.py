@@ -13,7 +13,8 @@ the robot and the sensor (:mod:`ifgm_ref.planners.tuning`).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field, fields
+from collections.abc import Mapping
+from dataclasses import dataclass, field, fields, replace
 from typing import Any, Final, Literal, Self
 
 from ifgm_ref.errors import ParameterError
@@ -34,6 +35,23 @@ OPTIONAL = {"optional": True}
 def _noise(default: float | int = 0) -> Any:
     """A noise field: off (0) by default, optional in a protocol message."""
     return field(default=default, metadata=OPTIONAL)
+
+
+#: Metadata of a field of the robot's dynamics (its braking, acceleration and response). The
+#: paper's robot stops and speeds up at once: infinite limits, no response time, which JSON
+#: cannot all hold. Such a field is left out of a message or file while it has its default,
+#: and reads as the default when absent, so that the paper's robot is written as before.
+DYNAMICS = {"optional": True, "dynamics": True}
+
+
+def _dynamics(default: float = math.inf) -> Any:
+    """A dynamics field: the paper's instant robot by default."""
+    return field(default=default, metadata=DYNAMICS)
+
+
+def _limit(name: str, value: float) -> None:
+    if value != math.inf:
+        require(name, value, POSITIVE)
 
 
 def _probability(name: str, value: float) -> None:
@@ -68,8 +86,13 @@ class _Block:
             raise ParameterError(f"{where}: {err}") from None
 
     def to_mapping(self) -> dict[str, Any]:
-        """The block as a JSON-ready mapping (every field, defaults included)."""
-        return {f.name: getattr(self, f.name) for f in fields(self)}  # type: ignore[arg-type]
+        """The block as a JSON-ready mapping (every field, defaults included, but for the
+        dynamics fields left at the paper's robot's, :data:`DYNAMICS`)."""
+        return {
+            f.name: getattr(self, f.name)
+            for f in fields(self)  # type: ignore[arg-type]
+            if not (f.metadata.get("dynamics") and getattr(self, f.name) == f.default)
+        }
 
 
 @dataclass(frozen=True)
@@ -95,6 +118,17 @@ class RobotParams(_Block):
         Steps between a decision and its execution.
     seed : int, default 0
         Seed of the odometry and actuation noise.
+    braking : float, default inf
+        The deceleration ``b`` the robot is guaranteed when commanded slower than it moves,
+        turning or not, length/s^2. The paper's robot stops at once (``inf``); a robot with
+        mass has a finite ``b``, and every planner then brakes in time
+        (:mod:`ifgm_ref.planners.governor`, errata row 36).
+    acceleration : float, default inf
+        The largest acceleration ``A`` of the robot, length/s^2 (``inf``: it reaches any
+        commanded speed at once).
+    response : float, default 0
+        How long after a command the robot may still move as under the one before, s (its
+        motors' and controller's lag; 0: at once). The braking governor allows for it.
     """
 
     radius: float = 1.0
@@ -104,6 +138,9 @@ class RobotParams(_Block):
     actuation_noise: float = _noise(0.0)
     latency: int = _noise()
     seed: int = _noise()
+    braking: float = _dynamics()
+    acceleration: float = _dynamics()
+    response: float = _dynamics(0.0)
 
     def __post_init__(self) -> None:
         require("radius", self.radius, POSITIVE)
@@ -113,6 +150,19 @@ class RobotParams(_Block):
         require("actuation_noise", self.actuation_noise, NON_NEGATIVE)
         _count("latency", self.latency)
         _count("seed", self.seed)
+        _limit("braking", self.braking)
+        _limit("acceleration", self.acceleration)
+        require("response", self.response, NON_NEGATIVE)
+        if self.braking != math.inf and self.acceleration == math.inf:
+            raise ParameterError(
+                "`acceleration` is needed with `braking`: a robot that may reach any speed "
+                f"within a step cannot be kept able to stop (braking={self.braking!r})"
+            )
+
+    @property
+    def stops_at_once(self) -> bool:
+        """Whether the robot stops at once (infinite ``braking``): the paper's robot."""
+        return self.braking == math.inf
 
 
 @traces("sensor.fov")
@@ -292,3 +342,59 @@ def jackal_lidar() -> SensorParams:
 
 #: Sensor presets by name (``--sensor NAME`` on the command line).
 SENSOR_PRESETS = {"paper_ir": paper_ir, "jackal_lidar": jackal_lidar}
+
+
+#: The robot's fields ``--robot NAME=VALUE`` sets (its noise has ``--noise``).
+ROBOT_OPTIONS = ("radius", "speed", "max_turn_rate", "braking", "acceleration", "response")
+
+
+def robot_changes(text: str, *, option: str = "--robot") -> dict[str, float]:
+    """The robot's fields ``"NAME=VALUE,..."`` sets (:data:`ROBOT_OPTIONS`), checked as a
+    robot of the defaults would check them; errors name ``option`` and the item.
+
+    >>> robot_changes("speed=2,braking=4.9,acceleration=4.9")
+    {'speed': 2.0, 'braking': 4.9, 'acceleration': 4.9}
+    >>> robot_changes("mass=3")  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    ifgm_ref.errors.ParameterError: --robot mass=3: expected NAME=VALUE with NAME one of radius, ...
+    >>> robot_changes("speed=-1")
+    Traceback (most recent call last):
+    ...
+    ifgm_ref.errors.ParameterError: --robot speed=-1: `speed` must be a finite number > 0, got -1.0
+    """
+    changes: dict[str, float] = {}
+    for item in filter(None, (part.strip() for part in text.split(","))):
+        name, sep, value = item.partition("=")
+        if not sep or name not in ROBOT_OPTIONS:
+            raise ParameterError(
+                f"{option} {item}: expected NAME=VALUE with NAME one of {', '.join(ROBOT_OPTIONS)}"
+            )
+        try:
+            changes[name] = float(value)
+        except ValueError:
+            raise ParameterError(f"{option} {item}: the value must be a number") from None
+        try:
+            replace(RobotParams(), **{name: changes[name], "acceleration": 1.0})  # type: ignore[arg-type]
+        except ParameterError as err:
+            raise ParameterError(f"{option} {item}: {err}") from None
+    return changes
+
+
+def changed_robot(
+    robot: RobotParams, changes: Mapping[str, float], *, option: str = "--robot"
+) -> RobotParams:
+    """``robot`` with ``changes`` (:func:`robot_changes`); a robot they leave inconsistent (a
+    finite braking with no acceleration) is refused naming ``option``.
+
+    >>> changed_robot(RobotParams(), {"speed": 2.0}).speed
+    2.0
+    >>> changed_robot(RobotParams(), {"braking": 3.0})  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    ifgm_ref.errors.ParameterError: --robot: `acceleration` is needed with `braking`: ...
+    """
+    try:
+        return replace(robot, **changes)  # type: ignore[arg-type]
+    except ParameterError as err:
+        raise ParameterError(f"{option}: {err}") from None

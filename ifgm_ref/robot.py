@@ -6,6 +6,12 @@ rate times ``dt``, within the same limit), then drives straight along its new he
 at the commanded speed (clipped to the robot's speed). Between two samples the robot's centre
 therefore moves on the straight segment joining them, which is exactly the segment the
 simulator's swept-disc collision check tests: the discretisation and the check agree.
+
+The paper's robot reaches a commanded speed at once. A robot with finite ``braking`` ``b`` or
+``acceleration`` ``A`` (:class:`~ifgm_ref.params.RobotParams`) moves from its speed towards
+the command at exactly ``A`` when speeding up and ``b`` when slowing down, then holds it
+(:func:`ramp`): the worst case the braking governor of :mod:`ifgm_ref.planners.governor`
+allows for, integrated exactly.
 """
 
 from __future__ import annotations
@@ -17,6 +23,30 @@ from ifgm_ref.pose import Pose, wrap_angle
 from ifgm_ref.protocol import Command
 
 
+def ramp(speed: float, target: float, robot: RobotParams, dt: float) -> tuple[float, float]:
+    """The distance driven in ``dt`` from ``speed`` towards ``target``, and the speed at its
+    end: at the robot's ``acceleration`` up or its ``braking`` down until the target is
+    reached, then at the target.
+
+    >>> robot = RobotParams(braking=2.0, acceleration=1.0)
+    >>> ramp(0.0, 1.0, robot, 0.5)  # speeds up at 1: half a second of 0.5 * 1 * 0.5^2
+    (0.125, 0.5)
+    >>> ramp(1.0, 0.0, robot, 1.0)  # stops in 0.5 s, after 1^2 / (2 * 2)
+    (0.25, 0.0)
+    >>> ramp(1.0, 3.0, RobotParams(), 0.5)  # the paper's robot: at the target at once
+    (1.5, 3.0)
+    """
+    rate = robot.acceleration if target >= speed else robot.braking
+    if rate == math.inf:
+        return target * dt, target
+    gap = target - speed
+    if abs(gap) <= rate * dt:
+        t = abs(gap) / rate
+        return (speed + target) / 2 * t + target * (dt - t), target
+    end = speed + math.copysign(rate * dt, gap)
+    return (speed + end) / 2 * dt, end
+
+
 def advance(
     pose: Pose,
     command: Command,
@@ -25,11 +55,14 @@ def advance(
     *,
     turn_scale: float = 1.0,
     speed_scale: float = 1.0,
+    travel: float | None = None,
 ) -> Pose:
     """Move ``pose`` by one time step ``dt`` under ``command`` (turn, then translate).
 
     ``turn_scale`` and ``speed_scale`` multiply the turn (after the turn-rate limit) and the
-    speed (after the top speed): the actuation noise of :mod:`ifgm_ref.noise`.
+    speed (after the top speed): the actuation noise of :mod:`ifgm_ref.noise`. ``travel``,
+    when given, is the distance driven instead (a robot with finite acceleration or braking,
+    :func:`ramp`).
 
     Examples
     --------
@@ -59,5 +92,5 @@ def advance(
     )
     turn = min(max(wanted, -limit), limit) * turn_scale
     theta = wrap_angle(pose.theta + turn)
-    step = min(command.speed, robot.speed) * speed_scale * dt
+    step = min(command.speed, robot.speed) * speed_scale * dt if travel is None else travel
     return Pose(pose.x + step * math.cos(theta), pose.y + step * math.sin(theta), theta)

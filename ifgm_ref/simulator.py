@@ -252,6 +252,7 @@ def simulate(
     """
     sim = sim or SimParams()
     engine = make_engine(world, sim)
+    world = replace(world, robot=engine.robot)  # as the engine's body makes it
     episode = episode_params(world, sim, params)
     planner.reset(world.start, world.goal, episode)
     stall = stall_steps(sim, episode)

@@ -35,7 +35,7 @@ from __future__ import annotations
 import math
 import reprlib
 from collections.abc import Iterable, Mapping, Set
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from functools import cached_property
 from typing import NamedTuple
 
@@ -44,7 +44,7 @@ import shapely
 from numpy.typing import NDArray
 
 from ifgm_ref.errors import WorldError
-from ifgm_ref.params import RobotParams, SensorParams
+from ifgm_ref.params import RobotParams, SensorParams, changed_robot
 from ifgm_ref.pose import Point, PointLike, Pose
 from ifgm_ref.validate import POSITIVE, REAL, Domain, violation
 
@@ -331,6 +331,15 @@ class World:
         object.__setattr__(self, "goal", goal)
         object.__setattr__(self, "obstacles", obstacles)
         object.__setattr__(self, "bounds", bounds)
+
+    def with_robot(self, changes: Mapping[str, float]) -> World:
+        """This world with ``changes`` to its robot's fields (``--robot``:
+        :func:`~ifgm_ref.params.changed_robot`).
+
+        >>> World(start=(0, 0, 0), goal=(9, 0)).with_robot({"speed": 2.0}).robot.speed
+        2.0
+        """
+        return replace(self, robot=changed_robot(self.robot, changes)) if changes else self
 
     @cached_property
     def segments(self) -> NDArray[np.float64]:

@@ -272,9 +272,10 @@ def load_world(path: str | os.PathLike[str]) -> World:
 
 
 def _changed(block: RobotParams | SensorParams) -> dict[str, Any]:
-    """The fields of ``block`` that differ from its class's defaults."""
+    """The fields of ``block`` that differ from its class's defaults (a dynamics field at its
+    default is not in the mapping at all: :meth:`~ifgm_ref.params.RobotParams.to_mapping`)."""
     default = type(block)().to_mapping()
-    return {k: v for k, v in block.to_mapping().items() if v != default[k]}
+    return {k: v for k, v in block.to_mapping().items() if k not in default or v != default[k]}
 
 
 def _obstacle_to_dict(obstacle: Obstacle, digits: int | None) -> dict[str, Any]:

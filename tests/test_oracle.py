@@ -51,6 +51,7 @@ HUNT = Profile("hunt", 50, shrink=False)
 #: The test runs only that check (running the cheap checks first cost 20 s for one mutant).
 CAUGHT_BY = {
     "absolute_standoff": "scale_invariant",
+    "brakes_late": "stops_in_time",
     "gap_sign_flipped": "passes_wide_gaps",
     "gap_world_frame": "passes_wide_gaps",
     "ignores_d_obs": "converges_open",

@@ -137,6 +137,7 @@ def run_bench(
     record: str | None = None,
     engine: str = ENGINES[0],
     body: str | None = None,
+    robot: tuple[tuple[str, float], ...] = (),
 ) -> list[Row]:
     """Every planner in every world under every noise condition: the rows, world by world in
     ``specs`` order (then condition by condition, planner by planner).
@@ -157,10 +158,13 @@ def run_bench(
         (:func:`~ifgm_ref.bench.tasks.bag_path`); the workers must reach it.
     engine, body : what moves the robot in every episode (``kinematic`` or ``mujoco``) and the
         mujoco engine's body (``None``: the world's default); :class:`~ifgm_ref.params.SimParams`.
+    robot : the robot's fields changed in every world (``--robot``, ``--speed``), as pairs.
     """
     check_engine(engine, body)
     names, noises = tuple(planners), tuple(conditions)
-    tasks = [(spec, names, max_time, noises, noise_seed, record, engine, body) for spec in specs]
+    tasks = [
+        (spec, names, max_time, noises, noise_seed, record, engine, body, robot) for spec in specs
+    ]
     results = map_tasks(
         run_world, tasks, jobs=jobs, scheduler=scheduler, progress=progress, on_result=on_rows
     )

@@ -162,7 +162,9 @@ class Row:
     and 0 for the sweep's noise-free baseline; empty outside a sweep); ``noise_seed`` the
     seed of its noise generators (empty without noise): ``ifgm-ref simulate WORLD --noise
     NOISE --noise-seed NOISE_SEED`` replays it. ``engine`` is what moved the robot
-    (:data:`~ifgm_ref.params.ENGINES`: ``simulate --engine ENGINE`` replays it).
+    (:data:`~ifgm_ref.params.ENGINES`: ``simulate --engine ENGINE`` replays it). ``robot`` is
+    what ``--robot`` changed of the world's robot (``none``: nothing; ``simulate --robot
+    ROBOT`` replays it).
     """
 
     planner: str
@@ -187,6 +189,7 @@ class Row:
     noise_level: float | None = None
     noise_seed: int | None = None
     engine: str = ENGINES[0]
+    robot: str = "none"
 
     @classmethod
     def columns(cls) -> tuple[str, ...]:
@@ -291,11 +294,13 @@ def run_world(
     record: str | None = None,
     engine: str = ENGINES[0],
     body: str | None = None,
+    robot: tuple[tuple[str, float], ...] = (),
 ) -> list[Row]:
     """Build ``spec``'s world, find its shortest path, run each planner there under each noise
     condition: one row each, condition by condition, planner by planner; with ``record`` (a
     folder), each episode is also written there as a ROS bag (:func:`bag_path`). The robot is
-    moved by ``engine`` with ``body`` (:class:`~ifgm_ref.params.SimParams`).
+    moved by ``engine`` with ``body`` (:class:`~ifgm_ref.params.SimParams`), the fields of
+    ``robot`` changed (:func:`~ifgm_ref.params.changed_robot`: ``--robot``).
 
     The time limit is ``max_time`` s or, by default, the oracle's convergence budget for the
     world (:func:`ifgm_ref.convergence.time_bound`: Bug1's path bound driven slowly); for a
@@ -303,6 +308,7 @@ def run_world(
     noise is seeded with :func:`noise_seed` of ``seed`` and the world's name.
     """
     world = spec.build()
+    world = world.with_robot(dict(robot))
     rng_seed = noise_seed(seed, spec.name)
     reference: float | None = None
     if spec.kind == "barn":
@@ -324,12 +330,21 @@ def run_world(
             optimal,
             sim,
             reference,
-            c.columns(rng_seed),
+            {**c.columns(rng_seed), "robot": robot_tags(robot)},
             None if record is None else bag_path(record, spec, name, c),
         )
         for c in conditions
         for name in planners
     ]
+
+
+def robot_tags(robot: Sequence[tuple[str, float]]) -> str:
+    """``robot``'s changes as ``--robot`` reads them; ``none`` for none.
+
+    >>> robot_tags([("speed", 2.0), ("braking", 3.72)]), robot_tags([])
+    ('speed=2,braking=3.72', 'none')
+    """
+    return ",".join(f"{name}={value:g}" for name, value in robot) or "none"
 
 
 def bag_path(folder: str, spec: WorldSpec, planner: str, condition: Condition) -> Path:
@@ -352,7 +367,7 @@ def _episode(
     optimal: float | None,
     sim: SimParams,
     reference: float | None,
-    noise: dict[str, Any],
+    columns: dict[str, Any],
     bag: Path | None,
 ) -> Row:
     timed = _Timed(load_factory(planner)())
@@ -363,7 +378,7 @@ def _episode(
         return Row(
             planner, spec.name, spec.kind, False, False, ERROR, math.nan, math.nan, optimal,
             None, None, math.nan, timed.decisions, None, f"{type(err).__name__}: {err}",
-            reference, None if reference is None else 0.0, **noise, engine=sim.engine,
+            reference, None if reference is None else 0.0, **columns, engine=sim.engine,
         )  # fmt: skip
     if recorder is not None and bag is not None:
         from ifgm_ref.bags.write import write_bag
@@ -391,6 +406,6 @@ def _episode(
         barn_score=None
         if reference is None
         else barn.barn_score(result.reached, result.time_s, reference),
-        **noise,
+        **columns,
         engine=sim.engine,
     )

@@ -10,10 +10,12 @@ from typing import TYPE_CHECKING
 
 from ifgm_ref.cli.common import (
     add_engine_options,
+    add_robot_options,
     names,
     non_negative_int,
     output_folder,
     positive_float,
+    robot_of,
     with_engine,
 )
 from ifgm_ref.errors import ParameterError
@@ -72,6 +74,7 @@ def add_bench(sub: Subcommands) -> None:
     )
     _add_run_options(bench)
     add_engine_options(bench)
+    add_robot_options(bench)
     _add_noise_options(bench)
     bench.set_defaults(func=run_bench)
 
@@ -192,6 +195,7 @@ def run_bench(args: argparse.Namespace) -> int:
             record=args.record,
             engine=sim.engine,
             body=sim.body,
+            robot=tuple(robot_of(args).items()),
         )
     except KeyboardInterrupt:
         print(f"interrupted: the rows so far are in {partial}", file=sys.stderr)
@@ -221,6 +225,7 @@ def _check_args(args: argparse.Namespace) -> SimParams:
                 flag = "--" + option.replace("_", "-")
                 raise ParameterError(f"{flag} applies to BARN worlds only: give --barn [DIR]")
     engine = with_engine(SimParams(), args)  # MuJoCo missing is one error now, too
+    robot_of(args)  # a bad --robot is one error now, too
     for planner in args.planners:
         load_planner(planner)  # a bad name or factory is one error now, not one per episode
     return engine
@@ -310,6 +315,7 @@ def _header(
             f"- worlds: {source}",
             f"- planners: {', '.join(args.planners)}",
             f"- engine: {_engine_line(args)}",
+            f"- robot: {_robot_line(args)}",
             *_noise_lines(args, conditions),
             f"- episode time limit: {limit}",
             f"- ran on: {where}; {machine()}",
@@ -324,6 +330,14 @@ def _engine_line(args: argparse.Namespace) -> str:
         return f"{args.engine} (the paper's instant robot)"
     body = args.body or "the Jackal in BARN's worlds, the paper's robot in the others"
     return f"mujoco (a robot with mass on the MuJoCo physics engine), body: {body}"
+
+
+def _robot_line(args: argparse.Namespace) -> str:
+    """What ``--robot`` and ``--speed`` changed of each world's robot (the rows' ``robot``)."""
+    from ifgm_ref.bench.tasks import robot_tags
+
+    changes = robot_tags(tuple(robot_of(args).items()))
+    return "each world's own" if changes == "none" else f"each world's, with {changes}"
 
 
 def _noise_lines(args: argparse.Namespace, conditions: list[Condition]) -> list[str]:

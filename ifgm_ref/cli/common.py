@@ -11,7 +11,7 @@ from typing import TYPE_CHECKING, NoReturn
 
 from ifgm_ref.engine import require_physics
 from ifgm_ref.errors import ParameterError
-from ifgm_ref.params import ENGINES, SimParams
+from ifgm_ref.params import ENGINES, ROBOT_OPTIONS, SimParams, robot_changes
 from ifgm_ref.physics.bodies import BODIES
 from ifgm_ref.transport.external import STARTUP_TIMEOUT, TIMEOUT
 from ifgm_ref.validate import POSITIVE, violation
@@ -170,3 +170,27 @@ def with_engine(sim: SimParams, args: argparse.Namespace) -> SimParams:
     if args.engine == "mujoco":
         require_physics()
     return replace(sim, engine=args.engine, body=args.body)
+
+
+def add_robot_options(parser: argparse.ArgumentParser) -> None:
+    """``--robot`` and ``--speed``: the robot's size, speed and dynamics, over the world's."""
+    parser.add_argument(
+        "--robot",
+        metavar="NAME=VALUE,...",
+        help=f"set the robot's {', '.join(ROBOT_OPTIONS)} over the world's, in its length "
+        "unit, seconds and radians (e.g. braking=3.72,acceleration=4.9: a robot that cannot "
+        "stop at once, which the planners then brake for; docs/physics.md)",
+    )
+    parser.add_argument(
+        "--speed",
+        type=positive_float,
+        help="the robot's top speed, in the world's length unit per second (--robot speed=V)",
+    )
+
+
+def robot_of(args: argparse.Namespace) -> dict[str, float]:
+    """The robot's fields ``--robot`` and ``--speed`` set (``--speed`` over ``--robot``)."""
+    changes = robot_changes(args.robot or "")
+    if args.speed is not None:
+        changes["speed"] = args.speed
+    return changes

@@ -9,7 +9,13 @@ from dataclasses import replace
 from typing import TYPE_CHECKING, TextIO
 
 from ifgm_ref.cache import user_cache
-from ifgm_ref.cli.common import add_engine_options, add_timeout_options, with_engine
+from ifgm_ref.cli.common import (
+    add_engine_options,
+    add_robot_options,
+    add_timeout_options,
+    robot_of,
+    with_engine,
+)
 from ifgm_ref.errors import ParameterError
 from ifgm_ref.noise import KINDS
 from ifgm_ref.params import SimParams
@@ -51,6 +57,7 @@ def add_oracle(sub: Subcommands) -> None:
     )
     _add_level_options(oracle)
     add_engine_options(oracle)
+    add_robot_options(oracle)
     oracle.add_argument(
         "--equations",
         metavar="MODULE",
@@ -161,7 +168,10 @@ def run_oracle(args: argparse.Namespace) -> int:
         impl.declare_readings(parse_readings(args.reading))
     try:
         sim = with_engine(SimParams(), args)  # MuJoCo installed, a body only on it
-        profile = replace(profile_named(args.profile), engine=sim.engine, body=sim.body)
+        robot = tuple(robot_of(args).items())
+        profile = replace(
+            profile_named(args.profile), engine=sim.engine, body=sim.body, robot=robot
+        )
         report = check_planner(
             impl,
             profile=replace(profile, shrink=False) if args.no_shrink else profile,

@@ -11,11 +11,13 @@ from typing import TYPE_CHECKING
 from ifgm_ref.barn import DEFAULT_SENSOR, GazeboTask, barn_score, gazebo_task
 from ifgm_ref.cli.common import (
     add_engine_options,
+    add_robot_options,
     add_timeout_options,
     non_negative_int,
     numbers,
     output_folder,
     positive_float,
+    robot_of,
     with_engine,
 )
 from ifgm_ref.errors import ParameterError
@@ -72,6 +74,7 @@ def add_simulate(sub: Subcommands) -> None:
     )
     _add_output_options(sim)
     add_engine_options(sim)
+    add_robot_options(sim)
     _add_gazebo_options(sim)
     sim.set_defaults(func=run_simulate)
 
@@ -150,6 +153,7 @@ def run_simulate(args: argparse.Namespace) -> int:
     world = resolve_world(args.world) if task is None else task.world
     if args.noise is not None or args.noise_seed is not None:
         world = NoiseLevels.parse(args.noise or "").apply(world, args.noise_seed)
+    world = world.with_robot(robot_of(args))
     defaults = SimParams() if task is None else task.sim
     sim = dataclasses.replace(
         defaults,

@@ -92,7 +92,8 @@ class Recorder:
     a passing check has to say, ``summary``, from its ``tally``).
 
     ``sim`` is what every episode of the check starts from: the engine and body of the
-    profile (:meth:`~ifgm_ref.oracle.profiles.Profile.sim`; kinematic by default).
+    profile (:meth:`~ifgm_ref.oracle.profiles.Profile.sim`; kinematic by default); ``robot``
+    the profile's changes to the robot of every world drawn.
     """
 
     examples: int = 0
@@ -101,11 +102,16 @@ class Recorder:
     summary: str = ""
     tally: Counter[str] = field(default_factory=Counter)
     sim: SimParams = field(default_factory=SimParams)
+    robot: tuple[tuple[str, float], ...] = ()
 
     @property
     def physical(self) -> bool:
         """Whether the check's episodes run on a robot with mass (not the kinematic engine)."""
         return self.sim.engine != SimParams().engine
+
+    def robot_of(self, world: World) -> World:
+        """``world`` with the profile's changes to its robot (``--robot``, ``--speed``)."""
+        return world.with_robot(dict(self.robot))
 
     def sim_for(self, world: World) -> SimParams:
         """The settings of an episode in ``world``: :attr:`sim` stopped at the world's

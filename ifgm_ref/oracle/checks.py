@@ -36,6 +36,7 @@ from numpy.typing import NDArray
 from ifgm_ref.convergence import time_bound
 from ifgm_ref.errors import ImplementationError, present
 from ifgm_ref.flowchart import Branch
+from ifgm_ref.oracle.braking import stops_in_time
 from ifgm_ref.oracle.check_types import (
     Check,
     CheckFailed,
@@ -87,7 +88,7 @@ from ifgm_ref.simulator import Run, StopReason, TraceStep, simulate
 from ifgm_ref.world import Polygon, World
 from ifgm_ref.worldgen.classes import GENERATORS, enclosed_world, gap_wall, placed
 
-__all__ = ["CHECKS", "FIRST_TURN", "checks_at", "episode", "scale_test"]
+__all__ = ["CHECKS", "FIRST_TURN", "checks_at", "episode", "place_of", "scale_test"]
 
 #: ``passes_wide_gaps``: a commanded heading this far off the goal bearing (rad, 5 degrees),
 #: steering the robot away from the goal bearing or holding it there, is the robot's first
@@ -123,15 +124,16 @@ def episode(
     except Exception as err:  # the planner crashed: that is a failure of this example
         recorder.evidence = Evidence([world], [], max_time)
         raise PlannerFault(
-            f"the planner raised {type(err).__name__}: {err} [{_where(impl, world)}]"
+            f"the planner raised {type(err).__name__}: {err} [{place_of(impl, world)}]"
         ) from err
     recorder.evidence = Evidence([world], [run], max_time)
     if run.result.stop_reason == StopReason.INVALID_COMMAND:
-        raise PlannerFault(f"invalid command: {run.result.detail} [{_where(impl, world)}]")
+        raise PlannerFault(f"invalid command: {run.result.detail} [{place_of(impl, world)}]")
     return run
 
 
-def _where(impl: Implementation, world: World) -> str:
+def place_of(impl: Implementation, world: World) -> str:
+    """Where an example ran, for a failure message: the implementation, world, start, goal."""
     start, goal = _xyt(world.start), _xy(world.goal)
     return f"{impl.label} in {world.name or 'a'} world from {start} to {goal}"
 
@@ -152,7 +154,7 @@ def _collision_test(impl: Implementation, world: World, recorder: Recorder) -> N
         at = min(run.trace, key=lambda step: step.clearance)
         raise CheckFailed(
             f"min_clearance={clearance:.3f} ft at t={at.t:.1f} s, but should be >= 0 "
-            f"[{_where(impl, world)}]"
+            f"[{place_of(impl, world)}]"
         )
 
 
@@ -164,7 +166,7 @@ def _converges_test(impl: Implementation, world: World, recorder: Recorder) -> N
         raise CheckFailed(
             f"stop_reason={result.stop_reason!r} after {result.time_s:.1f} s, but should be "
             f"'goal_reached' within the bound {time_bound(world):.1f} s "
-            f"(min clearance {result.min_clearance:.3f} ft) [{_where(impl, world)}]"
+            f"(min clearance {result.min_clearance:.3f} ft) [{place_of(impl, world)}]"
         )
 
 
@@ -175,7 +177,7 @@ def _unreachable_test(impl: Implementation, world: World, recorder: Recorder) ->
         raise CheckFailed(
             f"stop_reason={result.stop_reason!r} after {result.time_s:.1f} s, but should be "
             f"'goal_unreachable' within the bound {time_bound(world):.1f} s "
-            f"[{_where(impl, world)}]"
+            f"[{place_of(impl, world)}]"
         )
 
 
@@ -198,7 +200,7 @@ def _invariance_test(
     recorder = RecordingPlanner(impl.factory())
     first = episode(impl, world, rec, planner=recorder)
     rec.evidence = Evidence([world, placed(world, angle, shift)], [first], time_bound(world))
-    where = f"{_where(impl, world)}, moved by {angle:.6f} rad and {_xy(shift)}"
+    where = f"{place_of(impl, world)}, moved by {angle:.6f} rad and {_xy(shift)}"
     expected = moved_recording(recorder.recording(), angle, shift)
     compare_answers(impl, expected, "moved", where, rec)
 
@@ -240,7 +242,7 @@ def scale_test(
     scaled = scale_world(world, k)
     sim = rec.sim_for(world)
     scaled_params = None if params is None else scale_params(params, infos, k)
-    where = f"{_where(impl, world)}, scaled by k={k!r}"
+    where = f"{place_of(impl, world)}, scaled by k={k!r}"
     if is_power_of_two(k) and not rec.physical:
         first = episode(impl, world, rec, sim=sim, params=params)
         second = episode(impl, scaled, rec, sim=scale_sim(sim, k), params=scaled_params)
@@ -325,7 +327,7 @@ def _unseen_test(
             f"range of every pose changed the trajectory at step {k} (runs of {len(a) - 1} and "
             f"{len(b) - 1} steps, ended {first.result.stop_reason!r} and "
             f"{second.result.stop_reason!r}), but it should not change at all (decisions "
-            f"depend on percepts only) [{_where(impl, world)}]"
+            f"depend on percepts only) [{place_of(impl, world)}]"
         )
 
 
@@ -333,7 +335,7 @@ def _unseen_test(
 def _gap_test(impl: Implementation, example: tuple[World, Polygon], rec: Recorder) -> None:
     world, gap = example
     run = episode(impl, world, rec)
-    where = f"{_where(impl, world)}, gap {_show_polygon(gap)}"
+    where = f"{place_of(impl, world)}, gap {_show_polygon(gap)}"
     if not run.result.reached:
         raise CheckFailed(
             f"stop_reason={run.result.stop_reason!r}, but should be 'goal_reached' through "
@@ -398,7 +400,7 @@ def _determinism_test(impl: Implementation, world: World, rec: Recorder) -> None
             raise CheckFailed(
                 f"replaying the same observations, step {k} (t={observation.t:.1f} s) answered "
                 f"{_command_fields(again)}, but the first run answered "
-                f"{_command_fields(command)} [{_where(impl, world)}]"
+                f"{_command_fields(command)} [{place_of(impl, world)}]"
             )
 
 
@@ -412,7 +414,7 @@ def _agrees_test(impl: Implementation, world: World, rec: Recorder) -> None:
     sim = rec.sim_for(world)
     reference = reference_episode(world, sim, Readings.declared(impl.promises.readings))
     rec.evidence = Evidence([world], [reference.run], sim.max_time)
-    where = _where(impl, world)
+    where = place_of(impl, world)
     found = compare(impl, reference, where)
     total = len(reference.recording.steps)
     rec.tally.update(steps=total, agreed=found.steps, ties=found.tie is not None)
@@ -434,7 +436,7 @@ def _dead_end_test(impl: Implementation, world: World, rec: Recorder) -> None:
     for start, commanded in dead_end_turns(run.trace):
         rec.tally.update(dead_ends=1)
         if why := turn_errors(start, commanded, dead_band):
-            raise CheckFailed(f"{why} [{_where(impl, world)}]")
+            raise CheckFailed(f"{why} [{place_of(impl, world)}]")
     rec.summary = f"{rec.tally['dead_ends']} dead end(s) met, none turned otherwise"
 
 
@@ -574,6 +576,7 @@ CHECKS: dict[str, Check] = {
             level=Level.REFERENCE,
             explicit=reference_worlds,
         ),
+        stops_in_time(),
         *equation_checks(),
     ]
 }

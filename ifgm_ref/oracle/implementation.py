@@ -68,6 +68,13 @@ class Promises:
         The reference planner whose readings it follows step by step: ``"ifgm"`` (the only
         one with the margins that tell a tie from a fault) makes the reference level's
         ``agrees_with_reference`` check apply (:mod:`ifgm_ref.oracle.conformance`).
+    stops_in_time : bool, default False
+        Whether it honours the robot's dynamics (:class:`~ifgm_ref.params.RobotParams`
+        ``braking``, ``acceleration`` and ``response``): on a robot that cannot stop at once,
+        every command leaves it room to stop before what it sees (the braking governor's
+        condition, :mod:`ifgm_ref.planners.governor`), which the ``stops_in_time`` check
+        monitors step by step. The reference planners promise it, but DWA, which keeps its own
+        dynamic window.
     readings : mapping of str to str, default {}
         The readings it takes of the paper's open choices, where they are not ours
         (:data:`~ifgm_ref.planners.ifgm_readings.OPEN_READINGS`: ``{"dead_end_side":
@@ -84,6 +91,7 @@ class Promises:
     turns_at_dead_ends: bool = False
     reference: str | None = None
     readings: Mapping[str, str] = field(default_factory=dict)
+    stops_in_time: bool = False
 
     def __post_init__(self) -> None:
         try:
@@ -103,17 +111,26 @@ class Promises:
 #: which it keeps those promises (measured; Bug1, Bug2 and APF miss too often at any level
 #: tried, so they promise none: ``docs/oracle.md``, "Robustness").
 PROMISES: dict[str, Promises] = {
-    "bug1": Promises(reports_unreachable=True, passes_wide_gaps=False),
-    "bug2": Promises(reports_unreachable=True, passes_wide_gaps=False),
-    "distbug": Promises(reports_unreachable=True, passes_wide_gaps=False, noise=REFERENCE_NOISE),
-    "iba": Promises(reports_unreachable=True, passes_wide_gaps=False, noise=REFERENCE_NOISE),
+    "bug1": Promises(reports_unreachable=True, passes_wide_gaps=False, stops_in_time=True),
+    "bug2": Promises(reports_unreachable=True, passes_wide_gaps=False, stops_in_time=True),
+    "distbug": Promises(
+        reports_unreachable=True, passes_wide_gaps=False, noise=REFERENCE_NOISE, stops_in_time=True
+    ),
+    "iba": Promises(
+        reports_unreachable=True, passes_wide_gaps=False, noise=REFERENCE_NOISE, stops_in_time=True
+    ),
     # no "goal unreachable" exit
-    "ifgm": Promises(noise=REFERENCE_NOISE, turns_at_dead_ends=True, reference="ifgm"),
+    "ifgm": Promises(
+        noise=REFERENCE_NOISE, turns_at_dead_ends=True, reference="ifgm", stops_in_time=True
+    ),
     # FGM steers at the *widest* gap, which beside a wall is the open space past its end.
     "fgm": Promises(
-        converges_in=frozenset({"open", "symmetric"}), passes_wide_gaps=False, noise=REFERENCE_NOISE
+        converges_in=frozenset({"open", "symmetric"}),
+        passes_wide_gaps=False,
+        noise=REFERENCE_NOISE,
+        stops_in_time=True,
     ),
-    "apf": Promises(converges_in=frozenset({"open"}), passes_wide_gaps=False),
+    "apf": Promises(converges_in=frozenset({"open"}), passes_wide_gaps=False, stops_in_time=True),
     "straight": Promises(converges_in=frozenset(), collision_free=False, passes_wide_gaps=False),
 }
 

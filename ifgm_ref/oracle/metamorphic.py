@@ -86,9 +86,16 @@ def scale_obstacle(obstacle: Obstacle, k: float) -> Obstacle:
 
 
 def scale_robot(robot: RobotParams, k: float) -> RobotParams:
-    """The robot ``k`` times the size: radius and speed scaled, turn rate kept (rad/s)."""
+    """The robot ``k`` times the size: radius, speed, braking and acceleration scaled (a length,
+    a length/s, lengths/s^2), turn rate and response time kept (rad/s, s)."""
     k = _factor(k)
-    return replace(robot, radius=k * robot.radius, speed=k * robot.speed)
+    return replace(
+        robot,
+        radius=k * robot.radius,
+        speed=k * robot.speed,
+        braking=k * robot.braking,
+        acceleration=k * robot.acceleration,
+    )
 
 
 def scale_sensor(sensor: SensorParams, k: float) -> SensorParams:

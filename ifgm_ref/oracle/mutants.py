@@ -107,6 +107,18 @@ class NoDeadEndRule(IFGMPlanner):
         return state, Command(pose.theta, 0.0, behaviour=Behaviour.OBSTACLE_AVOIDANCE)
 
 
+class BrakesLate(IFGMPlanner):
+    """The braking governor believes the robot brakes four times harder than it does: it
+    keeps its speed until a quarter of the room it needs to stop (errata row 36)."""
+
+    name = "ifgm-brakes-late"
+
+    def reset(self, start: Pose, goal: Point, params: EpisodeParams) -> None:
+        super().reset(start, goal, params)
+        robot = replace(params.robot, braking=4 * params.robot.braking)
+        self.governor.reset(replace(params, robot=robot))
+
+
 #: Every mutant by a short name.
 MUTANTS: dict[str, type[IFGMPlanner]] = {
     "gap_sign_flipped": GapAngleSignFlipped,
@@ -117,4 +129,5 @@ MUTANTS: dict[str, type[IFGMPlanner]] = {
     "gap_world_frame": GapAngleInWorldFrame,
     "absolute_standoff": AbsoluteStandoff,
     "no_dead_end_rule": NoDeadEndRule,
+    "brakes_late": BrakesLate,
 }

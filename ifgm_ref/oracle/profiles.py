@@ -48,7 +48,8 @@ class Profile:
     ``engine`` senses and moves the robot in every episode the checks simulate
     (:data:`ifgm_ref.params.ENGINES`: ``kinematic``, the default, or ``mujoco``), with the
     ``mujoco`` engine's ``body`` (``None``: the robot's default). It changes no draw: the
-    same examples run on either engine.
+    same examples run on either engine. ``robot`` changes these fields of the robot of every
+    world drawn (``--robot``, ``--speed``: :func:`~ifgm_ref.params.changed_robot`), as pairs.
     """
 
     name: str
@@ -60,6 +61,7 @@ class Profile:
     robust: bool = False
     engine: str = ENGINES[0]
     body: str | None = None
+    robot: tuple[tuple[str, float], ...] = ()
 
     def __post_init__(self) -> None:
         if self.engine not in ENGINES:

@@ -114,12 +114,17 @@ def wilson_lower(successes: int, n: int) -> float:
     return wilson_interval(successes, n).low if n else 0.0
 
 
-def noisy_example(example: Any, levels: NoiseLevels, seed: int) -> Any:
-    """``example`` with ``levels`` and the noise seed ``seed`` in its world: the example is a
-    world, or a tuple whose first item is its world (every simulation check's)."""
+def with_world(example: Any, change: Callable[[World], World]) -> Any:
+    """``example`` with its world changed by ``change``: the example is a world, or a tuple
+    whose first item is its world (every simulation check's)."""
     if isinstance(example, World):
-        return levels.apply(example, seed)
-    return (levels.apply(example[0], seed), *example[1:])
+        return change(example)
+    return (change(example[0]), *example[1:])
+
+
+def noisy_example(example: Any, levels: NoiseLevels, seed: int) -> Any:
+    """``example`` with ``levels`` and the noise seed ``seed`` in its world."""
+    return with_world(example, lambda world: levels.apply(world, seed))
 
 
 def noisy_examples(examples: st.SearchStrategy[Any], levels: NoiseLevels) -> st.SearchStrategy[Any]:
@@ -186,7 +191,7 @@ def run_statistical(
     misses: Counter[str] = Counter()
     first: tuple[CheckFailed, Evidence | None] | None = None
     for _ in range(n):
-        drawn = check.sample(RandomDraw(rng))
+        drawn = with_world(check.sample(RandomDraw(rng)), recorder.robot_of)
         example = noisy_example(drawn, levels, int(rng.integers(NOISE_SEEDS)))
         try:
             check.test(impl, example, recorder)

@@ -50,7 +50,7 @@ from ifgm_ref.oracle.profiles import (
     profile_named,
     with_noise,
 )
-from ifgm_ref.oracle.robust import noisy_examples, run_statistical
+from ifgm_ref.oracle.robust import noisy_examples, run_statistical, with_world
 from ifgm_ref.params import SimParams
 from ifgm_ref.protocol import Planner
 from ifgm_ref.worldfile import save_world
@@ -187,7 +187,7 @@ def run_check(
     reason = check.applies(impl) or _noise_reason(check, profile, levels)
     if reason is not None:
         return CheckResult(check.name, Status.NOT_APPLICABLE, message=reason)
-    recorder = Recorder(sim=profile.sim())
+    recorder = Recorder(sim=profile.sim(), robot=profile.robot)
     explore = _explorer(check, impl, profile, levels, recorder, progress)
     started = time.perf_counter()
     failure: Exception | None = None
@@ -250,6 +250,8 @@ def _explorer(
         n = profile.max_examples
         return functools.partial(run_statistical, check, impl, levels, n, first, recorder, progress)
     examples = check.strategy(impl)
+    if profile.robot:
+        examples = examples.map(lambda drawn: with_world(drawn, recorder.robot_of))
     if levels is not None:
         examples = noisy_examples(examples, levels)
 

@@ -1,7 +1,7 @@
 """The two robot bodies of the MuJoCo engine: the paper's robot and a Jackal-like one.
 
-A body is a differential-drive robot: a cylindrical chassis of the world's robot radius ``r``
-(the disc the planners are told of, and the only part that meets obstacles), two driven wheels
+A body is a differential-drive robot: a chassis, a cylinder of the world's robot radius ``r``
+or a box (the only part that meets obstacles), two driven wheels
 on the chassis' diameter (so the robot turns about its centre, as the kinematic robot does),
 and a frictionless caster in front and one behind. Velocity actuators drive the wheels within
 a force limit; the heading controller's wheel speeds are limited to the body's linear and
@@ -17,9 +17,11 @@ four wheels of 0.477 kg, radius 0.098 m, track 0.37559 m, tyre friction 0.5 (its
 ``mu1``/``mu2``). From
 ``jackal_control/config/control.yaml`` (the velocity controller BARN runs): at most 20 m/s^2
 and 25 rad/s^2. The Jackal is skid-steered on four wheels; here its two wheels of a side are
-one wheel of twice the mass, and the casters carry the rest: a differential drive. Its
-0.42 x 0.31 m chassis box is replaced by the disc of BARN's robot
-(``ifgm_ref.barn.ROBOT``, radius 0.22 m: half its width), the outline the planners know.
+one wheel of twice the mass, and the casters carry the rest: a differential drive. Its chassis
+is BARN's footprint, a 0.42 x 0.33 m box (``costmap_common_params.yaml`` of BARN's
+``jackal_helper``), built on BARN's robot (``ifgm_ref.barn.ROBOT``, radius 0.22 m); the
+planners are told the disc that circumscribes it (radius 0.267 m), so that keeping their disc
+clear keeps the box clear.
 
 The paper's robot. The paper gives no mass, size or motors beyond "cylindrical shaped robot"
 on stepper motors (section 4). We take a Pioneer 3-DX class platform, the usual indoor
@@ -28,16 +30,37 @@ a chassis of the paper robot's 1 ft radius, in feet (gravity 32.174 ft/s^2). Its
 accelerations are our choice: full speed in a quarter of a second and full turn rate in a
 tenth, near the kinematic robot's instant response (the paper's motors step at once), so
 that what physics changes is mass, contact and integration, not a slow controller.
+
+Each body's dynamics, as the planners' braking governor needs them
+(:class:`~ifgm_ref.params.RobotParams` ``braking`` ``b`` and ``acceleration`` ``A``), follow
+from its parameters. ``A`` is the smaller of the controller's limit and what the tyres can push,
+``mu g``: an upper bound. ``b`` is the smaller of the controller's limit and what the tyres can
+brake once the braking has moved load off the driven wheels onto the frictionless front
+caster, ``mu g c / (c + mu h)`` (moments about the caster's contact: ``c`` the caster's
+distance from the axle, ``h`` the centre of mass's height, the axle's): a lower bound. The
+Jackal: ``A = min(20, 4.90) = 4.90`` m/s^2, ``b = 4.90 x 0.154 / (0.154 + 0.5 x 0.098) = 3.72``
+m/s^2. The paper's body: both its controller's ``v / 0.25 s`` (the tyres give more). Its
+``response`` is three time constants of the wheels' velocity servos
+(:data:`SERVO_TIME`, 0.02 s): a first-order servo has then done 95 % of
+a change of speed. Braking while it turns, with one wheel told to drive on, a body takes that
+long to brake in earnest (measured in ``tests/test_physics.py``).
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 from ifgm_ref.errors import ParameterError
 from ifgm_ref.params import RobotParams
 
+#: The casters' distance from the centre, front and rear, in robot radii.
+CASTER_OFFSET = 0.7
+#: Time constant of the wheels' velocity servos, s: the motor reaches a commanded wheel speed
+#: within a few hundredths of a second, faster than any acceleration limit asks.
+SERVO_TIME = 0.02
+#: A body's response time, s: three servo time constants, 95 % of a change of wheel speed.
+RESPONSE = 3 * SERVO_TIME
 #: Standard gravity, m/s^2 and ft/s^2 (9.80665 m/s^2 / 0.3048 m/ft).
 GRAVITY_M = 9.80665
 GRAVITY_FT = GRAVITY_M / 0.3048
@@ -70,6 +93,12 @@ class Body:
         Largest angular acceleration, rad/s^2.
     gravity : float
         Gravity in the world's length unit per s^2.
+    outline : tuple of float or None, default None
+        The chassis as a box, its length and width relative to ``r``; ``None``: the disc of
+        radius ``r``.
+    circumscribe : bool, default True
+        Whether the planners are told the disc that circumscribes ``outline`` (else the
+        world's robot disc, which may not cover the box: for comparison only).
     """
 
     name: str
@@ -82,6 +111,8 @@ class Body:
     max_accel: float
     max_angular_accel: float
     gravity: float
+    outline: tuple[float, float] | None = None
+    circumscribe: bool = True
 
     def __post_init__(self) -> None:
         if not 0.0 < self.track < 2.0 - self.wheel_width_ratio:
@@ -98,6 +129,44 @@ class Body:
         """Wheel radius of this body on ``robot``, in its length unit."""
         return self.wheel_radius * robot.radius
 
+    def outline_radius(self, robot: RobotParams) -> float:
+        """The radius of the disc that circumscribes the chassis on ``robot``.
+
+        >>> from ifgm_ref.barn import ROBOT
+        >>> round(JACKAL.outline_radius(ROBOT), 4), PAPER.outline_radius(RobotParams())
+        (0.2671, 1.0)
+        """
+        if self.outline is None:
+            return robot.radius
+        return math.hypot(*self.outline) / 2 * robot.radius
+
+    def acceleration(self) -> float:
+        """``A``: the most the robot speeds up, the controller's limit or the tyres' ``mu g``."""
+        return min(self.max_accel, self.friction * self.gravity)
+
+    def braking(self, robot: RobotParams) -> float:
+        """``b``: the least the robot slows when told to, the controller's limit or what the
+        tyres brake with load moved onto the front caster (module docstring).
+
+        >>> from ifgm_ref.barn import ROBOT
+        >>> round(JACKAL.braking(ROBOT), 2), round(JACKAL.acceleration(), 2)
+        (3.72, 4.9)
+        """
+        caster = CASTER_OFFSET * robot.radius
+        height = self.scaled_wheel(robot)
+        grip = self.friction * self.gravity * caster / (caster + self.friction * height)
+        return min(self.max_accel, grip)
+
+    def told(self, robot: RobotParams) -> RobotParams:
+        """The robot the planners are told on this body: ``robot`` with the outline's disc
+        (when ``circumscribe``) and the body's ``b``, ``A`` and response time where
+        ``robot`` leaves them at the paper's robot's (infinite, infinite, 0)."""
+        radius = self.outline_radius(robot) if self.circumscribe else robot.radius
+        braking = self.braking(robot) if robot.braking == math.inf else robot.braking
+        accel = self.acceleration() if robot.acceleration == math.inf else robot.acceleration
+        response = RESPONSE if robot.response == 0.0 else robot.response
+        return replace(robot, radius=radius, braking=braking, acceleration=accel, response=response)
+
 
 #: BARN's Jackal (module docstring): the urdf's masses and wheels, control.yaml's limits, on
 #: BARN's 0.22 m disc.
@@ -112,6 +181,7 @@ JACKAL = Body(
     max_accel=20.0,
     max_angular_accel=25.0,
     gravity=GRAVITY_M,
+    outline=(0.42 / 0.22, 0.33 / 0.22),
 )
 
 #: The paper's robot (module docstring): a 9 kg Pioneer 3-DX class body on the 1 ft disc, in

@@ -20,10 +20,13 @@ One episode step of ``dt`` seconds (the planner's decision period) is:
    wheel radius ``R``), the setpoints of the wheels' velocity servos, whose torque is
    limited (:mod:`ifgm_ref.physics.mjcf`). MuJoCo integrates the rest: mass, inertia, tyre
    friction, the caster, contacts.
-4. **Checks**: a contact between the chassis (the robot's disc) and an obstacle, at any
-   substep, is a collision. The clearance recorded is the least clearance of the disc swept
-   along the path of the substeps' positions (:class:`~ifgm_ref.collision.ClearanceChecker`,
-   exact), so that a trace's clearance and collision agree as in the kinematic engine.
+4. **Checks**: a contact between the chassis and an obstacle, at any substep, is a
+   collision. The clearance recorded is the least clearance of the disc the planners are told
+   (:attr:`MujocoEngine.robot`), swept along the path of the substeps' positions
+   (:class:`~ifgm_ref.collision.ClearanceChecker`, exact). Where the chassis is that disc, a
+   negative clearance is a collision too, so that a trace's clearance and collision agree as
+   in the kinematic engine; a box chassis collides only where the box touches (its
+   circumscribed disc may overlap an obstacle that the box does not reach).
 
 **Odometry** is the Jackal's (``jackal_control/config/control.yaml``: its
 ``ekf_localization`` fuses the wheels' velocities with the IMU's yaw): the heading is the
@@ -95,7 +98,6 @@ class MujocoEngine:
     """
 
     def __init__(self, world: World, dt: float, body: str | Body | None = None) -> None:
-        self.robot = world.robot
         self.body = (
             body_for(world.robot)
             if body is None
@@ -103,13 +105,17 @@ class MujocoEngine:
             if isinstance(body, Body)
             else body_named(body)
         )
+        #: The robot the planners are told: the body's outline and dynamics
+        #: (:meth:`~ifgm_ref.physics.bodies.Body.told`).
+        self.robot = self.body.told(world.robot)
+        self._scale = world.robot
         self.dt = dt
         self.model = mujoco.MjModel.from_xml_string(model_xml(world, self.body, dt))
         self.data = mujoco.MjData(self.model)
         mujoco.mj_forward(self.model, self.data)
         self.substeps = substeps(dt)
         self.sensor = IRSensor(world)
-        self.checker = ClearanceChecker(world, world.robot.radius)
+        self.checker = ClearanceChecker(world, self.robot.radius)
         self._robot_body = self.model.body("robot").id
         self._chassis = self.model.geom("chassis").id
         self._sensor_site = self.model.site("sensor").id
@@ -173,8 +179,8 @@ class MujocoEngine:
         speed = min(command.speed, self.robot.speed) * speed_scale
         body = self.body
         h = self.model.opt.timestep
-        track = body.scaled_track(self.robot)
-        wheel = body.scaled_wheel(self.robot)
+        track = body.scaled_track(self._scale)
+        wheel = body.scaled_wheel(self._scale)
         collided = False
         clearance = math.inf
         previous = pose
@@ -191,7 +197,9 @@ class MujocoEngine:
             clearance = min(clearance, self.checker.segment_clearance(previous, now))
             previous = now
             collided = collided or self._touching()
-        return previous, clearance, collided or clearance < 0.0
+        if self.body.outline is None:  # the chassis is the disc: its clearance decides too
+            collided = collided or clearance < 0.0
+        return previous, clearance, collided
 
     def _turn_rate(self, command: Command) -> float:
         """The turn rate the heading controller asks for now (module docstring, step 1)."""

@@ -4,7 +4,8 @@ The world becomes static geometry on a floor: a circle a vertical cylinder, a po
 H included) its triangles (a constrained Delaunay triangulation of its outline,
 :func:`shapely.constrained_delaunay_triangles`), each extruded into a prism mesh, which is
 convex, as MuJoCo's collision needs. The robot is the body of :mod:`ifgm_ref.physics.bodies`
-on a free joint: a chassis cylinder of radius ``r`` clear of the floor, two driven wheels on
+on a free joint: a chassis (a cylinder of radius ``r``, or the body's box) clear of the floor,
+two driven wheels on
 its diameter, a frictionless caster sphere in front and one behind (docs/physics.md says
 why).
 
@@ -28,7 +29,7 @@ import numpy as np
 import shapely
 
 from ifgm_ref.params import RobotParams
-from ifgm_ref.physics.bodies import Body
+from ifgm_ref.physics.bodies import CASTER_OFFSET, SERVO_TIME, Body
 from ifgm_ref.world import Circle, Polygon, World
 
 #: The geom group of the obstacles (rays see this group only).
@@ -39,15 +40,10 @@ SENSOR_HEIGHT = 1.0
 #: Chassis: its floor clearance and height, in robot radii.
 CHASSIS_CLEARANCE = 0.1
 CHASSIS_HEIGHT = 0.8
-#: The casters' distance from the centre, front and rear, in robot radii.
-CASTER_OFFSET = 0.7
 #: Longest physics substep, s: 5 ms. The ``implicitfast`` integrator keeps the wheels'
 #: velocity servos stable at a quarter of their time constant (:data:`SERVO_TIME`); at 1 m/s
 #: the robot moves 5 mm a substep, and the trace's clearance is measured along every substep.
 MAX_SUBSTEP = 0.005
-#: Time constant of the wheels' velocity servos, s: the motor reaches a commanded wheel speed
-#: within a few hundredths of a second, faster than any acceleration limit asks.
-SERVO_TIME = 0.02
 #: contype/conaffinity bits: the floor's and the obstacles'.
 _FLOOR_BIT = 1
 _OBSTACLE_BIT = 2
@@ -173,13 +169,18 @@ def _add_robot(worldbody: ET.Element, world: World, body: Body) -> None:
         diaginertia=_fmt(ixx, ixx, izz),
     )
     bottom = CHASSIS_CLEARANCE * r - chassis_z
+    height = CHASSIS_HEIGHT * r
+    if body.outline is None:
+        shape, size = "cylinder", _fmt(r, height / 2)
+    else:
+        shape, size = "box", _fmt(*(k * r / 2 for k in body.outline), height / 2)
     ET.SubElement(
         frame,
         "geom",
         name="chassis",
-        type="cylinder",
-        size=_fmt(r, CHASSIS_HEIGHT * r / 2),
-        pos=_fmt(0.0, 0.0, bottom + CHASSIS_HEIGHT * r / 2),
+        type=shape,
+        size=size,
+        pos=_fmt(0.0, 0.0, bottom + height / 2),
         contype=str(_OBSTACLE_BIT),
         conaffinity="0",
         mass="0",

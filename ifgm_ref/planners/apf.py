@@ -62,6 +62,7 @@ from ifgm_ref.paper import traces
 from ifgm_ref.percepts.corridor import free_length
 from ifgm_ref.percepts.points import scan_points
 from ifgm_ref.planners.edge_following import turn_speed
+from ifgm_ref.planners.governor import BrakingGovernor
 from ifgm_ref.planners.tuning import Tuning, check_names, derived, parameter_names
 from ifgm_ref.pose import Point, Pose, wrap_angle
 from ifgm_ref.protocol import Behaviour, Command, EpisodeParams, Observation
@@ -191,6 +192,7 @@ class APFPlanner:
         self.max_turn = math.pi
         self.step_length = 0.0
         self.force = np.zeros(2)
+        self.governor = BrakingGovernor()
 
     def reset(self, start: Pose, goal: Point, params: EpisodeParams) -> None:
         """Read the settings from ``params.params`` (see :class:`APFParams`)."""
@@ -201,8 +203,14 @@ class APFPlanner:
         self.max_turn = params.robot.max_turn_rate * params.dt
         self.step_length = params.robot.speed * params.dt
         self.force = np.zeros(2)
+        self.governor.reset(params)
 
     def step(self, observation: Observation) -> Command:
+        """Decide (:meth:`decide`), then stop in time (the braking governor,
+        :mod:`~ifgm_ref.planners.governor`)."""
+        return self.governor(self.decide(observation), observation)
+
+    def decide(self, observation: Observation) -> Command:
         """Sum the forces in the robot frame, steer along them, stop if the way is blocked."""
         pose, goal, scan = observation.pose, observation.goal, observation.scan
         c, s = math.cos(pose.theta), math.sin(pose.theta)

@@ -37,6 +37,7 @@ from ifgm_ref.percepts.corridor import disc_travel
 from ifgm_ref.percepts.memory import PerceptMemory
 from ifgm_ref.planners.circuit import Circuit
 from ifgm_ref.planners.edge_following import FollowSide, follow_heading, turn_speed
+from ifgm_ref.planners.governor import BrakingGovernor
 from ifgm_ref.planners.sight import Body, BoundaryParams, Sight, goal_bearing
 from ifgm_ref.planners.tuning import Tuning, check_names, parameter_names
 from ifgm_ref.pose import Point, Pose, wrap_angle
@@ -229,6 +230,7 @@ class BoundaryPlanner:
         self.choose_side = choose_side
         self.follower = EdgeFollower()
         self.circuit = Circuit()
+        self.governor = BrakingGovernor()
         self.reset(Pose(0.0, 0.0, 0.0), Point(0.0, 0.0), EpisodeParams())  # until reset
 
     # -- protocol ---------------------------------------------------------------------------
@@ -242,12 +244,14 @@ class BoundaryPlanner:
         self.follower.reset()
         self.rule.reset(start, goal, params)
         self.circuit.reset()
+        self.governor.reset(params)
 
     def step(self, observation: Observation) -> Command:
         """Decide (:meth:`decide`), then never drive into a remembered obstacle
-        (:func:`keep_clear`)."""
+        (:func:`keep_clear`), and stop in time (the braking governor,
+        :mod:`~ifgm_ref.planners.governor`)."""
         sight = self.observe(observation)
-        return keep_clear(self.decide(observation, sight), sight)
+        return self.governor(keep_clear(self.decide(observation, sight), sight), observation)
 
     def decide(self, observation: Observation, sight: Sight) -> Command:
         """Move to goal or follow the edge (see the module docstring), given this step's

@@ -57,6 +57,7 @@ from ifgm_ref.laserscan import LaserScan
 from ifgm_ref.paper import traces
 from ifgm_ref.percepts.points import scan_points
 from ifgm_ref.planners.edge_following import turn_speed
+from ifgm_ref.planners.governor import BrakingGovernor
 from ifgm_ref.planners.tuning import Tuning, check_names, derived, parameter_names
 from ifgm_ref.pose import Point, Pose, wrap_angle
 from ifgm_ref.protocol import Behaviour, Command, EpisodeParams, Observation
@@ -395,6 +396,7 @@ class FGMPlanner:
         self.radius = 1.0
         self.speed = 1.0
         self.last: FGMDecision | None = None
+        self.governor = BrakingGovernor()
 
     def reset(self, start: Pose, goal: Point, params: EpisodeParams) -> None:
         """Read the settings from ``params.params`` (see :class:`FGMParams`); unknown names
@@ -404,6 +406,7 @@ class FGMPlanner:
         self.radius = params.robot.radius
         self.speed = params.robot.speed
         self.last = None
+        self.governor.reset(params)
 
     @property
     def inflation(self) -> float:
@@ -411,7 +414,12 @@ class FGMPlanner:
         return self.radius + self.tuning.inflation_margin
 
     def step(self, observation: Observation) -> Command:
-        """Decide from the current scan (see :func:`fgm_decide`)."""
+        """Decide from the current scan (see :func:`fgm_decide`), then stop in time (the
+        braking governor, :mod:`~ifgm_ref.planners.governor`)."""
+        return self.governor(self.decide(observation), observation)
+
+    def decide(self, observation: Observation) -> Command:
+        """FGM's command for ``observation`` (see :func:`fgm_decide`)."""
         pose, goal = observation.pose, observation.goal
         goal_angle = wrap_angle(math.atan2(goal.y - pose.y, goal.x - pose.x) - pose.theta)
         decision = fgm_decide(

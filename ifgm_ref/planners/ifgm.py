@@ -56,6 +56,7 @@ from ifgm_ref.planners.boundary import edge_heading, keep_clear, steer
 from ifgm_ref.planners.circuit import Circuit, CircuitPhase
 from ifgm_ref.planners.distbug import DistBugParams
 from ifgm_ref.planners.edge_following import FollowSide
+from ifgm_ref.planners.governor import BrakingGovernor
 from ifgm_ref.planners.iba import freer_side, leaves, yardstick_at_hit
 from ifgm_ref.planners.ifgm_atoms import (
     DeadEndTurn,
@@ -138,6 +139,7 @@ class IFGMPlanner:
     def __init__(self, readings: Readings | None = None) -> None:
         self.readings = Readings() if readings is None else readings
         self.circuit = Circuit()
+        self.governor = BrakingGovernor()
         self.last_branch: Branch | None = None
         self.last_seen: tuple[Percepts, IFGMState, Reading] | None = None
         self.reset(Pose(0.0, 0.0, 0.0), Point(0.0, 0.0), EpisodeParams())  # until reset
@@ -209,6 +211,7 @@ class IFGMPlanner:
         self.memory = PerceptMemory(tuning.memory_horizon, params.dt)
         self.step_length = DistBugParams.for_episode(params).step_length
         self.circuit.reset()
+        self.governor.reset(params)
         p = IFGMParams.for_episode(params)
         r = params.robot.radius
         if p.d_th <= 2.0 * r:
@@ -233,9 +236,10 @@ class IFGMPlanner:
 
     def step(self, observation: Observation) -> Command:
         """Decide (:meth:`act`), then never drive into a remembered obstacle (the clearance
-        filter, :func:`~ifgm_ref.planners.boundary.keep_clear`)."""
+        filter, :func:`~ifgm_ref.planners.boundary.keep_clear`), and stop in time (the braking
+        governor, :mod:`~ifgm_ref.planners.governor`)."""
         command, percepts = self._decide(observation)
-        return keep_clear(command, percepts.sight)
+        return self.governor(keep_clear(command, percepts.sight), observation)
 
     def act(self, observation: Observation) -> Command:
         """IFGM's decision for ``observation`` before the clearance filter."""

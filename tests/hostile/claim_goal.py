@@ -10,8 +10,11 @@ def main() -> None:
         kind = json.loads(line)["type"]
         if kind == "bye":
             break
-        reply = {"type": "ready"} if kind == "reset" else {
-            "type": "command", "linear": 0, "angular": 0, "stop": "goal_reached"}
+        reply = (
+            {"type": "ready"}
+            if kind == "reset"
+            else {"type": "command", "linear": 0, "angular": 0, "stop": "goal_reached"}
+        )
         sys.stdout.write(json.dumps(reply) + "\n")
         sys.stdout.flush()
 

@@ -1,0 +1,394 @@
+"""The braking governor: every planner's command, slowed so that a robot with mass stops in time.
+
+The paper's robot stops at once: its thresholds come from the robot's size, the time step and
+the sensor (section 4), and none of them knows how far the robot needs to stop (errata row
+36). A robot with mass brakes at a finite deceleration. The governor sits between a planner
+and the robot and lets through only commands from which the robot can still stop before every
+obstacle it sees.
+
+The condition is passive safety (Mitsch, Ghorbal, Vogelbacher & Platzer, "Formal verification
+of obstacle avoidance and navigation of ground robots", IJRR 36(12):1312-1340, 2017,
+Theorem 1): a robot that accelerates at most ``A``, is guaranteed to brake at ``b`` and decides
+every ``eps`` seconds may keep any control for the next period while the distance ``d`` to
+every obstacle it may sweep exceeds the distance it needs if it accelerates for the whole
+period and then brakes::
+
+    d >= v^2 / (2 b) + (A/b + 1) (A eps^2 / 2 + eps v)                       (M)
+
+and must brake otherwise. Our robots are told a speed, not an acceleration, and never pass
+it: the worst case of one period is to move from the speed ``u`` they may have now towards the
+commanded ``c`` as hard as allowed (up at ``A``, no faster than ``c`` or the top speed; down
+at ``b``, no slower than ``c``), then to brake (:func:`stopping_distance`). A command is
+admissible when that fits in the room ``d``; a command faster than ``u + A eps`` gives (M)
+exactly. Here (``proofs/braking.py`` proves each step):
+
+* ``u`` is a bound on the robot's speed, kept from the governor's own commands
+  (:func:`next_speed_bound`), 0 at the start.
+* ``d`` is measured in the region the robot may sweep until it stops: its disc moved along any
+  path no longer than the stopping distance whose heading stays between the present one, the
+  command's and the last command's, all of which the heading controller turns towards the
+  short way round (:func:`fan_room`). Straight ahead that is the robot-wide corridor; while
+  turning, the fan of those headings. ``b`` is what the robot is guaranteed on any curve.
+* The governor lets through the planner's heading and the largest speed up to the planner's
+  that is admissible (:func:`safe_speed`), so that the robot slows as obstacles come near. If
+  even braking does not fit in the fan of the planner's heading, it brakes (speed 0) along the
+  last command's heading, whose fan the stop was checked in, until it stands; standing, it may
+  turn (a disc turning in place sweeps nothing). So a planner that decides to stop and turn
+  in place (IFGM's dead-end turn, Case-3's pre-emption) turns at once only where the stop
+  fits in the turn's fan, and otherwise slows down first.
+* The room is counted from a disc a quarter radius wider than the robot's (the planners'
+  corridor margin), except for obstacles already nearer: a stop a planner decides then ends
+  about where the planner expects its robot, and the margin absorbs what a real robot adds to
+  the model (a response a few milliseconds late, odometry that slips).
+
+The robot's ``braking`` and ``acceleration`` are :class:`~ifgm_ref.params.RobotParams` fields;
+with ``braking`` infinite (the paper's robot) the governor changes nothing. It uses only what a
+planner is handed: the robot, the time step, the pose and the scan.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+from typing import ClassVar
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ifgm_ref.paper import traces
+from ifgm_ref.percepts.points import scan_points
+from ifgm_ref.pose import wrap_angle
+from ifgm_ref.protocol import Command, EpisodeParams, Observation
+
+__all__ = [
+    "BrakingGovernor",
+    "GovernorState",
+    "Limits",
+    "admissible",
+    "fan_room",
+    "govern",
+    "next_state",
+    "safe_speed",
+    "stopping_distance",
+]
+
+
+@dataclass(frozen=True)
+class Limits:
+    """What the governor knows of the robot: its radius ``r`` and top speed ``v_top`` (a
+    length and a length/s), its guaranteed braking ``b`` and largest acceleration ``A``
+    (length/s^2), the control period ``eps`` (the time step, s) and the robot's response
+    time ``tau`` (s: how long after a command it may still move as before it)."""
+
+    radius: float
+    top_speed: float
+    braking: float
+    acceleration: float
+    period: float
+    response: float = 0.0
+
+    #: The clearance the governor keeps beyond the robot's disc from what lies ahead, in
+    #: robot radii: the planners' corridor margin (``corridor_margin``, ``r/4``), so that a
+    #: stop a planner decides ends about where it expects its robot to stand, not a hair from
+    #: the obstacle (:func:`fan_room`).
+    MARGIN: ClassVar[float] = 0.25
+
+    @classmethod
+    def of(cls, params: EpisodeParams) -> Limits:
+        """The limits of an episode's robot and time step; the response time is the robot's
+        ``response`` plus its ``latency`` in steps."""
+        robot = params.robot
+        response = robot.response + robot.latency * params.dt
+        return cls(
+            robot.radius, robot.speed, robot.braking, robot.acceleration, params.dt, response
+        )
+
+    @property
+    def stops_at_once(self) -> bool:
+        """Whether the robot stops at once (infinite ``b``): the governor then does nothing."""
+        return self.braking == math.inf
+
+
+@dataclass(frozen=True)
+class GovernorState:
+    """What the governor carries from one step to the next: a bound on the robot's speed
+    (0 at the start: the robot starts at rest), and the heading and speed it last let
+    through (``None`` and 0 before the first command)."""
+
+    speed_bound: float = 0.0
+    heading: float | None = None
+    speed: float = 0.0
+
+
+def stopping_distance(state: GovernorState, speed: float, limits: Limits) -> float:
+    """How far the robot may travel before it stands when it is commanded ``speed`` for one
+    period ``eps`` and then brakes, its speed at most ``state.speed_bound`` now: the worst
+    case moves, for its response time ``tau``, towards the last command ``state.speed``, then
+    for a period towards ``speed``, each as hard as allowed (up at ``A``, never past the
+    command or the top speed; down at ``b``, never below it), then brakes at ``b``.
+
+    With no response time, commanded faster than it can reach (``u + A eps`` at most the
+    command and the top speed), the robot gives Mitsch et al.'s bound (M),
+    ``u^2/(2b) + (A/b + 1)(A eps^2/2 + eps u)``:
+
+    >>> limits = Limits(radius=0.2, top_speed=2.0, braking=4.0, acceleration=2.0, period=0.1)
+    >>> u = GovernorState(speed_bound=1.0)
+    >>> mitsch = 1.0**2 / 8 + (2 / 4 + 1) * (2 * 0.01 / 2 + 0.1 * 1.0)
+    >>> stopping_distance(u, 2.0, limits) == mitsch, round(mitsch, 6)
+    (True, 0.29)
+
+    Holding its speed, it drives one period, then brakes; told to stop, it only brakes:
+
+    >>> stopping_distance(u, 1.0, limits) == 0.1 + 1 / 8, stopping_distance(u, 0.0, limits)
+    (True, 0.125)
+    """
+    late, bound = _ramp(state.speed_bound, state.speed, limits.response, limits)
+    return late + _period(bound, speed, limits)
+
+
+def _period(bound: float, speed: float, limits: Limits) -> float:
+    """:func:`stopping_distance` once the response time is over: from a speed of at most
+    ``bound``, one period towards ``speed``, then braking."""
+    travel, end = _ramp(bound, speed, limits.period, limits)
+    return travel + end**2 / (2 * limits.braking)
+
+
+def _ramp(speed: float, target: float, duration: float, limits: Limits) -> tuple[float, float]:
+    """The most a robot at most at ``speed`` may travel in ``duration`` towards ``target``
+    (up at ``A``, never past it or the top speed; down at ``b``, never below it), and the
+    bound on its speed then."""
+    target = min(target, limits.top_speed)
+    rate = limits.acceleration if target >= speed else -limits.braking
+    ramp = min(duration, (target - speed) / rate) if target != speed else 0.0
+    end = speed + rate * ramp
+    return speed * ramp + rate * ramp**2 / 2 + end * (duration - ramp), end
+
+
+def safe_speed(room: float, state: GovernorState, limits: Limits) -> float | None:
+    """The largest speed in ``[0, v_top]`` whose :func:`stopping_distance` fits in ``room``;
+    ``None`` when none does (not even braking).
+
+    :func:`stopping_distance` grows with the command; on each of its pieces the speed is the
+    root of a quadratic where it rises (:func:`_root`).
+
+    >>> limits = Limits(radius=0.2, top_speed=2.0, braking=4.0, acceleration=2.0, period=0.1)
+    >>> u = GovernorState(speed_bound=1.0)
+    >>> faster, slower = safe_speed(0.26, u, limits), safe_speed(0.2, u, limits)
+    >>> round(faster, 6), round(slower, 6)  # speeding up to 1.10 fits; holding 1.0 does not
+    (1.103852, 0.9245)
+    >>> [round(stopping_distance(u, c, limits), 12) for c in (faster, slower)]
+    [0.26, 0.2]
+    >>> safe_speed(10.0, u, limits), safe_speed(0.1, u, limits)  # free; can no longer stop
+    (2.0, None)
+    >>> safe_speed(0.0, GovernorState(), limits)  # standing, with no room: it may only stand
+    0.0
+    """
+    top, b, a, eps = limits.top_speed, limits.braking, limits.acceleration, limits.period
+    late, bound = _ramp(state.speed_bound, state.speed, limits.response, limits)
+    room -= late
+    if _period(bound, top, limits) <= room:
+        return top
+    if _period(bound, bound, limits) <= room:  # speed up to c < bound + A eps
+        # c eps - (c - u)^2/(2A) + c^2/(2b) = room
+        return _root((1 / b - 1 / a) / 2, eps + bound / a, -(bound**2) / (2 * a) - room)
+    low = max(0.0, bound - b * eps)
+    if _period(bound, low, limits) > room:
+        return None
+    # slow to c > bound - b eps: u^2/(2b) + c eps - c (u - c)/b = room
+    return _root(1 / b, eps - bound / b, bound**2 / (2 * b) - room)
+
+
+def _root(a: float, p: float, q: float) -> float:
+    """The root of ``a c^2 + p c + q`` where the quadratic rises (``q <= 0``, and ``a > 0``
+    wherever ``p <= 0``), at least 0; each form chosen so that nothing cancels.
+
+    >>> _root(0.25, -2.5, -0.2) == (2.5 + math.sqrt(6.25 + 0.2)) / 0.5  # p < 0: the + root
+    True
+    """
+    if q >= 0.0:
+        return 0.0
+    s = math.sqrt(p * p - 4 * a * q)
+    return max(0.0, -2 * q / (p + s) if p > 0 else (s - p) / (2 * a))
+
+
+def fan_room(
+    points: NDArray[np.float64], low: float, high: float, radius: float, margin: float = 0.0
+) -> float:
+    """How far the robot's disc may go along any path whose heading stays in ``[low, high]``
+    (robot frame, rad, ``low <= 0 <= high``) before it meets one of ``points`` (robot frame,
+    ``(n, 2)``); ``inf`` when none is in the way. A point ahead (its distance across the
+    fan below ``radius``) is kept ``margin`` farther, unless it is already within half the
+    margin of that: the robot then stops short of what it would hit, passes beside what it
+    would not, and is not held up by what it already stands near.
+
+    The centre of such a path, after travelling ``D``, lies in the fan of radius ``D`` and
+    angles ``[low, high]`` (a path's displacement is a sum of steps along those headings, a
+    convex cone when it spans less than pi; all the plane otherwise). The room is the largest
+    ``D`` for which that fan, widened by ``radius``, keeps clear of every point: for a point
+    at distance ``rho`` and angle ``delta`` outside the fan, ``rho cos(delta) -
+    sqrt(radius^2 - rho^2 sin(delta)^2)`` where its perpendicular distance to the fan's edge
+    is below ``radius``.
+
+    >>> ahead = np.array([[2.0, 0.0]])
+    >>> fan_room(ahead, 0.0, 0.0, 0.5)  # straight at it: 2 - 0.5
+    1.5
+    >>> fan_room(np.array([[0.0, 2.0]]), 0.0, 0.0, 0.5)  # abeam: never met going straight
+    inf
+    >>> round(fan_room(np.array([[0.0, 2.0]]), 0.0, math.pi / 2, 0.5), 12)  # turning to it
+    1.5
+    >>> round(fan_room(np.array([[2.0, 0.3]]), 0.0, 0.0, 0.5), 6)  # 2 - sqrt(0.25 - 0.09)
+    1.6
+    >>> fan_room(ahead, 0.0, 0.0, 0.5, margin=0.25), fan_room(ahead, 0.0, 0.0, 1.5, margin=1.2)
+    (1.25, 0.5)
+    >>> fan_room(np.array([[2.0, 0.6]]), 0.0, 0.0, 0.5, margin=0.25)  # beside: passed
+    inf
+    """
+    if len(points) == 0:
+        return math.inf
+    rho = np.hypot(points[:, 0], points[:, 1])
+    if high - low >= math.pi:
+        delta = np.zeros_like(rho)
+    else:
+        phi = np.arctan2(points[:, 1], points[:, 0])
+        past_high = np.mod(phi - high, 2 * math.pi)
+        before_low = np.mod(low - phi, 2 * math.pi)
+        inside = (phi >= low) & (phi <= high)
+        delta = np.where(inside, 0.0, np.minimum(past_high, before_low))
+    across = rho * np.sin(np.minimum(delta, math.pi / 2))
+    along = rho * np.cos(delta)
+    ahead = (across < radius) & (rho >= radius + margin / 2)
+    kept = np.where(ahead, radius + margin, radius)
+    reach = np.sqrt(np.maximum(kept**2 - across**2, 0.0))
+    met = (delta < math.pi / 2) & (across < kept)
+    room = np.where(met, along - reach, np.where(rho < kept, 0.0, np.inf))
+    return max(0.0, float(room.min()))
+
+
+def _fan(heading: float, observation: Observation, state: GovernorState) -> tuple[float, float]:
+    """The robot-frame headings the robot may face until it stops: the present one (0), the
+    command's and the last command's."""
+    theta = observation.pose.theta
+    turns = [0.0, wrap_angle(heading - theta)]
+    if state.heading is not None:
+        turns.append(wrap_angle(state.heading - theta))
+    return min(turns), max(turns)
+
+
+def _room(heading: float, observation: Observation, state: GovernorState, radius: float,
+          margin: float = 0.0) -> float:  # fmt: skip
+    """The room the robot of ``radius`` has to stop in when it turns towards ``heading``,
+    keeping ``margin`` more (:func:`fan_room`): the fan's, and no farther than the sensor
+    sees."""
+    low, high = _fan(heading, observation, state)
+    scan = observation.scan
+    room = fan_room(scan_points(scan).xy, low, high, radius, margin)
+    return min(room, max(0.0, scan.range_max - radius - margin))
+
+
+def next_state(state: GovernorState, heading: float, speed: float, limits: Limits
+               ) -> GovernorState:  # fmt: skip
+    """The governor's state one period after ``state`` when it let ``heading`` and ``speed``
+    through: the speed bound after the response time towards the last command and the rest
+    of the period towards this one (up at ``A`` at most, never past the command; down at
+    ``b`` at least until it reaches it).
+
+    >>> limits = Limits(radius=0.2, top_speed=2.0, braking=4.0, acceleration=2.0, period=0.1)
+    >>> next_state(GovernorState(), 0.0, 2.0, limits).speed_bound
+    0.2
+    >>> [next_state(GovernorState(1.0, 0.0, 1.0), 0.0, c, limits).speed_bound for c in (0, 0.9)]
+    [0.6, 0.9]
+    """
+    tau = min(limits.response, limits.period)
+    bound = _ramp(state.speed_bound, state.speed, tau, limits)[1]
+    bound = _ramp(bound, speed, limits.period - tau, limits)[1]
+    return GovernorState(bound, heading, min(speed, limits.top_speed))
+
+
+@traces("s3.safe_near_obstacles")
+def govern(
+    command: Command, observation: Observation, state: GovernorState, limits: Limits
+) -> tuple[Command, GovernorState]:
+    """``command`` as the robot may carry it out and stop in time, and the governor's next
+    state (module docstring). A robot that stops at once, and a command that stops the
+    episode, pass unchanged.
+
+    >>> from ifgm_ref.laserscan import LaserScan
+    >>> from ifgm_ref.pose import Point, Pose
+    >>> limits = Limits(radius=0.2, top_speed=2.0, braking=4.0, acceleration=2.0, period=0.1)
+    >>> wall = LaserScan(-0.1, 0.1, 0.1, 0.0, 10.0, [0.45, 0.45, 0.45])  # 0.2 of room ahead
+    >>> seen = Observation(0.0, Pose(0.0, 0.0, 0.0), Point(5.0, 0.0), wall)
+    >>> govern(Command(0.0, 2.0), seen, GovernorState(), limits)[0].speed  # from rest: go
+    2.0
+    >>> command, state = govern(Command(0.0, 2.0), seen, GovernorState(1.0, 0.0), limits)
+    >>> round(command.speed, 4), round(state.speed_bound, 4)  # at 1.0: slow to what fits
+    (0.9245, 0.9245)
+    >>> moving = GovernorState(speed_bound=1.8, heading=0.0)  # too fast: brake, straight on
+    >>> govern(Command(1.0, 2.0), seen, moving, limits)[0]
+    Command(heading=0.0, speed=0.0, behaviour=None, branch=None, stop=None, turn_rate=None)
+    """
+    if limits.stops_at_once or command.stop is not None:
+        return command, state
+    bound = state.speed_bound
+    heading = command.heading
+    room = _room(heading, observation, state, limits.radius, limits.radius * Limits.MARGIN)
+    allowed = safe_speed(room, state, limits)
+    if allowed is not None:
+        speed = min(command.speed, allowed)
+    else:  # brake along the last command's heading, whose fan the stop fits in; turn at rest
+        speed = 0.0
+        if bound > 0.0 and state.heading is not None:
+            heading = state.heading
+    governed = _with(command, heading, speed, observation, limits)
+    return governed, next_state(state, heading, speed, limits)
+
+
+def _with(
+    command: Command, heading: float, speed: float, observation: Observation, limits: Limits
+) -> Command:
+    """``command`` with this heading and speed (a velocity command's turn rate follows its
+    heading)."""
+    if (heading, speed) == (command.heading, command.speed):
+        return command
+    if command.turn_rate is None or heading == command.heading:
+        return replace(command, heading=heading, speed=speed)
+    rate = wrap_angle(heading - observation.pose.theta) / limits.period
+    return replace(command, heading=heading, speed=speed, turn_rate=rate)
+
+
+def admissible(
+    command: Command, observation: Observation, state: GovernorState, limits: Limits
+) -> tuple[bool, float, float]:
+    """Whether the robot can still stop after ``command`` (the runtime monitor of the
+    oracle's ``stops_in_time``): its :func:`stopping_distance` fits in the fan of its turn,
+    counted from the robot's disc (no margin). Also the stopping distance and the room.
+
+    Standing, any turn is admissible (a disc turning in place sweeps nothing); braking along
+    the last heading is, wherever the last command was (``proofs/braking.py``).
+    """
+    room = _room(command.heading, observation, state, limits.radius)
+    needed = stopping_distance(state, command.speed, limits)
+    return needed <= room, needed, room
+
+
+class BrakingGovernor:
+    """A planner's governor for one episode: :func:`govern` with its state kept.
+
+    >>> from ifgm_ref.params import RobotParams
+    >>> governor = BrakingGovernor()
+    >>> governor.reset(EpisodeParams())  # the paper's robot stops at once: no change
+    >>> governor.limits.stops_at_once
+    True
+    """
+
+    def __init__(self) -> None:
+        self.reset(EpisodeParams())
+
+    def reset(self, params: EpisodeParams) -> None:
+        """Start an episode: the robot's limits, at rest."""
+        self.limits = Limits.of(params)
+        self.state = GovernorState()
+
+    def __call__(self, command: Command, observation: Observation) -> Command:
+        """``command`` governed (:func:`govern`)."""
+        command, self.state = govern(command, observation, self.state, self.limits)
+        return command
