@@ -30,7 +30,12 @@ exactly. Here (``proofs/braking.py`` proves each step):
   short way round (:func:`fan_room`). Straight ahead that is the robot-wide corridor; while
   turning, the fan of those headings. ``b`` is what the robot is guaranteed on any curve.
 * The governor lets through the planner's heading and the largest speed up to the planner's
-  that is admissible (:func:`safe_speed`), so that the robot slows as obstacles come near. If
+  that is admissible (:func:`safe_speed`), so that the robot slows as obstacles come near,
+  and no more than ``A eps`` above the speed bound: a robot asked for more than it can reach
+  in a period only spins its wheels (the MuJoCo Jackal's odometry then drifts). Nor does it
+  ask for a sharper turn than the tyres hold sideways at the speed bound ``u``: the turn rate
+  within ``b / u`` (a centripetal acceleration no larger than the braking; a robot at 2 m/s
+  asked to turn at pi rad/s skids off its heading, out of the fan the room was counted in). If
   even braking does not fit in the fan of the planner's heading, it brakes (speed 0) along the
   last command's heading, whose fan the stop was checked in, until it stands; standing, it may
   turn (a disc turning in place sweeps nothing). So a planner that decides to stop and turn
@@ -329,17 +334,27 @@ def govern(
     if limits.stops_at_once or command.stop is not None:
         return command, state
     bound = state.speed_bound
-    heading = command.heading
+    heading = _within_grip(command.heading, observation.pose.theta, bound, limits)
     room = _room(heading, observation, state, limits.radius, limits.radius * Limits.MARGIN)
     allowed = safe_speed(room, state, limits)
     if allowed is not None:
-        speed = min(command.speed, allowed)
+        speed = min(command.speed, allowed, bound + limits.acceleration * limits.period)
     else:  # brake along the last command's heading, whose fan the stop fits in; turn at rest
         speed = 0.0
         if bound > 0.0 and state.heading is not None:
             heading = state.heading
     governed = _with(command, heading, speed, observation, limits)
     return governed, next_state(state, heading, speed, limits)
+
+
+def _within_grip(heading: float, theta: float, bound: float, limits: Limits) -> float:
+    """``heading``, or the nearest one a robot at ``bound`` can turn to in a period without
+    asking its tyres for more sideways than the braking ``b`` (``u w <= b``)."""
+    if bound <= 0.0:
+        return heading
+    turn = limits.braking / bound * limits.period
+    error = wrap_angle(heading - theta)
+    return heading if abs(error) <= turn else wrap_angle(theta + math.copysign(turn, error))
 
 
 def _with(
