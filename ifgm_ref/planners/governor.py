@@ -322,8 +322,8 @@ def govern(
     >>> limits = Limits(radius=0.2, top_speed=2.0, braking=4.0, acceleration=2.0, period=0.1)
     >>> wall = LaserScan(-0.1, 0.1, 0.1, 0.0, 10.0, [0.45, 0.45, 0.45])  # 0.2 of room ahead
     >>> seen = Observation(0.0, Pose(0.0, 0.0, 0.0), Point(5.0, 0.0), wall)
-    >>> govern(Command(0.0, 2.0), seen, GovernorState(), limits)[0].speed  # from rest: go
-    2.0
+    >>> govern(Command(0.0, 2.0), seen, GovernorState(), limits)[0].speed  # from rest: A eps
+    0.2
     >>> command, state = govern(Command(0.0, 2.0), seen, GovernorState(1.0, 0.0), limits)
     >>> round(command.speed, 4), round(state.speed_bound, 4)  # at 1.0: slow to what fits
     (0.9245, 0.9245)
