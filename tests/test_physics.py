@@ -10,16 +10,18 @@ import numpy as np
 import pytest
 import shapely
 
+from ifgm_ref.barn import ROBOT as BARN_ROBOT
 from ifgm_ref.barn import bundled_barn_folder, load_barn_world
 from ifgm_ref.engine import PHYSICS_HINT, make_engine
 from ifgm_ref.errors import ParameterError
-from ifgm_ref.params import SimParams
+from ifgm_ref.params import RobotParams, SimParams
 from ifgm_ref.physics.bodies import JACKAL, PAPER, body_for
 from ifgm_ref.physics.engine import MujocoEngine
 from ifgm_ref.physics.mjcf import substeps, triangles
 from ifgm_ref.planners import make_planner
+from ifgm_ref.planners.governor import GovernorState, Limits, stopping_distance
 from ifgm_ref.pose import Point, Pose
-from ifgm_ref.protocol import Command
+from ifgm_ref.protocol import Command, EpisodeParams
 from ifgm_ref.scenarios import resolve_world
 from ifgm_ref.sensor import IRSensor
 from ifgm_ref.simulator import simulate
@@ -157,3 +159,73 @@ def test_an_unknown_engine_or_body_is_a_clear_error() -> None:
         SimParams(engine="gazebo")
     with pytest.raises(ParameterError, match="unknown body 'pr2'; choose one of jackal, paper"):
         make_engine(resolve_world("post"), SimParams(engine="mujoco", body="pr2"))
+
+
+# -- the dynamics the planners are told, and the box (issue 41) ---------------------------------
+
+
+def _stop_from(body_robot: tuple[str, float], fraction: float, turn: float) -> tuple[float, float]:
+    """The farthest a body driven straight at ``fraction`` of its top speed gets from where it
+    is told to stop (turning by ``turn``), and the braking governor's worst case for it."""
+    name, dt = body_robot
+    base = BARN_ROBOT if name == "jackal" else RobotParams()
+    speed = base.speed * fraction
+    world = World(
+        start=Pose(0, 0, 0), goal=Point(1000, 0), robot=dataclasses.replace(base, speed=speed)
+    )
+    engine = MujocoEngine(world, dt, name)
+    pose = world.start
+    for _ in range(round(2.0 / dt)):
+        pose = engine.move(pose, Command(0.0, speed), 1.0, 1.0)[0]
+    start, farthest = pose, 0.0
+    for _ in range(round(2.0 / dt)):
+        pose = engine.move(pose, Command(turn, 0.0), 1.0, 1.0)[0]
+        farthest = max(farthest, math.hypot(pose.x - start.x, pose.y - start.y))
+    limits = Limits.of(EpisodeParams(robot=engine.robot, dt=dt))
+    return farthest, stopping_distance(GovernorState(speed, 0.0, speed), 0.0, limits)
+
+
+@pytest.mark.parametrize("body", [("jackal", 0.05), ("paper", 0.1)], ids=["jackal", "paper"])
+@pytest.mark.parametrize("fraction", [0.25, 0.5, 1.0, 2.0])
+@pytest.mark.parametrize("turn", [0.0, math.pi / 8, math.pi], ids=["straight", "22.5", "180"])
+def test_every_stop_fits_the_worst_case_the_planners_are_told(
+    body: tuple[str, float], fraction: float, turn: float
+) -> None:
+    """The assumption of proofs/braking.py, measured: from its speed, braking (and turning as
+    it brakes), each body stops within the governor's stopping distance for the ``b``, ``A``
+    and response time it tells the planners."""
+    farthest, worst = _stop_from(body, fraction, turn)
+    assert farthest <= worst, (farthest, worst)
+
+
+def test_the_bodies_tell_the_planners_their_dynamics_and_outline() -> None:
+    jackal = MujocoEngine(_barn_world(), 0.05).robot
+    assert (round(jackal.braking, 2), round(jackal.acceleration, 2)) == (3.72, 4.9)
+    assert jackal.response == pytest.approx(0.08)
+    assert jackal.radius == pytest.approx(math.hypot(0.21, 0.165))  # BARN's footprint's corner
+    told = MujocoEngine(_barn_world().with_robot({"braking": 2.0, "acceleration": 1.0}), 0.05)
+    assert (told.robot.braking, told.robot.acceleration) == (2.0, 1.0)  # a robot's own stand
+    paper = MujocoEngine(resolve_world("post"), 0.1).robot
+    assert paper.radius == 1.0 and paper.braking == pytest.approx(PAPER.max_accel)
+
+
+def test_the_jackals_box_collides_where_it_touches_not_where_its_disc_would() -> None:
+    """A post beside the box's side, inside the circumscribed disc but outside the box: the
+    disc's clearance is negative, the box does not touch, no collision; driven into a post
+    ahead, the box's front face touches 0.21 m before the centre."""
+    world = _barn_world()
+    x, y, _ = world.start
+    side = World(start=world.start, goal=world.goal, robot=world.robot,
+                 obstacles=(Circle((x + 0.26, y + 0.05), 0.02),))  # fmt: skip
+    engine = MujocoEngine(side, 0.05)
+    pose, clearance, collided = engine.move(side.start, Command(side.start.theta, 0.0), 1, 1)
+    assert clearance < 0.0 and not collided
+    ahead = World(start=world.start, goal=world.goal, robot=world.robot,
+                  obstacles=(Circle((x, y + 1.0), 0.05),))  # fmt: skip
+    engine, pose, collided = MujocoEngine(ahead, 0.05), ahead.start, False
+    for _ in range(60):
+        pose, _, collided = engine.move(pose, Command(ahead.start.theta, 0.5), 1.0, 1.0)
+        if collided:
+            break
+    assert collided
+    assert y + 1.0 - 0.05 - pose.y == pytest.approx(0.21, abs=0.01)

@@ -40,10 +40,12 @@ caster, ``mu g c / (c + mu h)`` (moments about the caster's contact: ``c`` the c
 distance from the axle, ``h`` the centre of mass's height, the axle's): a lower bound. The
 Jackal: ``A = min(20, 4.90) = 4.90`` m/s^2, ``b = 4.90 x 0.154 / (0.154 + 0.5 x 0.098) = 3.72``
 m/s^2. The paper's body: both its controller's ``v / 0.25 s`` (the tyres give more). Its
-``response`` is three time constants of the wheels' velocity servos
-(:data:`SERVO_TIME`, 0.02 s): a first-order servo has then done 95 % of
-a change of speed. Braking while it turns, with one wheel told to drive on, a body takes that
-long to brake in earnest (measured in ``tests/test_physics.py``).
+``response`` is four time constants of the wheels' velocity servos (:data:`SERVO_TIME`,
+0.02 s), in which a first-order servo does 98 % of a change of speed: the fewest whole time
+constants under which every stop of either body, from a tenth of its top speed to twice it,
+straight or turning up to 180 degrees, fits the braking governor's worst case (three left the
+Jackal 3 mm short braking from 0.5 m/s while it turned 22.5 degrees, one wheel told to drive
+on; ``tests/test_physics.py`` measures the stops).
 """
 
 from __future__ import annotations
@@ -59,8 +61,9 @@ CASTER_OFFSET = 0.7
 #: Time constant of the wheels' velocity servos, s: the motor reaches a commanded wheel speed
 #: within a few hundredths of a second, faster than any acceleration limit asks.
 SERVO_TIME = 0.02
-#: A body's response time, s: three servo time constants, 95 % of a change of wheel speed.
-RESPONSE = 3 * SERVO_TIME
+#: A body's response time, s: four servo time constants, 98 % of a change of wheel speed
+#: (module docstring).
+RESPONSE = 4 * SERVO_TIME
 #: Standard gravity, m/s^2 and ft/s^2 (9.80665 m/s^2 / 0.3048 m/ft).
 GRAVITY_M = 9.80665
 GRAVITY_FT = GRAVITY_M / 0.3048
