@@ -2,9 +2,9 @@
 
 Run from the project root after ``ifgm-ref bench --barn ... --out DIR``:
 ``python benchmarks/bench_misses.py DIR/results.csv --out DIR/misses.csv`` (``--help`` for
-options). Each collision of ``results.csv`` is run again (the same world, planner, sensor and
-engine: ``ifgm-ref simulate barn:N --planner P --engine E`` gives the same episode) and given
-its kind from the trace; every other miss takes its kind from its row:
+options). Each collision of ``results.csv`` is run again (the same world, planner, sensor,
+engine and robot: ``ifgm-ref simulate barn:N --planner P --engine E --robot R`` gives the same
+episode) and given its kind from the trace; every other miss takes its kind from its row:
 
 ``collision while braking``
     From some decision up to the contact, every decision asked for less speed than the robot
@@ -42,7 +42,7 @@ if importlib.util.find_spec("ifgm_ref") is None:  # run from a checkout without 
 from ifgm_ref.barn import gazebo_task
 from ifgm_ref.bench.report import Row, read_rows
 from ifgm_ref.collision import ClearanceChecker
-from ifgm_ref.params import SimParams
+from ifgm_ref.params import SimParams, robot_changes
 from ifgm_ref.physics.bodies import body_for, body_named
 from ifgm_ref.planners import make_planner
 from ifgm_ref.pose import Pose
@@ -69,13 +69,15 @@ def _rerun(row: Row, sensor: str) -> tuple[Run, SimParams, float, ClearanceCheck
     task = gazebo_task(f"barn:{number}", sensor=sensor)
     assert task is not None
     world = task.world
+    if row.robot not in (None, "none"):  # ifgm-ref bench --robot / --speed
+        world = world.with_robot(robot_changes(row.robot))
     sim = dataclasses.replace(task.sim, engine=row.engine)
     run = simulate(world, make_planner(row.planner), sim)
-    checker = ClearanceChecker(world, world.robot.radius)
     if row.engine == "kinematic":
-        return run, sim, math.inf, checker
+        return run, sim, math.inf, ClearanceChecker(world, world.robot.radius)
     body = body_named(sim.body) if sim.body else body_for(world.robot)
-    return run, sim, body.friction * body.gravity, checker
+    told = body.told(world.robot)  # the disc the planners keep clear (the box's)
+    return run, sim, body.friction * body.gravity, ClearanceChecker(world, told.radius)
 
 
 def _speed(trace: list[TraceStep], k: int, dt: float) -> float:

@@ -36,8 +36,8 @@ def _episode(row: Row) -> tuple[object, ...]:
     return (row.world, row.planner, row.stop_reason, row.steps, row.path_length, row.time_s)
 
 
-def test_the_columns_are_the_old_ones_then_engine() -> None:
-    assert Row.columns() == (*COLUMNS_BEFORE_ENGINE, "engine")
+def test_the_columns_are_the_old_ones_then_engine_then_robot() -> None:
+    assert Row.columns() == (*COLUMNS_BEFORE_ENGINE, "engine", "robot")
 
 
 def test_the_engine_reaches_every_episode_in_the_workers(tmp_path: Path) -> None:
@@ -91,7 +91,7 @@ def test_a_body_without_the_mujoco_engine_is_a_usage_error(
     ("engine", "body", "message"),
     [
         ("kinematic", "paper", "`body` applies to the mujoco engine only, got 'paper'"),
-        ("mujoco", "segway", "unknown body 'segway'; choose one of jackal, paper"),
+        ("mujoco", "segway", "unknown body 'segway'; choose one of jackal, jackal-disc, paper"),
         ("physx", None, "`engine` must be one of kinematic, mujoco, got 'physx'"),
     ],
 )
@@ -117,7 +117,7 @@ def test_the_kinematic_default_says_so_and_reads_back(tmp_path: Path) -> None:
     assert {r.engine for r in runs["default"]} == {"kinematic"}
     old = tmp_path / "old.csv"
     with (tmp_path / "default" / "results.csv").open() as source:
-        lines = [line.rstrip("\n").rsplit(",", 1)[0] for line in source]
+        lines = [line.rstrip("\n").rsplit(",", 2)[0] for line in source]
     old.write_text("\n".join(lines) + "\n")
     assert old.read_text().startswith(",".join(COLUMNS_BEFORE_ENGINE) + "\n")
-    assert read_rows(old) == runs["default"]
+    assert read_rows(old) == runs["default"]  # neither engine nor robot: kinematic, none

@@ -266,3 +266,17 @@ def test_speed_and_robot_change_the_simulated_robot() -> None:
                     "braking=0.9,acceleration=0.9,response=0.05")  # fmt: skip
     result = json.loads(heavy.stdout)
     assert result["reached"] and not result["collided"]
+
+
+@pytest.mark.parametrize("latency", [1, 2, 3, 5])
+def test_a_robot_that_carries_out_commands_steps_late_still_stops_where_it_means_to(
+    latency: int,
+) -> None:
+    """The simulator's latency (steps between a decision and its execution) is a response
+    time of whole periods: the governor allows for every command still in effect, the fastest
+    of them, and the robot stands before the wall with the margin it keeps from what lies
+    ahead (counting only the last command, it stood 1 cm from the wall at 5 steps)."""
+    robot = RobotParams(radius=0.5, speed=2.0, braking=1.0, acceleration=4.0, latency=latency)
+    run = simulate(_wall_world(robot, 3.0), Headlong(), SimParams(max_time=20.0))
+    assert run.result.stop_reason == "stalled"  # it stands before the wall
+    assert run.result.min_clearance >= robot.radius * Limits.MARGIN - 2e-3, run.result

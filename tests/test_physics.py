@@ -157,7 +157,9 @@ def test_without_mujoco_the_engine_says_in_one_line_what_to_install(
 def test_an_unknown_engine_or_body_is_a_clear_error() -> None:
     with pytest.raises(ParameterError, match="`engine` must be one of kinematic, mujoco"):
         SimParams(engine="gazebo")
-    with pytest.raises(ParameterError, match="unknown body 'pr2'; choose one of jackal, paper"):
+    with pytest.raises(
+        ParameterError, match="unknown body 'pr2'; choose one of jackal, jackal-disc, paper"
+    ):
         make_engine(resolve_world("post"), SimParams(engine="mujoco", body="pr2"))
 
 

@@ -132,6 +132,54 @@ EXPECTED_CLAIMS: dict[str, tuple[str, ...]] = {
         "ifgm_d_th_exceeds_the_robot_diameter",
         "fgm_beta_is_the_paper_value",
     ),
+    # The braking governor (ifgm_ref/planners/governor.py) keeps the robot passively safe.
+    "braking": (
+        "braking_distance",
+        "mitsch_bound",
+        "response_stretch",
+        "ramp_formula",
+        "stopping_distance_with_response",
+        "speeding_up_period",
+        "slowing_down_period",
+        "braking_period",
+        "continuous_pieces",
+        "cap_only_tightens",
+        "cap_only_tightens_sign",
+        "increasing_in_command",
+        "increasing_in_command_sign",
+        "increasing_in_speed",
+        "root_of_quadratic",
+        "root_has_no_cancellation",
+        "code_quadratics",
+        "bound_when_speeding_up",
+        "bound_when_slowing_down",
+        "ramp_composes",
+        "step_cross_products",
+        "step_between_the_edges",
+        "displacement_no_longer_than_path",
+        "displacement_no_longer_than_path_sign",
+        "fan_edge_touch",
+        "fan_inside_touch",
+        "margin_only_shrinks_the_room",
+        "margin_hysteresis",
+        "profile_increases_with_acceleration",
+        "one_period_leaves_the_stop",
+        "one_period_leaves_the_stop_sign",
+        "margin_covers_odometry",
+        "no_braking_term_at_infinite_b",
+        "one_period_left_at_infinite_b",
+        "one_period_at_top_speed_at_infinite_a",
+        "library_stopping_distance_pieces",
+        "library_safe_speed_is_root",
+        "library_no_speed_when_braking_does_not_fit",
+        "library_next_state",
+        "library_fan_room_edge",
+        "library_fan_room_margin",
+        "library_failed_check_brakes_along_last_heading",
+        "library_standing_turns_in_place",
+        "library_governed_robot_never_touches",
+        "library_governed_robot_responding_late_never_touches",
+    ),
 }
 
 
@@ -286,7 +334,7 @@ def test_claim_names_are_unique() -> None:
 
 # ---- docs/errata.md cites what exists ------------------------------------------------------
 
-_PROOF_CITATION = re.compile(r"proofs\.(eq\d|scale|flowchart):(\w+)")
+_PROOF_CITATION = re.compile(r"proofs\.(eq\d|scale|flowchart|braking):(\w+)")
 _TEST_CITATION = re.compile(r"((?:tests|ifgm_ref)/[\w/]+\.py)::([\w.]+)")
 
 

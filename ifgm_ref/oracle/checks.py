@@ -9,7 +9,8 @@ happened (``min_clearance=-0.3 ft, but should be >= 0 [ifgm in u world]``), and 
 a planner promises, ``reports_unreachable``, ``rigid_motion_invariant`` and
 ``scale_invariant`` (:mod:`ifgm_ref.oracle.invariance`), ``ignores_unseen_obstacles``,
 ``passes_wide_gaps`` (section 4, Case-1), ``dead_end_turns`` (Case-3's 45-degree steps:
-:mod:`ifgm_ref.oracle.dead_end`), ``deterministic``, the equations' checks
+:mod:`ifgm_ref.oracle.dead_end`), ``deterministic``, ``stops_in_time`` (a robot with mass:
+:mod:`ifgm_ref.oracle.braking`), the equations' checks
 (:mod:`ifgm_ref.oracle.equation_checks`) and, at the reference level only,
 ``agrees_with_reference`` (:mod:`ifgm_ref.oracle.conformance`). Each check's sentence says
 its property; ``docs/oracle.md``, "The properties", says each in full with whom it applies to.

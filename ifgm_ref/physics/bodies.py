@@ -202,8 +202,12 @@ PAPER = Body(
     gravity=GRAVITY_FT,
 )
 
+#: The Jackal's box, its planners told BARN's 0.22 m disc, which does not cover the box's
+#: corners (``circumscribe=False``): for comparing the two outlines (docs/physics.md).
+JACKAL_DISC = replace(JACKAL, name="jackal-disc", circumscribe=False)
+
 #: The bodies by name (``--body NAME``).
-BODIES = {body.name: body for body in (PAPER, JACKAL)}
+BODIES = {body.name: body for body in (PAPER, JACKAL, JACKAL_DISC)}
 
 
 def body_for(robot: RobotParams) -> Body:

@@ -23,7 +23,7 @@ admissible when that fits in the room ``d``; a command faster than ``u + A eps``
 exactly. Here (``proofs/braking.py`` proves each step):
 
 * ``u`` is a bound on the robot's speed, kept from the governor's own commands
-  (:func:`next_speed_bound`), 0 at the start.
+  (:func:`next_state`), 0 at the start.
 * ``d`` is measured in the region the robot may sweep until it stops: its disc moved along any
   path no longer than the stopping distance whose heading stays between the present one, the
   command's and the last command's, all of which the heading controller turns towards the
@@ -117,18 +117,27 @@ class Limits:
 @dataclass(frozen=True)
 class GovernorState:
     """What the governor carries from one step to the next: a bound on the robot's speed
-    (0 at the start: the robot starts at rest), and the heading and speed it last let
-    through (``None`` and 0 before the first command)."""
+    (0 at the start: the robot starts at rest), the heading and speed it last let through
+    (``None`` and 0 before the first command), and, for a response time longer than a period,
+    the speeds of the commands before the last that the robot may still follow (newest
+    last)."""
 
     speed_bound: float = 0.0
     heading: float | None = None
     speed: float = 0.0
+    earlier: tuple[float, ...] = ()
+
+    @property
+    def following(self) -> float:
+        """The fastest command the robot may still follow during its response time."""
+        return max(self.speed, *self.earlier) if self.earlier else self.speed
 
 
 def stopping_distance(state: GovernorState, speed: float, limits: Limits) -> float:
     """How far the robot may travel before it stands when it is commanded ``speed`` for one
     period ``eps`` and then brakes, its speed at most ``state.speed_bound`` now: the worst
-    case moves, for its response time ``tau``, towards the last command ``state.speed``, then
+    case moves, for its response time ``tau``, towards the fastest command it may still follow
+    (:attr:`GovernorState.following`: the last one, or one older for a ``tau`` over ``eps``), then
     for a period towards ``speed``, each as hard as allowed (up at ``A``, never past the
     command or the top speed; down at ``b``, never below it), then brakes at ``b``.
 
@@ -147,7 +156,7 @@ def stopping_distance(state: GovernorState, speed: float, limits: Limits) -> flo
     >>> stopping_distance(u, 1.0, limits) == 0.1 + 1 / 8, stopping_distance(u, 0.0, limits)
     (True, 0.125)
     """
-    late, bound = _ramp(state.speed_bound, state.speed, limits.response, limits)
+    late, bound = _ramp(state.speed_bound, state.following, limits.response, limits)
     return late + _period(bound, speed, limits)
 
 
@@ -189,7 +198,7 @@ def safe_speed(room: float, state: GovernorState, limits: Limits) -> float | Non
     0.0
     """
     top, b, a, eps = limits.top_speed, limits.braking, limits.acceleration, limits.period
-    late, bound = _ramp(state.speed_bound, state.speed, limits.response, limits)
+    late, bound = _ramp(state.speed_bound, state.following, limits.response, limits)
     room -= late
     if _period(bound, top, limits) <= room:
         return top
@@ -293,9 +302,9 @@ def _room(heading: float, observation: Observation, state: GovernorState, radius
 def next_state(state: GovernorState, heading: float, speed: float, limits: Limits
                ) -> GovernorState:  # fmt: skip
     """The governor's state one period after ``state`` when it let ``heading`` and ``speed``
-    through: the speed bound after the response time towards the last command and the rest
-    of the period towards this one (up at ``A`` at most, never past the command; down at
-    ``b`` at least until it reaches it).
+    through: the speed bound after the response time towards the fastest command the robot
+    may still follow and the rest of the period, if any, towards this one (up at ``A`` at
+    most, never past the command; down at ``b`` at least until it reaches it).
 
     >>> limits = Limits(radius=0.2, top_speed=2.0, braking=4.0, acceleration=2.0, period=0.1)
     >>> next_state(GovernorState(), 0.0, 2.0, limits).speed_bound
@@ -303,10 +312,13 @@ def next_state(state: GovernorState, heading: float, speed: float, limits: Limit
     >>> [next_state(GovernorState(1.0, 0.0, 1.0), 0.0, c, limits).speed_bound for c in (0, 0.9)]
     [0.6, 0.9]
     """
-    tau = min(limits.response, limits.period)
-    bound = _ramp(state.speed_bound, state.speed, tau, limits)[1]
-    bound = _ramp(bound, speed, limits.period - tau, limits)[1]
-    return GovernorState(bound, heading, min(speed, limits.top_speed))
+    eps = limits.period
+    tau = min(limits.response, eps)
+    bound = _ramp(state.speed_bound, state.following, tau, limits)[1]
+    bound = _ramp(bound, speed, eps - tau, limits)[1]
+    kept = math.ceil(limits.response / eps - 1e-9) - 1  # older commands still in effect
+    earlier = (*state.earlier, state.speed)[-kept:] if kept > 0 else ()
+    return GovernorState(bound, heading, min(speed, limits.top_speed), earlier)
 
 
 @traces("s3.safe_near_obstacles")
@@ -341,7 +353,7 @@ def govern(
         speed = min(command.speed, allowed, bound + limits.acceleration * limits.period)
     else:  # brake along the last command's heading, whose fan the stop fits in; turn at rest
         speed = 0.0
-        if bound > 0.0 and state.heading is not None:
+        if stopping_distance(state, 0.0, limits) > 0.0 and state.heading is not None:
             heading = state.heading
     governed = _with(command, heading, speed, observation, limits)
     return governed, next_state(state, heading, speed, limits)
