@@ -1,6 +1,8 @@
-"""Executable sympy derivations of equations (1)-(4) of the IFGM paper.
+"""Executable sympy derivations: equations (1)-(4) of the IFGM paper, and what we run.
 
-One module per equation (``proofs.eq1`` ... ``proofs.eq4``). Each has
+One module per equation (``proofs.eq1`` ... ``proofs.eq4``), and one each for the Figure 3
+flowchart's guards (``proofs.flowchart``), the scale-free parameters (``proofs.scale``) and
+the braking governor (``proofs.braking``, with ``proofs.braking_fan``). Each has
 
 - ``derivation()``: builds the worked derivation, checking every claim as it goes; a claim
   sympy does not reduce to exactly 0 or True raises :class:`proofs._util.ClaimFailed`;

@@ -43,6 +43,7 @@ PROOFS = {
     "eq4": "derivation",
     "flowchart": "derivation",
     "scale": "derivation",
+    "braking": "derivation",
 }
 #: Modules of ifgm_ref left out of the API reference: entry points and a pytest test module.
 API_SKIP = ("__main__", "ifgm_ref.oracle.test_conformance")
