@@ -16,11 +16,13 @@ period and then brakes::
     d >= v^2 / (2 b) + (A/b + 1) (A eps^2 / 2 + eps v)                       (M)
 
 and must brake otherwise. Our robots are told a speed, not an acceleration, and never pass
-it: the worst case of one period is to move from the speed ``u`` they may have now towards the
-commanded ``c`` as hard as allowed (up at ``A``, no faster than ``c`` or the top speed; down
-at ``b``, no slower than ``c``), then to brake (:func:`stopping_distance`). A command is
-admissible when that fits in the room ``d``; a command faster than ``u + A eps`` gives (M)
-exactly. Here (``proofs/braking.py`` proves each step):
+it; they follow a command within their response time ``tau``. The worst case is to move from
+the speed ``u`` they may have now, for ``tau``, towards the fastest command still in effect,
+then for one period towards the commanded ``c``, each as hard as allowed (up at ``A``, no
+faster than the command or the top speed; down at ``b``, no slower than the command), then to
+brake (:func:`stopping_distance`). A command is admissible when that fits in the room ``d``;
+with ``tau`` 0, a command faster than ``u + A eps`` gives (M) exactly. Here
+(``proofs/braking.py`` proves each step):
 
 * ``u`` is a bound on the robot's speed, kept from the governor's own commands
   (:func:`next_state`), 0 at the start.
@@ -41,10 +43,9 @@ exactly. Here (``proofs/braking.py`` proves each step):
   turn (a disc turning in place sweeps nothing). So a planner that decides to stop and turn
   in place (IFGM's dead-end turn, Case-3's pre-emption) turns at once only where the stop
   fits in the turn's fan, and otherwise slows down first.
-* The room is counted from a disc a quarter radius wider than the robot's (the planners'
-  corridor margin), except for obstacles already nearer: a stop a planner decides then ends
-  about where the planner expects its robot, and the margin absorbs what a real robot adds to
-  the model (a response a few milliseconds late, odometry that slips).
+* The room keeps a quarter radius more (the planners' corridor margin) from what lies ahead,
+  not from what the robot passes beside nor from what it already stands within half of that
+  near: a stop a planner decides then ends about where the planner expects its robot.
 
 The robot's ``braking`` and ``acceleration`` are :class:`~ifgm_ref.params.RobotParams` fields;
 with ``braking`` infinite (the paper's robot) the governor changes nothing. It uses only what a
