@@ -3,32 +3,27 @@
 Claim: a robot governed by :func:`ifgm_ref.planners.governor.govern` stands still before its
 disc touches any obstacle point it has seen, whatever the planner commands: passive safety as in
 Mitsch, Ghorbal, Vogelbacher & Platzer, IJRR 36(12):1312-1340, 2017, Theorem 1, for a robot told
-a speed that follows a new command within its response time ``tau <= eps`` (the model: the
-derivation's first paragraph; the fan's geometry: ``proofs/braking_fan.py``). The ``library_*``
-claims are numeric spot checks of the code; every other claim is proved. Run ``python -m
-proofs.braking`` to read it.
+a speed that follows each command within its response time ``tau >= 0``, a period or longer
+(the model: the derivation's first paragraph; the fan's geometry and the spot checks of
+``govern``: ``proofs/braking_fan.py``). The ``library_*`` claims are numeric spot checks of the
+code; every other claim is proved. Run ``python -m proofs.braking`` to read it.
 """
 
 from __future__ import annotations
 
 import functools
-import math
 from collections.abc import Callable
-from dataclasses import replace
-from typing import Any
 
 import sympy as sp
 
 from ifgm_ref.paper import traces
-from ifgm_ref.planners import governor as gov
-from ifgm_ref.planners.governor import GovernorState, Limits
-from ifgm_ref.protocol import Command
+from ifgm_ref.planners.governor import Limits
 from proofs import braking_fan as fan
 from proofs._util import Derivation, entry_points
 
 __all__ = ["build", "claims", "derivation", "main", "mitsch_bound", "pieces", "stretch"]
 
-#: The speed bound at a decision, the command, a time, the last command, the response time.
+#: The speed bound, the command, a time, the fastest command in effect (``following``), tau.
 U, C, T, C0, TAU = sp.symbols("u c t c_0 tau", nonnegative=True)
 #: Top speed, largest acceleration, guaranteed braking, control period.
 V, A, B, EPS = sp.symbols("V A b epsilon", positive=True)
@@ -90,9 +85,13 @@ def _kinematics(d: Derivation) -> None:
     d.text(
         """
         The model: static obstacles, all the robot may sweep seen in the scan (field of view,
-        range); a disc of radius r deciding at the start of each period eps; a robot that follows
-        a new command within its response time tau <= eps of it (Limits.response: the robot's
-        response plus its latency in steps), the previous command until then; speed in [0, V];
+        range); a disc of radius r deciding at the start of each period eps (command c_k at t_k =
+        k eps); a robot that follows each command within its response time tau >= 0, a period or
+        longer too (Limits.response: the robot's response plus its latency in steps): at any
+        instant t it follows one of the commands of the last tau seconds (the one in effect at t
+        - tau, or a newer one), none faster than the one in effect at t - tau (a command that
+        speeds it up takes effect tau after it is issued, as with the simulator's latency, a delay
+        line; one that slows it down may take effect sooner); speed in [0, V];
         acceleration at most A > 0; commanded slower, deceleration at least b > 0 until it reaches
         the command; never faster than the larger of its speed and the command; headings turned
         the short way round without overshoot; odometry off by at most e_odo. It is the model of
@@ -128,10 +127,11 @@ def _response(d: Derivation) -> None:
     up, down = (C0 - U) / A, (U - C0) / B
     d.text(
         """
-        After a decision the robot may still follow the last command c_0 (state.speed, at most V)
-        for tau. The worst case of that stretch moves from u towards c_0 as hard as allowed (at
-        every instant the robot is no faster: bound_when_* below): up at A, reaching c_0 at
-        (c_0 - u)/A or not within tau; down at b, likewise.
+        For tau after a decision the robot may still follow commands issued before it, none
+        faster than c_0 = state.following (the last for tau <= eps; the window: below). The worst
+        case of that stretch moves from u towards c_0 as hard as allowed (at every instant the
+        robot is no faster: bound_when_* below): up at A, reaching c_0 at (c_0 - u)/A or not
+        within tau; down at b, likewise.
         """
     )
     rows = []  # the profile u + A t or u - b t until c_0 or tau, then c_0 until tau
@@ -155,7 +155,7 @@ def _response(d: Derivation) -> None:
         _flat(stretch(U, C, T)),
         "_ramp's travel u ramp + rate ramp^2/2 + end (t - ramp) and end u + rate ramp, with "
         "ramp = min(t, (c - u)/rate), rate = A or -b, is that worst case over any t (tau, "
-        "eps - tau, eps)",
+        "eps - min(tau, eps), eps)",
     )
     d.text(
         """
@@ -305,8 +305,8 @@ def _speed_bound(d: Derivation) -> None:
     d.text(
         """
         The governor keeps a bound u_k on the speed from its own commands (next_state), 0 at rest
-        at the start. In a stretch towards a command c (the tau-stretch towards the last command,
-        then the rest of the period towards the new one), let the speed be u_k - x (x >= 0) at
+        at the start. In a stretch towards a command c (the tau-stretch towards c_0, then the rest
+        of the period, if any, towards the new command), let the speed be u_k - x (x >= 0) at
         its start. Commanded c >= u_k, it speeds up at a <= A (A = a + z) until it reaches c: at
         time t it has not (c = u + a (t + h)) or has, at t_c (t = t_c + h, ending at c):
         """
@@ -352,9 +352,9 @@ def _composition(d: Derivation) -> None:
             rows += [first[0] + second[0] - both[0], second[1] - both[1]]
     d.text(
         """
-        So the bound after a period is the worst case's end: tau towards the last command, then
-        eps - tau towards the new one (next_state caps tau at eps). The worst case has no memory:
-        over t_1, then over t_2 from where it ended, it is the worst case over t_1 + t_2:
+        So for tau <= eps the bound after a period is the worst case's end: tau towards the last
+        command, then eps - tau towards the new one (a longer tau: below). The worst case has no
+        memory: over t_1, then over t_2 from where it ended, it is the worst case over t_1 + t_2:
         """
     )
     d.prove_equal(
@@ -364,6 +364,54 @@ def _composition(d: Derivation) -> None:
         "towards the same c, the travels over t_1 and then t_2 add up to the travel over t_1 + "
         "t_2, and the ends agree (c reached within t_1, within t_1 + t_2, or not; up and down)",
     )
+
+
+def _fastest(d: Derivation) -> None:
+    y = sp.Symbol("y", nonnegative=True)
+    forms = stretch(U, C, T)
+    joins = [
+        (forms[UP_REACHING], forms[UP], U + A * T),
+        (forms[UP_REACHING], forms[DOWN_REACHING], U),
+        (forms[DOWN_REACHING], forms[DOWN], U - B * T),
+    ]
+    d.text(
+        """
+        A response longer than a period. At any instant the robot follows one of the commands in
+        effect, switching among them at any times; the fastest of them bounds its travel and its
+        end speed, as the worst case grows with its target c. Its forms join where they meet:
+        """
+    )
+    gaps = [(x - z).subs(C, at) for a, b, at in joins for x, z in zip(a, b, strict=True)]
+    d.prove_equal(
+        "ramp_continuous_in_target",
+        sp.Matrix(gaps),
+        sp.zeros(6, 1),
+        "the travel and end of the forms agree at c = u + A t (up, reaching or not), c = u (up "
+        "or down) and c = u - b t (down, reaching or not)",
+    )
+    grows, shown = _nonnegative(
+        *(sp.diff(x, C).subs(C, U + A * T - y) for x in forms[UP_REACHING]),
+        *(sp.diff(x, C) for x in forms[UP]),
+        *(sp.diff(x, C).subs(C, U - B * T + y) for x in forms[DOWN_REACHING]),
+        *(sp.diff(x, C) for x in forms[DOWN]),
+    )
+    d.prove_true(
+        "ramp_increasing_in_target",
+        grows,
+        "and on each form d/dc of the travel and of the end is y/A and 1 (up, reaching: c = u + "
+        "A t - y), 0 and 0 (up), y/b and 1 (down, reaching: c = u - b t + y), 0 and 0 (down), "
+        "y >= 0: the worst case over any t grows with its target",
+        shown=shown,
+    )
+    d.text(
+        """
+        So a robot whose target switches, at any instants, among commands no faster than c_0
+        travels no farther and ends no faster than the worst case towards c_0: stretch by stretch,
+        from a speed no higher (increasing_in_speed) towards a target no higher (above; min(c, V)
+        keeps the order), and those worst stretches make up the worst case (ramp_composes).
+        """
+    )
+    fan.window(d)
 
 
 def _induction(d: Derivation) -> None:
@@ -385,14 +433,19 @@ def _induction(d: Derivation) -> None:
     )
     d.text(
         """
-        At a decision whose room d in the fan holds the governed command's stopping distance
-        (safe_speed's, or any slower one the governor lets through: increasing_in_command):
-        d = l + t_1 + t_2 + W^2/(2b) + m, m >= 0, where l is the tau-stretch's travel towards the
-        last command and, by ramp_composes, the period towards c from where it ends is t_1 over
-        eps - tau (ending at next_state's bound u') and t_2 over tau, ending at W. The period
-        travels s = l + t_1 - sigma, sigma >= 0. The stop from the next decision (command 0)
-        has its own tau-stretch, towards the command just given from u': t_2 again, ending at W;
-        then it brakes from W (slowing_down_period at c = 0, or braking_period): W^2/(2b).
+        The invariant at decision k: the robot is no faster than u_k, the state holds the commands
+        in effect (window_holds_the_commands_in_effect), and every path the robot may take if all
+        commands from t_k on are speed 0 along state.heading -- the stop from here -- keeps its
+        disc clear; at the start it stands. A decision whose room d in the fan holds the governed
+        command's stopping distance (safe_speed's, or a slower one: increasing_in_command) has
+        every path under that command, then the stop, clear; the robot takes one for the period,
+        and the rest is the stop from the next decision. For tau <= eps: d = l + t_1 + t_2 +
+        W^2/(2b) + m, m >= 0, where l is the tau-stretch's travel towards the last command and, by
+        ramp_composes, the period towards c from where it ends is t_1 over eps - tau (ending at
+        next_state's bound u') and t_2 over tau, ending at W. The period travels s = l + t_1 -
+        sigma, sigma >= 0. The stop from the next decision (command 0) has its own tau-stretch,
+        towards the command just given from u': t_2 again, ending at W; then it brakes from W
+        (slowing_down_period at c = 0, or braking_period): W^2/(2b).
         """
     )
     room = late + t1 + t2 + end**2 / (2 * B) + m
@@ -406,21 +459,89 @@ def _induction(d: Derivation) -> None:
     )
     said = "so the stop from the next decision still fits in the room the previous one checked"
     d.prove_sign("one_period_leaves_the_stop_sign", m + sigma, "nonnegative", said)
+    _long_induction(d)
+
+
+def _long_induction(d: Derivation) -> None:
+    l1, l2, p, end, m, sigma = sp.symbols("l_1 l_2 p W m sigma", nonnegative=True)
+    d.text(
+        """
+        For tau > eps: d = l_1 + l_2 + p + W^2/(2b) + m, m >= 0, where, by ramp_composes, the
+        tau-stretch towards c_0 is l_1 over the period, ending at next_state's bound u'
+        (next_state_with_long_response), and l_2 over the remaining tau - eps from u'; p is the
+        period towards c from where that ends, ending at W. The period travels s = l_1 - sigma,
+        sigma >= 0. The stop from the next decision follows the commands still in effect -- none
+        faster than c_0 until t_k + tau, from a speed at most u': at most l_2 -- then c until
+        t_{k+1} + tau (at most p, ending at most at W: increasing_in_speed), then brakes from W:
+        """
+    )
+    room = l1 + l2 + p + end**2 / (2 * B) + m
+    stops = [l2 + p + pieces(end, 0)[1], l2 + p + pieces(end, 0)[0]]
+    d.prove_equal(
+        "long_response_leaves_the_stop",
+        sp.Matrix([room - (l1 - sigma) - stop for stop in stops]),
+        sp.Matrix([m + sigma, m + sigma]),
+        "d - s - (the stop from the next decision) = m + sigma >= 0, whether W <= b eps or not",
+    )
+    _rest_rule(d)
+
+
+def _rest_rule(d: Derivation) -> None:
+    c0, z, tau, y = sp.Symbol("c_0", positive=True), *sp.symbols("z tau y", positive=True)
+    g, S = sp.Symbol("g", nonnegative=True), sp.Function("S")
+
+    def count(u: sp.Expr, c: sp.Expr, t: sp.Expr, form: str) -> sp.Expr:
+        """stopping_distance(state, 0): the tau-stretch, then braking (pieces at c = 0)."""
+        travel, u1 = stretch(u, c, t)[form]
+        return sp.expand(travel + u1**2 / (2 * B))
+
+    moving = [count(0, c0, c0 / A + z, UP_REACHING), count(0, A * tau + z, tau, UP)]
+    moving += [count(U + y, U + y + g, g / A + TAU, UP_REACHING), count(y, C, TAU, DOWN)]
+    moving += [count(U + y, U + y + A * TAU + z, TAU, UP)]
+    moving += [count(C + y, C, y / B + TAU, DOWN_REACHING)]
+    still = [count(0, 0, TAU, UP_REACHING), count(0, c0, 0, UP)]
+    d.text(
+        """
+        At rest. When not even braking fits (safe_speed None), the governor keeps the last heading
+        while S = stopping_distance(state, 0) > 0 and lets the planner's turn through at speed 0
+        only at S = 0: S bounds every path's travel, so the robot then turns in place. S, the
+        tau-stretch towards c_0 then braking, is 0 exactly when nothing moves the robot: from u =
+        0 with c_0 = 0 or tau = 0; positive from u = 0 with c_0 > 0 and tau > 0 (reaching c_0: tau
+        = c_0/A + z; not: c_0 = A tau + z), and from u = y > 0 (up, reaching c = u + g or not;
+        down, reaching c = u - y or not: u^2/(2b)):
+        """
+    )
+    d.prove_true(
+        "rest_rule",
+        sp.And(*(e > 0 for e in moving), *(sp.Eq(e, 0) for e in still)),
+        "stopping_distance(state, 0) = 0 exactly when the bound u = 0 and c_0 tau = 0: "
+        "with tau = eps, a first command c > 0 from rest leaves u = 0 but c_0 = c, and the "
+        "robot, still moving for tau, keeps its heading",
+        shown=sp.And(
+            *(sp.StrictGreaterThan(e, 0, evaluate=False) for e in moving[:2]),
+            sp.Eq(S(0, 0, TAU), 0, evaluate=False),
+            sp.Eq(S(0, c0, 0), 0, evaluate=False),
+            evaluate=False,
+        ),
+    )
     _conclusion(d)
 
 
 def _conclusion(d: Derivation) -> None:
     d.text(
         """
-        If at the next decision not even braking fits in the planner's fan (safe_speed None), the
-        governor commands speed 0 along the heading it let through last, and that stop is the
-        rest of the budget that fitted (one_period_leaves_the_stop), each braking period spending
-        exactly its share (braking_period). So the path from the last decision whose check held
-        to the stand is no longer than its room, with headings in its fan, where the disc
-        (widened by the margin for points ahead) meets no point of the scan. By induction the
-        distance from the disc to every obstacle seen stays >= 0. admissible (the oracle's
-        monitor) checks the same stop in the same fan from the disc alone, which leaves no less
-        room (margin_only_shrinks_the_room).
+        So at the next decision, if not even braking fits in the planner's fan (safe_speed None;
+        for tau > eps the next decision counts tau towards the fastest command in effect, c_k among
+        them, more than the rest of the stop that fitted), the governor commands speed 0 along the
+        heading it let through last: the stop from there, the rest of the one that fitted
+        (one_period_leaves_the_stop, long_response_leaves_the_stop), each braking period spending
+        exactly its share (braking_period); standing (rest_rule), it turns in place. Either way the
+        invariant holds
+        at the next decision, and the path from the last decision whose check held to the stand is
+        no longer than its room, with headings in its fan, where the disc (widened by the margin
+        for points ahead) meets no point of the scan. By induction the distance from the disc to
+        every obstacle seen stays >= 0. admissible (the oracle's monitor) checks the same stop in
+        the same fan from the disc alone, which leaves no less room (margin_only_shrinks_the_room).
         """
     )
     fan.margin_odometry(d)
@@ -453,136 +574,15 @@ def _worst(u: float, c: float, t: float, lim: Limits = LIMITS) -> tuple[float, f
     return _forms()[DOWN_REACHING if u - c <= b * t else DOWN](u, c, t, a, b)
 
 
-def _stop(u: float, c0: float, tau: float, c: float) -> float:
-    """The proved stopping distance: the tau-stretch, a period, braking."""
-    late, u1 = _worst(u, c0, tau)
-    travel, end = _worst(u1, c, LIMITS.period)
-    return late + travel + end**2 / (2 * LIMITS.braking)
-
-
-def _table(rows: str) -> list[tuple[float, ...]]:
-    """Sample points written ``"1 0 0.5, 2 0 0"``."""
-    return [tuple(float(x) for x in row.split()) for row in rows.split(",")]
-
-
-def _code(u: float, c0: float, tau: float, *command: float) -> tuple[Any, ...]:
-    """The arguments: state (bound ``u``, last command ``c0``), ``command``, LIMITS with ``tau``."""
-    return GovernorState(u, 0.0, c0), *command, replace(LIMITS, response=tau)
-
-
-def _library_formulas(d: Derivation) -> None:
-    d.spot_check(
-        "library_stopping_distance_pieces",
-        lambda u, c0, tau, c: gov.stopping_distance(*_code(u, c0, tau, c)),
-        _stop,
-        _table(
-            "1 0 0 0, 1 0 0 .8, 1 0 0 1.1, 1 0 0 2, 0 0 0 0, 1.9 0 0 2.5, 1.95 0 0 .1, 1 1 .05 0"
-        )
-        + _table("1 1 .05 .8, 1 1 .05 2, .5 1.5 .05 0, .5 1.5 .05 .8, .5 1.5 .05 2, 1 1.05 .05 0")
-        + _table("1 1.05 .05 2, 1.5 0 .1 0, 1.5 0 .1 .8, 1.5 0 .1 2, 1 .9 .1 2.5, 0 .2 .1 .2"),
-        "stopping_distance(state, c) = the tau-stretch towards state.speed, then a period towards "
-        "c from where it ends, then braking, each in its proved form (braking, slowing down, "
-        "speeding up, (M))",
-        abs_tol=1e-12,
-        reason="the same formulas, the travel summed piece by piece: ulps of distances below 1",
-    )
-    d.spot_check(
-        "library_safe_speed_is_root",
-        lambda room, u, c0, tau: _stop(u, c0, tau, gov.safe_speed(room, *_code(u, c0, tau)) or 0),
-        lambda room, u, c0, tau: room,
-        _table("0.13 1 0 0, 0.2 1 0 0, 0.26 1 0 0, 0.01 0 0 0, 0.5 1.7 0 0, 0.2 1 1 0.05")
-        + _table("0.15 0.5 1.5 0.05, 0.2 1 0 0.1"),
-        "the proved stopping distance of safe_speed(d, state) is d, between that of 0 and of V",
-        abs_tol=1e-12,
-        reason="a square root and its square: ulps of d",
-    )
-    d.spot_check(
-        "library_no_speed_when_braking_does_not_fit",
-        lambda room, u, c0, tau: float(gov.safe_speed(room, *_code(u, c0, tau)) is None),
-        lambda room, u, c0, tau: float(_stop(u, c0, tau, 0.0) > room),
-        _table("0.1 1 0 0, 0.13 1 0 0, 0 0 0 0, 0.4 1.8 0 0, 0.41 1.8 0 0, 0.17 1 1 0.05")
-        + _table("0.18 1 1 0.05, 0 0 0.2 0.1, 0.01 0 0.2 0.1, 0.02 0 0.2 0.1"),
-        "safe_speed is None exactly when the tau-stretch and braking, late + u_1^2/(2b), exceed "
-        "the room",
-        abs_tol=0.0,
-        reason="a yes or no",
-    )
-    d.spot_check(
-        "library_next_state",
-        lambda u, c0, tau, c: gov.next_state(*_code(u, c0, tau, 0.0, c)).speed_bound,
-        lambda u, c0, tau, c: _worst(_worst(u, c0, tau)[1], c, LIMITS.period - tau)[1],
-        _table("0 0 0 2, 1 1 0 0, 1 1 0 0.9, 1 1 0 1.1, 1.9 1.9 0 2.5, 1 2 0.05 0, 0.5 0 0.05 2")
-        + _table("0 0.2 0.1 2"),
-        "next_state's bound = the worst case's end: tau towards the last command, then eps - tau "
-        "towards the new one",
-        abs_tol=1e-12,
-        reason="a sum of two floats each way",
-    )
-
-
-def _closest_approach(distance: float, top: float, braking: float, tau: float) -> float:
-    """The loop's least clearance to the wall, or minus the number of commands not admissible."""
-    limits = Limits(0.2, top, braking, 2.0, 0.1, tau)
-    x, speed, last, state, gap, rejected = 0.0, 0.0, 0.0, GovernorState(), math.inf, 0
-    for _ in range(200):
-        seen = fan.wall(distance, x)
-        command, after = gov.govern(Command(0.0, top), seen, state, limits)
-        rejected += not gov.admissible(command, seen, state, limits)[0]
-        late, speed = _worst(speed, last, tau, limits)  # the extreme robot: A up, b down
-        travel, speed = _worst(speed, command.speed, limits.period - tau, limits)
-        x, last, state = x + late + travel, command.speed, after
-        gap = min(gap, distance - x - limits.radius)
-    return gap if not rejected else -float(rejected)
-
-
-def _library_governor(d: Derivation) -> None:
-    walls = [(0.6, 2.0, 4.0), (1.5, 2.0, 4.0), (3.0, 2.0, 8.0), (6.0, 2.0, 8.0), (3.0, 2.0, 1.0)]
-    late = [(*w, tau) for w in walls for tau in (0.05, 0.1)]
-    for name, points, said in (
-        ("", [(*w, 0.0) for w in [*walls, (2.2, 2.0, 1.0), (1.0, 3.0, 0.5)]], "at once"),
-        ("_responding_late", late, "tau = 0.05 or eps = 0.1 late (the last until then)"),
-    ):
-        d.spot_check(
-            f"library_governed_robot{name}_never_touches",
-            lambda distance, top, b, tau: min(0.0, _closest_approach(distance, top, b, tau)),
-            lambda distance, top, b, tau: 0.0,
-            points,
-            f"the extreme robot (A up, exactly b down) that follows each command {said}, governed "
-            "while its planner asks for the top speed towards a wall, ends no nearer to it than "
-            "its radius, and admissible accepts every command",
-            abs_tol=1e-12,
-            reason="200 periods of travel summed",
-        )
-
-
-def _where_it_stops(d: Derivation) -> None:
-    d.text(
-        """
-        Where the proof stops: obstacles outside the sensor's field of view or range (the IR
-        sensor's 135 degrees cannot see beside the robot, where a sharp turn's fan reaches) or
-        between two rays; moving obstacles; a deceleration below b (a skidding wheel, load moved off
-        its driven wheels: the MuJoCo Jackal's b is chosen for that, docs/physics.md); a response
-        slower than one period (tau > eps: a latency of two steps or more, or one step and any
-        response; next_state caps tau at eps) or actuation otherwise beyond the model (a speed noise
-        factor above 1); a heading controller that overshoots the command (the fan holds only the
-        present heading, the command's and the last command's); a fallback turn at speed bound 0
-        while the last command is not 0 (with tau = eps next_state reaches the next decision before
-        a command has acted, and the robot still moves for tau). And it is for the disc: a
-        box-shaped robot is covered by the disc that circumscribes it.
-        """
-    )
-
-
 @traces("s3.safe_near_obstacles")
 def build() -> Derivation:
     """Check every claim about the braking governor; raises ``ClaimFailed``."""
     d = Derivation("braking", "The braking governor keeps the robot passively safe")
-    for step in (_kinematics, _shape, _safe_speed, _speed_bound, fan.fan_cone, fan.fan_edge):
+    for step in (_kinematics, _shape, _safe_speed, _speed_bound, _fastest, fan.fan_cone):
         step(d)
-    for step in (fan.fan_margin, fan.headings, _induction, _paper_robot, _library_formulas):
+    for step in (fan.fan_edge, fan.fan_margin, fan.headings, _induction, _paper_robot):
         step(d)
-    for step in (fan.library_fan_room, fan.library_headings, _library_governor, _where_it_stops):
-        step(d)
+    fan.library(d, _worst)  # the spot checks of the code, and where the proof stops
     return d
 
 

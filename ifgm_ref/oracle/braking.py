@@ -72,8 +72,8 @@ def late_step(recording: Recording) -> tuple[int, float, float] | None:
     for k, (observation, command) in enumerate(recording.steps):
         if command.stop is not None:
             break
-        _, needed, room = admissible(command, observation, state, limits)
-        if needed > room + tolerance:
+        ok, needed, room = admissible(command, observation, state, limits)
+        if not ok and needed > room + tolerance:
             return k, needed, room
         state = next_state(state, command.heading, command.speed, limits)
     return None

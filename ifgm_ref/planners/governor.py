@@ -388,14 +388,16 @@ def admissible(
 ) -> tuple[bool, float, float]:
     """Whether the robot can still stop after ``command`` (the runtime monitor of the
     oracle's ``stops_in_time``): its :func:`stopping_distance` fits in the fan of its turn,
-    counted from the robot's disc (no margin). Also the stopping distance and the room.
-
-    Standing, any turn is admissible (a disc turning in place sweeps nothing); braking along
-    the last heading is, wherever the last command was (``proofs/braking.py``).
+    counted from the robot's disc (no margin), or it brakes (speed 0) along the last heading
+    let through, whose stop the last step counted (Mitsch et al.'s braking branch; for a
+    response time over a period the count from one step is coarser than the last step's).
+    Standing, any turn fits (a disc turning in place sweeps nothing). Also the stopping
+    distance and the room.
     """
     room = _room(command.heading, observation, state, limits.radius)
     needed = stopping_distance(state, command.speed, limits)
-    return needed <= room, needed, room
+    kept = state.heading is not None and abs(wrap_angle(command.heading - state.heading)) < 1e-9
+    return needed <= room or (command.speed == 0.0 and kept), needed, room
 
 
 class BrakingGovernor:
