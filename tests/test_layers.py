@@ -182,6 +182,8 @@ ORACLE_LAYERS = (
         "ifgm_ref.oracle.vectors",
     ),
     (
+        "ifgm_ref.oracle.episodes",
+        "ifgm_ref.oracle.braking",
         "ifgm_ref.oracle.checks",
         "ifgm_ref.oracle.conformance",
         "ifgm_ref.oracle.dead_end",

@@ -29,6 +29,7 @@ from dataclasses import replace
 from hypothesis import strategies as st
 
 from ifgm_ref.oracle.check_types import Check, CheckFailed, Kind, Recorder
+from ifgm_ref.oracle.episodes import episode, place_of
 from ifgm_ref.oracle.implementation import Implementation
 from ifgm_ref.oracle.strategies import any_solvable_worlds
 from ifgm_ref.planners.governor import GovernorState, Limits, admissible, next_state
@@ -55,7 +56,7 @@ def with_dynamics(world: World, stop: float, ratio: float, response: float, dt: 
 
     >>> robot = with_dynamics(World(start=(0, 0, 0), goal=(9, 0)), 1.0, 2.0, 0.5, 0.1).robot
     >>> round(robot.braking, 6), round(robot.acceleration, 6), robot.response
-    (0.874039, 1.748078, 0.05)
+    (0.874037, 1.748074, 0.05)
     """
     robot = world.robot
     braking = robot.speed**2 / (2 * stop * robot.radius)
@@ -82,8 +83,6 @@ def late_step(recording: Recording) -> tuple[int, float, float] | None:
 def _stops_test(
     impl: Implementation, example: tuple[World, tuple[float, float, float]], rec: Recorder
 ) -> None:
-    from ifgm_ref.oracle.checks import episode, place_of  # the registry imports this module
-
     world, (stop, ratio, response) = example
     if world.robot.stops_at_once and not rec.physical:  # else its own dynamics, or the body's
         world = with_dynamics(world, stop, ratio, response, rec.sim.dt)

@@ -35,7 +35,7 @@ from hypothesis import strategies as st
 from numpy.typing import NDArray
 
 from ifgm_ref.convergence import time_bound
-from ifgm_ref.errors import ImplementationError, present
+from ifgm_ref.errors import present
 from ifgm_ref.flowchart import Branch
 from ifgm_ref.oracle.braking import stops_in_time
 from ifgm_ref.oracle.check_types import (
@@ -44,12 +44,12 @@ from ifgm_ref.oracle.check_types import (
     Evidence,
     Kind,
     Level,
-    PlannerFault,
     Recorder,
     levels_up_to,
 )
 from ifgm_ref.oracle.conformance import compare, divergence_message, reference_episode
 from ifgm_ref.oracle.dead_end import dead_end_turns, turn_errors
+from ifgm_ref.oracle.episodes import _xy, episode, place_of
 from ifgm_ref.oracle.equation_checks import (
     equation_checks,
 )
@@ -78,18 +78,17 @@ from ifgm_ref.oracle.strategies import (
     reference_worlds,
 )
 from ifgm_ref.paper import traces
-from ifgm_ref.params import SimParams
 from ifgm_ref.planners.ifgm_readings import Readings, unrunnable
 from ifgm_ref.planners.tuning import ParamInfo
-from ifgm_ref.protocol import Command, Planner
+from ifgm_ref.protocol import Command
 from ifgm_ref.recording import RecordingPlanner, replay
 from ifgm_ref.scenarios import resolve_world
 from ifgm_ref.shapes import circle
-from ifgm_ref.simulator import Run, StopReason, TraceStep, simulate
+from ifgm_ref.simulator import Run, TraceStep
 from ifgm_ref.world import Polygon, World
 from ifgm_ref.worldgen.classes import GENERATORS, enclosed_world, gap_wall, placed
 
-__all__ = ["CHECKS", "FIRST_TURN", "checks_at", "episode", "place_of", "scale_test"]
+__all__ = ["CHECKS", "FIRST_TURN", "checks_at", "scale_test"]
 
 #: ``passes_wide_gaps``: a commanded heading this far off the goal bearing (rad, 5 degrees),
 #: steering the robot away from the goal bearing or holding it there, is the robot's first
@@ -98,53 +97,6 @@ __all__ = ["CHECKS", "FIRST_TURN", "checks_at", "episode", "place_of", "scale_te
 #: velocity command, whose heading is one step's turn) is not that turn yet.
 FIRST_TURN = math.radians(5.0)
 # -- simulation helpers ------------------------------------------------------------------------
-
-
-def episode(
-    impl: Implementation,
-    world: World,
-    recorder: Recorder,
-    *,
-    planner: Planner | None = None,
-    sim: SimParams | None = None,
-    params: dict[str, object] | None = None,
-) -> Run:
-    """Run a fresh planner of ``impl`` (or ``planner``) in ``world`` up to its time bound
-    on the check's engine (``recorder.sim``), or under ``sim``, with the planner parameters
-    ``params`` (none by default)."""
-    recorder.examples += 1
-    recorder.worlds.add(world)
-    sim = sim or recorder.sim_for(world)
-    max_time = sim.max_time
-    if currently_in_test_context():  # not in a statistical check's seeded examples
-        note(f"world: {world}")
-    try:
-        run = simulate(world, planner or impl.factory(), sim, params=params)
-    except (ImplementationError, CheckFailed):
-        raise
-    except Exception as err:  # the planner crashed: that is a failure of this example
-        recorder.evidence = Evidence([world], [], max_time)
-        raise PlannerFault(
-            f"the planner raised {type(err).__name__}: {err} [{place_of(impl, world)}]"
-        ) from err
-    recorder.evidence = Evidence([world], [run], max_time)
-    if run.result.stop_reason == StopReason.INVALID_COMMAND:
-        raise PlannerFault(f"invalid command: {run.result.detail} [{place_of(impl, world)}]")
-    return run
-
-
-def place_of(impl: Implementation, world: World) -> str:
-    """Where an example ran, for a failure message: the implementation, world, start, goal."""
-    start, goal = _xyt(world.start), _xy(world.goal)
-    return f"{impl.label} in {world.name or 'a'} world from {start} to {goal}"
-
-
-def _xy(p: Sequence[float]) -> str:
-    return f"({p[0]:.3f}, {p[1]:.3f})"
-
-
-def _xyt(p: Sequence[float]) -> str:
-    return f"({p[0]:.3f}, {p[1]:.3f}, {p[2]:.3f})"
 
 
 @traces("s3.safe_near_obstacles")
