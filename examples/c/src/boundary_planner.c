@@ -14,6 +14,8 @@ static int boundary_init(ifgm_boundary_planner *p, ifgm_rule rule, const ifgm_ep
     p->progress.step_length = p->body.tuning.step_length;
     ifgm_follower_reset(&p->follower);
     ifgm_circuit_reset(&p->circuit);
+    if (ifgm_governor_reset(&p->governor, e) != IFGM_OK)
+        return IFGM_LONG_RESPONSE;
     ifgm_memory_clear(&p->memory, p->body.tuning.memory_horizon, e->dt);
     return IFGM_OK;
 }
@@ -104,7 +106,8 @@ static ifgm_command boundary_step(ifgm_boundary_planner *p, const ifgm_observati
     ifgm_sight s;
     ifgm_sight_init(&s, &p->body, o->pose, &p->memory,
                     atan2(p->body.goal.y - o->pose[1], p->body.goal.x - o->pose[0]));
-    return ifgm_keep_clear(boundary_decide(p, o, &s), &s);
+    ifgm_command command = ifgm_keep_clear(boundary_decide(p, o, &s), &s);
+    return ifgm_govern(&p->governor, command, o, p->rays.cos, p->rays.sin);
 }
 
 ifgm_command distbug_step(distbug_planner *p, const ifgm_observation *o)

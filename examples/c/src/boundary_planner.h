@@ -3,11 +3,13 @@
  * Bug1's round of the obstacle after a whole loop without leaving (circuit.h). An obstacle
  * is met where one stands in the corridor towards the goal and it is the nearest ahead
  * (ifgm_meets_obstacle, sight.h), not where the one just left is still the nearest
- * (docs/errata.md row 34). Each is a struct the caller owns, with an init and a step. */
+ * (docs/errata.md row 34). Each step ends in the clearance filter, then the braking governor
+ * (governor.h). Each is a struct the caller owns, with an init and a step. */
 #ifndef IFGM_BOUNDARY_PLANNER_H
 #define IFGM_BOUNDARY_PLANNER_H
 
 #include "boundary.h"
+#include "governor.h"
 
 /* The skeleton with its rule: DistBug and IBA differ in nothing else. */
 typedef enum { IFGM_RULE_DISTBUG, IFGM_RULE_IBA } ifgm_rule;
@@ -18,6 +20,7 @@ typedef struct {
     ifgm_progress progress;
     ifgm_follower follower;
     ifgm_circuit circuit; /* Bug1's round (errata row 34) */
+    ifgm_governor governor; /* the braking governor (governor.h) */
     ifgm_rays rays;
     ifgm_scan_points points;
     ifgm_memory memory;

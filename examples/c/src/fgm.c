@@ -42,7 +42,9 @@ int fgm_init(fgm_planner *planner, const ifgm_episode *episode, const ifgm_tunin
     planner->alpha = t.alpha;
     planner->beta = t.beta;
     planner->inflation = episode->radius + t.inflation_margin; /* FGMPlanner.inflation */
-    return isfinite(planner->inflation) ? IFGM_OK : IFGM_BAD_PARAMETER;
+    if (!isfinite(planner->inflation))
+        return IFGM_BAD_PARAMETER;
+    return ifgm_governor_reset(&planner->governor, episode);
 }
 
 /* Robot-frame angle of ray i (LaserScan.angles). */
@@ -147,8 +149,8 @@ static ifgm_real turn_speed(ifgm_real turn, ifgm_real speed)
     return speed * (c > 0 ? c : 0);
 }
 
-/* FGMPlanner.step and fgm_decide. */
-ifgm_command fgm_step(fgm_planner *planner, const ifgm_observation *o)
+/* FGMPlanner.decide and fgm_decide. */
+static ifgm_command fgm_decide(fgm_planner *planner, const ifgm_observation *o)
 {
     const ifgm_real goal_angle = ifgm_wrap_angle(
         atan2(o->goal[1] - o->pose[1], o->goal[0] - o->pose[0]) - o->pose[2]);
@@ -169,4 +171,11 @@ ifgm_command fgm_step(fgm_planner *planner, const ifgm_observation *o)
     command.heading = ifgm_wrap_angle(o->pose[2] + turn);
     command.speed = command.branch == NO_GAP ? 0 : turn_speed(turn, planner->speed);
     return command;
+}
+
+/* FGMPlanner.step: decide, then stop in time. FGM keeps no ray table: the governor works
+ * out the rays' cosines and sines itself, and only for a robot that cannot stop at once. */
+ifgm_command fgm_step(fgm_planner *planner, const ifgm_observation *o)
+{
+    return ifgm_govern(&planner->governor, fgm_decide(planner, o), o, NULL, NULL);
 }

@@ -33,6 +33,7 @@
 #ifndef IFGM_FGM_H
 #define IFGM_FGM_H
 
+#include "governor.h"
 #include "types.h"
 
 typedef struct {
@@ -40,6 +41,7 @@ typedef struct {
     ifgm_real alpha;     /* gap weight, length */
     ifgm_real beta;      /* goal weight */
     ifgm_real inflation; /* radius of every inflated return: radius + inflation_margin */
+    ifgm_governor governor; /* the braking governor (governor.h) */
     /* Scratch of one step: the range of the nearest return blocking each ray, +INFINITY
      * where the ray is free. Here rather than on the stack, which it would fill. */
     ifgm_real blocking[IFGM_MAX_RAYS];
@@ -49,7 +51,7 @@ typedef struct {
  * (ifgm_resolve_tuning, tuning.h; alpha and beta both 0) or IFGM_TOO_MANY_RAYS. */
 int fgm_init(fgm_planner *planner, const ifgm_episode *episode, const ifgm_tuning *tuning);
 
-/* Decide one step. */
+/* Decide one step, then stop in time (the braking governor, governor.h). */
 ifgm_command fgm_step(fgm_planner *planner, const ifgm_observation *observation);
 
 #endif

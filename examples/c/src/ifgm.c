@@ -49,6 +49,8 @@ int ifgm_init(ifgm_planner *p, const ifgm_episode *e, const ifgm_tuning *tuning)
     p->iba.step_length = p->body.tuning.step_length;
     ifgm_follower_reset(&p->follower);
     ifgm_circuit_reset(&p->circuit);
+    if (ifgm_governor_reset(&p->governor, e) != IFGM_OK)
+        return IFGM_LONG_RESPONSE;
     ifgm_memory_clear(&p->memory, p->body.tuning.memory_horizon, e->dt);
     /* Within the tolerance plus one step of travel the robot drives onto the goal. */
     p->goal_tolerance = e->goal_tolerance + e->speed * e->dt;
@@ -517,5 +519,6 @@ ifgm_command ifgm_step(ifgm_planner *p, const ifgm_observation *o)
     p->state.gap_mid = r.gap_mid;
     p->state.short_look = r.short_look;
     p->last_branch = decide(&r.a);
-    return ifgm_keep_clear(act(p, &s, &r, p->last_branch), &s);
+    ifgm_command command = ifgm_keep_clear(act(p, &s, &r, p->last_branch), &s);
+    return ifgm_govern(&p->governor, command, o, p->rays.cos, p->rays.sin);
 }

@@ -19,6 +19,7 @@
 #define IFGM_IFGM_H
 
 #include "boundary.h"
+#include "governor.h"
 
 /* Deepest Case-3 recursion kept: beyond it the oldest pre-empted obstacle is forgotten. */
 #ifndef IFGM_MAX_STACK
@@ -85,6 +86,7 @@ typedef struct {
     ifgm_progress iba;
     ifgm_follower follower;
     ifgm_circuit circuit; /* Bug1's round after a whole loop without leaving (errata row 34) */
+    ifgm_governor governor; /* the braking governor (governor.h) */
     ifgm_state state;
     ifgm_real goal_tolerance; /* the episode's, plus one step of travel */
     ifgm_branch last_branch;
@@ -104,7 +106,7 @@ typedef struct {
 int ifgm_init(ifgm_planner *planner, const ifgm_episode *episode, const ifgm_tuning *tuning);
 
 /* One decision: perceive, take Figure 3's branch, then never drive into a remembered
- * obstacle (the clearance filter). */
+ * obstacle (the clearance filter), and stop in time (the braking governor, governor.h). */
 ifgm_command ifgm_step(ifgm_planner *planner, const ifgm_observation *observation);
 
 #endif

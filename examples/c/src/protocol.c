@@ -226,6 +226,44 @@ static int read_params(const json_document *doc, int params, ifgm_tuning *tuning
     return 0;
 }
 
+/* The robot's optional dynamics (RobotParams' braking, acceleration and response, and the
+ * latency noise field): each absent one takes its default (b and A infinite, the paper's
+ * robot; no response time, no latency). b and A are any numbers, as Python reads them (1e400
+ * is an infinity: the default), their domain left to the init; the response a finite
+ * number; the latency an integer >= 0. */
+static int read_dynamics(const json_document *doc, int robot, ifgm_episode *episode,
+                         protocol_error *error)
+{
+    const char *where = "reset.robot";
+    const char *limits[] = {"braking", "acceleration"};
+    ifgm_real *values[] = {&episode->braking, &episode->acceleration};
+    char text[48];
+    double value;
+    episode->braking = episode->acceleration = IFGM_INF;
+    episode->response = 0;
+    episode->latency = 0;
+    for (int i = 0; i < 2; i++) {
+        int token = json_member(doc, robot, limits[i]);
+        if (token < 0)
+            continue;
+        if (json_number(doc, token, &value) != 0)
+            return failf(error, "%s.%s: must be a number, got %s", where, limits[i],
+                         shown(doc, token, text));
+        *values[i] = (ifgm_real)value;
+    }
+    if (json_member(doc, robot, "response") >= 0 &&
+        number(doc, robot, where, "response", &episode->response, error) != 0)
+        return -1;
+    if (json_member(doc, robot, "latency") >= 0) {
+        if (double_member(doc, robot, where, "latency", &value, error) != 0)
+            return -1;
+        if (value != floor(value) || value < 0 || value > INT_MAX)
+            return failf(error, "reset.robot.latency: must be an integer >= 0, got %.17g", value);
+        episode->latency = (int)value;
+    }
+    return 0;
+}
+
 int protocol_read_reset(const json_document *doc, int message, ifgm_episode *episode,
                         ifgm_tuning *tuning, protocol_error *error)
 {
@@ -238,6 +276,7 @@ int protocol_read_reset(const json_document *doc, int message, ifgm_episode *epi
         number(doc, robot, "reset.robot", "radius", &episode->radius, error) != 0 ||
         number(doc, robot, "reset.robot", "speed", &episode->speed, error) != 0 ||
         number(doc, robot, "reset.robot", "max_turn_rate", &episode->max_turn_rate, error) != 0 ||
+        read_dynamics(doc, robot, episode, error) != 0 ||
         (sensor = object_member(doc, message, where, "sensor", error)) < 0 ||
         read_sensor(doc, sensor, episode, error) != 0 ||
         number(doc, message, where, "dt", &episode->dt, error) != 0 ||

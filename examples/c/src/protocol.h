@@ -4,8 +4,11 @@
  * speaks the protocol with them; ifgm_vectors reads the vectors' recorded messages with them.
  *
  * The readers check what the port relies on, as ifgm_ref/transport/wire.py does, and name
- * the offending field in their error ("reset.robot.radius: missing"): every field present,
- * every number finite, `sensor.rays` an integer >= 2, the scan's angles consistent with the
+ * the offending field in their error ("reset.robot.radius: missing"): every field present
+ * but the optional ones (the robot's dynamics `braking`, `acceleration`, `response` and its
+ * `latency`: absent, the paper's robot), every number finite (but `braking` and
+ * `acceleration`, which Python reads as an infinity when written 1e400), `sensor.rays` an
+ * integer >= 2, `robot.latency` an integer >= 0, the scan's angles consistent with the
  * sensor's and with the scan's length. Unknown fields are ignored. Domains (a radius > 0, a d_th > 2 r, ...) are left to
  * the planners' init, which answers a status (types.h). */
 #ifndef IFGM_PROTOCOL_H

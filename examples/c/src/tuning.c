@@ -21,7 +21,9 @@ const char *ifgm_status_text(int status)
         return "ok";
     case IFGM_BAD_EPISODE:
         return "a robot, sensor or episode value is out of its domain (radius, speed, turn "
-               "rate, range_max, dt and goal_tolerance must be finite and > 0, rays >= 2)";
+               "rate, range_max, dt and goal_tolerance must be finite and > 0, rays >= 2; "
+               "braking and acceleration > 0, acceleration finite where braking is, "
+               "response >= 0)";
     case IFGM_BAD_PARAMETER:
         return "a parameter is out of its domain (each must be a finite number > 0; IFGM's "
                "d_th must exceed the robot's diameter)";
@@ -32,6 +34,9 @@ const char *ifgm_status_text(int status)
     case IFGM_MEMORY_FULL:
         return "memory_horizon / dt scans of this sensor do not fit IFGM_MAX_POINTS or "
                "IFGM_MAX_SCANS (rebuild with larger ones)";
+    case IFGM_LONG_RESPONSE:
+        return "the robot's response time spans more time steps than IFGM_MAX_EARLIER + 1 "
+               "(rebuild with a larger one)";
     default:
         return "unknown status";
     }
@@ -56,6 +61,13 @@ int ifgm_resolve_tuning(ifgm_tuning *out, const ifgm_episode *e, const ifgm_tuni
     ifgm_real range = e->range_max, fov = e->fov;
     if (!positive(r) || !positive(v) || !positive(w) || !positive(dt) || !positive(range) ||
         !positive(fov) || !positive(e->goal_tolerance) || e->rays < 2)
+        return IFGM_BAD_EPISODE;
+    /* The robot's dynamics (RobotParams): b and A infinite or > 0, b finite only with A
+     * finite, the response finite and >= 0, the latency >= 0. */
+    if (!(e->braking == IFGM_INF || positive(e->braking)) ||
+        !(e->acceleration == IFGM_INF || positive(e->acceleration)) ||
+        (e->braking != IFGM_INF && e->acceleration == IFGM_INF) || !isfinite(e->response) ||
+        e->response < 0 || e->latency < 0)
         return IFGM_BAD_EPISODE;
     *out = *given;
     ifgm_real standoff = 2 * r / 3, narrow = IFGM_PI * r / (2 * fov);

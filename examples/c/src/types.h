@@ -19,6 +19,12 @@ typedef struct {
     ifgm_real radius;        /* robot radius, length */
     ifgm_real speed;         /* top speed, length/s */
     ifgm_real max_turn_rate; /* rad/s */
+    /* The robot's dynamics, optional in `reset.robot` (the braking governor, governor.h): its
+     * guaranteed braking b and largest acceleration A, length/s^2 (+INFINITY, the default:
+     * at once, the paper's robot; b finite needs A finite), its response time, s (default
+     * 0), and its latency, whole steps of dt (default 0), which adds to the response. */
+    ifgm_real braking, acceleration, response;
+    int latency;
     ifgm_real fov;           /* sensor field of view, rad */
     int rays;                /* rays per scan, both ends of the field of view included */
     ifgm_real range_min, range_max;
@@ -70,7 +76,8 @@ enum {
     IFGM_BAD_PARAMETER = -2, /* a parameter out of its domain (d_th <= 2 r, weights, ...) */
     IFGM_TOO_MANY_RAYS = -3, /* more rays than IFGM_MAX_RAYS */
     IFGM_NARROW_VIEW = -4,   /* fewer than two rays in the paper's 135-degree view */
-    IFGM_MEMORY_FULL = -5    /* the remembered scans would not fit IFGM_MAX_POINTS */
+    IFGM_MEMORY_FULL = -5,   /* the remembered scans would not fit IFGM_MAX_POINTS */
+    IFGM_LONG_RESPONSE = -6  /* the response time spans more than IFGM_MAX_EARLIER + 1 steps */
 };
 
 /* Every parameter unset: each takes its default at init. */
