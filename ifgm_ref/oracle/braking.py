@@ -76,7 +76,7 @@ def late_step(recording: Recording) -> tuple[int, float, float] | None:
         ok, needed, room = admissible(command, observation, state, limits)
         if not ok and needed > room + tolerance:
             return k, needed, room
-        state = next_state(state, command.heading, command.speed, limits)
+        state = next_state(state, command.heading, command.speed, limits, observation.pose.theta)
     return None
 
 
