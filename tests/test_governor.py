@@ -19,6 +19,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from ifgm_ref.errors import ParameterError
+from ifgm_ref.laserscan import LaserScan
 from ifgm_ref.params import RobotParams, SimParams, robot_changes
 from ifgm_ref.planners import PLANNERS, make_planner
 from ifgm_ref.planners.governor import (
@@ -280,3 +281,18 @@ def test_a_robot_that_carries_out_commands_steps_late_still_stops_where_it_means
     run = simulate(_wall_world(robot, 3.0), Headlong(), SimParams(max_time=20.0))
     assert run.result.stop_reason == "stalled"  # it stands before the wall
     assert run.result.min_clearance >= robot.radius * Limits.MARGIN - 2e-3, run.result
+
+
+def test_the_fan_holds_the_turn_the_robot_is_making() -> None:
+    """A robot turning left at 0.2 rad a period, told to go straight on at its heading, may
+    carry its turn on while it brakes: a post up there, beside the straight corridor, slows it
+    (the Jackal at 1.8 m/s carried its turn 6 degrees past the command, BARN world 95)."""
+    lim = Limits(radius=0.2, top_speed=2.0, braking=4.0, acceleration=2.0, period=0.1)
+    angle = 0.5  # the post's bearing, left: outside the straight corridor at its range
+    scan = LaserScan(angle - 0.1, angle + 0.1, 0.1, 0.0, 10.0, [math.inf, 0.6, math.inf])
+    seen = Observation(0.0, Pose(0.0, 0.0, 0.0), Point(5.0, 0.0), scan)
+    straight = GovernorState(1.5, 0.0, 1.5, (), 0.0)  # not turning
+    turning = GovernorState(1.5, 0.0, 1.5, (), -0.6)  # 0.6 rad left in the last period
+    free = govern(Command(0.0, 2.0), seen, straight, lim)[0].speed
+    carried = govern(Command(0.0, 2.0), seen, turning, lim)[0].speed
+    assert free > 1.5 and carried < free
