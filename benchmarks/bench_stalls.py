@@ -107,10 +107,12 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--planners", default="ifgm", help="comma-separated (default ifgm)")
     parser.add_argument("--sensor", default="jackal_lidar", help="the run's sensor preset")
     parser.add_argument("--out", help="write one row per stall here (CSV)")
+    parser.add_argument("--limit", type=int, help="the first N stalls only (in world order)")
     args = parser.parse_args(argv)
     planners = args.planners.split(",")
     rows = [r for r in read_rows(args.results) if r.planner in planners]
     stalls = [r for r in rows if r.stop_reason == "stalled" and r.engine == "mujoco"]
+    stalls = stalls[: args.limit]
     found = []
     for k, row in enumerate(stalls, 1):
         found.append(examine(row, args.sensor))

@@ -56,6 +56,8 @@ ifgm_governor_state ifgm_governor_at_rest(void)
     state.heading = 0;
     state.speed = 0;
     state.n_earlier = 0;
+    state.has_theta = 0;
+    state.theta = 0;
     return state;
 }
 
@@ -186,15 +188,19 @@ ifgm_real ifgm_fan_room(const ifgm_observation *o, const ifgm_real *cos_a,
 }
 
 void ifgm_fan(ifgm_real heading, const ifgm_observation *o, const ifgm_governor_state *state,
-              ifgm_real *low, ifgm_real *high)
+              const ifgm_limits *limits, ifgm_real *low, ifgm_real *high)
 {
     const ifgm_real theta = o->pose[2];
-    ifgm_real turns[3];
+    ifgm_real turns[4];
     int n = 0;
     turns[n++] = 0;
     turns[n++] = ifgm_wrap_angle(heading - theta);
     if (state->has_heading)
         turns[n++] = ifgm_wrap_angle(state->heading - theta);
+    if (state->has_theta) { /* the present turn, carried on for tau (at least a period) */
+        const ifgm_real carried = py_max(1, limits->response / limits->period);
+        turns[n++] = ifgm_wrap_angle(theta - state->theta) * carried;
+    }
     *low = *high = turns[0];
     for (int k = 1; k < n; k++) {
         *low = py_min(*low, turns[k]);
@@ -203,17 +209,19 @@ void ifgm_fan(ifgm_real heading, const ifgm_observation *o, const ifgm_governor_
 }
 
 ifgm_real ifgm_governor_room(ifgm_real heading, const ifgm_observation *o,
-                             const ifgm_governor_state *state, ifgm_real radius,
+                             const ifgm_governor_state *state, const ifgm_limits *limits,
                              ifgm_real margin, const ifgm_real *cos_a, const ifgm_real *sin_a)
 {
     ifgm_real low, high;
-    ifgm_fan(heading, o, state, &low, &high);
+    ifgm_fan(heading, o, state, limits, &low, &high);
+    const ifgm_real radius = limits->radius;
     const ifgm_real room = ifgm_fan_room(o, cos_a, sin_a, low, high, radius, margin);
     return py_min(room, py_max(0, o->range_max - radius - margin));
 }
 
 ifgm_governor_state ifgm_governor_next(const ifgm_governor_state *state, ifgm_real heading,
-                                       ifgm_real speed, const ifgm_limits *limits)
+                                       ifgm_real speed, const ifgm_limits *limits,
+                                       const ifgm_real *theta)
 {
     const ifgm_real eps = limits->period;
     const ifgm_real tau = py_min(limits->response, eps);
@@ -234,6 +242,8 @@ ifgm_governor_state ifgm_governor_next(const ifgm_governor_state *state, ifgm_re
         next.earlier[next.n_earlier++] = state->earlier[k];
     if (kept > 0)
         next.earlier[next.n_earlier++] = state->speed;
+    next.has_theta = theta != NULL;
+    next.theta = theta != NULL ? *theta : 0;
     return next;
 }
 
@@ -268,7 +278,7 @@ ifgm_command ifgm_govern(ifgm_governor *governor, ifgm_command command,
     const ifgm_real bound = state->speed_bound;
     ifgm_real heading = ifgm_within_grip(command.heading, o->pose[2], bound, limits);
     ifgm_real speed, allowed;
-    const ifgm_real room = ifgm_governor_room(heading, o, state, limits->radius,
+    const ifgm_real room = ifgm_governor_room(heading, o, state, limits,
                                               limits->radius * IFGM_GOVERNOR_MARGIN, cos_a, sin_a);
     if (ifgm_safe_speed(room, state, limits, &allowed)) {
         /* and no more than A eps above the speed bound: what the robot can reach */
@@ -283,6 +293,6 @@ ifgm_command ifgm_govern(ifgm_governor *governor, ifgm_command command,
         command.heading = heading;
         command.speed = speed;
     }
-    *state = ifgm_governor_next(state, heading, speed, limits);
+    *state = ifgm_governor_next(state, heading, speed, limits, &o->pose[2]);
     return command;
 }

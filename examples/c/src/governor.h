@@ -7,8 +7,10 @@
  * response time tau (s) under its last command; a command is let through when, moving for
  * tau towards the last command, then for one period eps (the time step) towards this one,
  * each as hard as allowed, then braking, the robot still stops within the room free in the
- * fan of headings it may face (the present one, the command's and the last command's),
- * measured in the scan it was handed. The governor keeps the heading as far as the robot's
+ * fan of headings it may face (the present one, the command's, the last command's, and the
+ * present one turned on at the last period's rate for the response time, at least a period:
+ * a robot braking while it turns may carry its turn past the command), measured in the scan
+ * it was handed. The governor keeps the heading as far as the robot's
  * grip allows (a turn of at most b / u eps in a period at speed u) and takes the largest
  * speed up to the planner's that fits, and no more than A eps above its bound on the robot's
  * speed; if none does (not even braking), it brakes along the
@@ -39,8 +41,10 @@ typedef struct {
 
 /* What the governor carries from one step to the next (GovernorState): a bound on the
  * robot's speed (0 at the start), the heading and speed it last let through (no heading and
- * 0 before the first command), and, for a response time longer than a period, the speeds of
- * the commands before the last that the robot may still follow (oldest first). */
+ * 0 before the first command), for a response time longer than a period, the speeds of the
+ * commands before the last that the robot may still follow (oldest first), and the robot's
+ * heading (the observed pose's theta) at the last decision (none before the first), from
+ * which its present turn is read. */
 typedef struct {
     ifgm_real speed_bound;
     int has_heading;
@@ -48,6 +52,8 @@ typedef struct {
     ifgm_real speed;
     int n_earlier;
     ifgm_real earlier[IFGM_MAX_EARLIER];
+    int has_theta;
+    ifgm_real theta;
 } ifgm_governor_state;
 
 /* A planner's governor for one episode (BrakingGovernor): the limits and the state. */
@@ -104,20 +110,25 @@ ifgm_real ifgm_fan_room(const ifgm_observation *observation, const ifgm_real *co
                         const ifgm_real *sin_a, ifgm_real low, ifgm_real high, ifgm_real radius,
                         ifgm_real margin);
 /* _fan: the robot-frame headings the robot may face until it stops: the present one (0),
- * `heading`'s (world frame) and the state's last heading's, least in *low, greatest in
- * *high. */
+ * `heading`'s (world frame), the state's last heading's, and, when the state holds the
+ * robot's heading at the last decision, the turn since then carried on for the response time
+ * (at least a period): wrap(theta - state theta) * max(1, tau / eps); least in *low,
+ * greatest in *high. */
 void ifgm_fan(ifgm_real heading, const ifgm_observation *observation,
-              const ifgm_governor_state *state, ifgm_real *low, ifgm_real *high);
-/* _room: the room the robot of `radius` has to stop in when it turns towards `heading`,
- * keeping `margin` more: the fan's, and no farther than range_max - radius - margin (at
- * least 0). `cos_a`, `sin_a` as for ifgm_fan_room. */
+              const ifgm_governor_state *state, const ifgm_limits *limits, ifgm_real *low,
+              ifgm_real *high);
+/* _room: the room the robot of the limits' radius has to stop in when it turns towards
+ * `heading`, keeping `margin` more: the fan's, and no farther than range_max - radius -
+ * margin (at least 0). `cos_a`, `sin_a` as for ifgm_fan_room. */
 ifgm_real ifgm_governor_room(ifgm_real heading, const ifgm_observation *observation,
-                             const ifgm_governor_state *state, ifgm_real radius,
+                             const ifgm_governor_state *state, const ifgm_limits *limits,
                              ifgm_real margin, const ifgm_real *cos_a, const ifgm_real *sin_a);
 /* next_state: the state one period after `state` when `heading` and `speed` were let
- * through. */
+ * through with the robot at heading *theta (the observed pose's theta; NULL: none, as
+ * next_state's theta=None). */
 ifgm_governor_state ifgm_governor_next(const ifgm_governor_state *state, ifgm_real heading,
-                                       ifgm_real speed, const ifgm_limits *limits);
+                                       ifgm_real speed, const ifgm_limits *limits,
+                                       const ifgm_real *theta);
 
 /* _within_grip: `heading`, or the nearest one (world frame) a robot at `bound` facing `theta`
  * can turn to in a period without asking its tyres for more sideways than b: a turn of at most
