@@ -169,15 +169,18 @@ def headings(d: Derivation) -> None:
     d.text(
         """
         The path from a decision to the stand keeps its heading in the decision's fan (_fan: the
-        present heading, the command's and the last command's): for tau <= eps the robot turns
-        for tau towards the last command's heading, then towards the new one, and a short turn
-        between headings of a fan narrower than pi stays in it (a wider fan is all the plane).
-        The stop from the next decision starts at a heading in this fan and turns towards the
-        command just given, in it too, for tau; the governor's fallback (speed 0 when not even
-        braking fits in the planner's fan) keeps to that heading after tau too. For tau > eps the
-        robot may also turn towards the earlier commands' headings, which the fan does not hold
-        (state.earlier keeps their speeds only): the path keeps to the fan where they lie in it,
-        as on a straight run. At rest (rest_rule, below) it turns in place, sweeping nothing.
+        present heading, the command's, the last command's, and the present heading turned on at the
+        last period's rate for max(tau, eps), from state.theta, the heading at the last decision: a
+        robot that brakes while it turns may carry its turn past the command, which the model of the
+        turn assumes it does no faster than it turned): for tau <= eps the robot turns for tau
+        towards the last command's heading, then towards the new one, and a short turn between
+        headings of a fan narrower than pi stays in it (a wider fan is all the plane). The stop from
+        the next decision starts at a heading in this fan and turns towards the command just given,
+        in it too, for tau; the governor's fallback (speed 0 when not even braking fits in the
+        planner's fan) keeps to that heading after tau too. For tau > eps the robot may also turn
+        towards the earlier commands' headings, which the fan does not hold (state.earlier keeps
+        their speeds only): the path keeps to the fan where they lie in it, as on a straight run. At
+        rest (rest_rule, below) it turns in place, sweeping nothing.
         """
     )
 
@@ -350,6 +353,36 @@ def library_headings(d: Derivation, limits: Limits = LIMITS) -> None:
         "at speed 0",
         abs_tol=0.0,
         reason="the governor copies the heading",
+    )
+
+
+def _carried_room(rho: float, angle: float, turn: float, tau: float) -> float:
+    """``_room`` for a robot facing 0, commanded 0 as before, that turned ``turn`` in the last
+    period, with one point at ``rho``, ``angle``."""
+    scan = LaserScan(angle, angle + 1.0, 1.0, 0.0, 10.0, [rho, math.inf])
+    seen = Observation(0.0, Pose(0.0, 0.0, 0.0), Point(20.0, 0.0), scan)
+    state = GovernorState(1.0, 0.0, 1.0, (), -turn)
+    return gov._room(0.0, seen, state, replace(LIMITS, response=tau))
+
+
+def _library_carried_turn(d: Derivation, limits: Limits = LIMITS) -> None:
+    """Spot check of the fan's carried turn."""
+
+    def proved(rho: float, angle: float, turn: float, tau: float) -> float:
+        carried = turn * max(1.0, tau / limits.period)
+        room = _touch(rho, angle, min(0.0, carried), max(0.0, carried), limits.radius)
+        return min(room, 10.0 - limits.radius)
+
+    d.spot_check(
+        "library_fan_holds_the_carried_turn",
+        _carried_room,
+        proved,
+        _table("1 .25 .3 0, 1 .25 .1 0, 1 .25 .1 .25, 1 -.4 -.15 .2, 2 .6 .1 .1, 1 .25 0 .3"),
+        "a robot that turned w in the last period, facing its command, has the room of the fan "
+        "from its heading to w max(1, tau/eps) beyond it (a point the command's fan alone "
+        "would pass is met), within the sensor's range",
+        abs_tol=1e-12,
+        reason="the point's polar angle recovered by arctan2: ulps",
     )
 
 
@@ -579,12 +612,13 @@ def _where_it_stops(d: Derivation) -> None:
         tau, a lag that starts at once): for tau the governor counts only the commands before it
         (state.following), and for tau >= eps its bound after the period leaves it out (the
         simulator's latency, a delay line, is in the model; a servo's response only as far as
-        docs/physics.md measures its stops); other actuation beyond the model (a speed noise
-        factor above 1); a heading controller that overshoots, and for tau > eps a turn while
-        earlier commands in effect head outside the fan; a tau within 1e-9 periods above n eps
-        (next_state keeps n commands, not n + 1). For tau > eps admissible (the oracle's monitor)
-        may reject the governor's fallback, safe as it is (the closed loop steps late, above). And
-        it is for the disc: a box-shaped robot is covered by the disc that circumscribes it.
+        docs/physics.md measures its stops); other actuation beyond the model (a speed noise factor
+        above 1); a heading controller that carries its turn farther than the last period's rate for
+        max(tau, eps) (library_fan_holds_the_carried_turn), and for tau > eps a turn while earlier
+        commands in effect head outside the fan; a tau within 1e-9 periods above n eps (next_state
+        keeps n commands, not n + 1). For tau > eps admissible (the oracle's monitor) may reject the
+        governor's fallback, safe as it is (the closed loop steps late, above). And it is for the
+        disc: a box-shaped robot is covered by the disc that circumscribes it.
         """
     )
 
@@ -593,7 +627,7 @@ def library(d: Derivation, worst: Worst) -> None:
     """The spot checks of the code, against the proved ``worst`` case, and where the proof stops."""
     _library_formulas(d, worst)
     _library_next_state(d, worst)
-    for check in (library_fan_room, library_headings, _library_rest_rule):
+    for check in (library_fan_room, library_headings, _library_carried_turn, _library_rest_rule):
         check(d)
     _library_governor(d, worst)
     _where_it_stops(d)

@@ -86,7 +86,12 @@ def test_every_check_gives_a_verdict(check: str, planner: str, tmp_path) -> None
     impl = Implementation(
         FAILING[planner],
         planner,
-        Promises(reports_unreachable=True, turns_at_dead_ends=True, reference="ifgm"),
+        Promises(
+            reports_unreachable=True,
+            turns_at_dead_ends=True,
+            reference="ifgm",
+            stops_in_time=True,
+        ),
     )
     result = run_check(CHECKS[check], impl, SMALL, artifacts=tmp_path)
     assert result.status in (Status.PASSED, Status.FAILED), result.line()

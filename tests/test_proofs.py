@@ -184,6 +184,7 @@ EXPECTED_CLAIMS: dict[str, tuple[str, ...]] = {
         "library_fan_room_margin",
         "library_failed_check_brakes_along_last_heading",
         "library_standing_turns_in_place",
+        "library_fan_holds_the_carried_turn",
         "library_fallback_keeps_heading_while_moving",
         "library_governed_robot_never_touches",
         "library_governed_robot_responding_late_never_touches",

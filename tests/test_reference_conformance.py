@@ -8,6 +8,7 @@ from __future__ import annotations
 import functools
 import math
 import sys
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -15,6 +16,7 @@ import pytest
 from ifgm_ref.convergence import time_bound
 from ifgm_ref.errors import ImplementationError
 from ifgm_ref.oracle import conformance
+from ifgm_ref.oracle.braking import with_dynamics
 from ifgm_ref.oracle.checks import checks_at
 from ifgm_ref.oracle.conformance import (
     HEADING_TOL,
@@ -44,16 +46,23 @@ WORLDS = ("u_trap", "h_block", "fig7a", "post", "wall_posts", "offset_box", "sce
 
 #: Worlds drawn with explicit seeds, three of each class: goals in every direction.
 DRAWN = tuple(f"{kind}-{seed}" for kind in SOLVABLE_CLASSES for seed in range(3))
+#: Drawn worlds whose robot brakes in one radius from top speed and responds within half a
+#: step (the oracle's ``stops_in_time`` dynamics): where the braking governor acts.
+BRAKED = tuple(f"{name}-braked" for name in DRAWN[:: len(DRAWN) // 3])
 
 
 @functools.cache
 def episode(name: str) -> ReferenceEpisode:
-    if name in DRAWN:
+    params = SimParams()
+    if name in BRAKED:
+        kind, seed = name.removesuffix("-braked").rsplit("-", 1)
+        world = with_dynamics(random_world(kind, int(seed)), 1.0, 1.0, 0.5, params.dt)
+    elif name in DRAWN:
         kind, seed = name.rsplit("-", 1)
         world = random_world(kind, int(seed))
     else:
         world = resolve_world(name)
-    return reference_episode(world, SimParams(max_time=time_bound(world)))
+    return reference_episode(world, replace(params, max_time=time_bound(world)))
 
 
 def _compare(spec: str, name: str) -> Comparison:
@@ -90,11 +99,11 @@ def test_without_the_tie_tolerance_the_same_flip_is_a_divergence(
 
 @pytest.mark.parametrize("mutant", sorted(MUTANTS))
 def test_every_broken_variant_diverges_at_the_first_step_that_differs(mutant: str) -> None:
-    """Each broken variant of ``oracle/mutants.py`` diverges in a built-in or a drawn world;
-    the step named is the first whose answer differs beyond the tolerances (every earlier one
-    agreed)."""
+    """Each broken variant of ``oracle/mutants.py`` diverges in a built-in or a drawn world
+    (one whose robot brakes, for the governor's mutant); the step named is the first whose
+    answer differs beyond the tolerances (every earlier one agreed)."""
     spec = f"ifgm_ref.oracle.mutants:{MUTANTS[mutant].__name__}"
-    for name in (*sorted(BUILTIN_WORLDS), *DRAWN):
+    for name in (*BRAKED, *sorted(BUILTIN_WORLDS), *DRAWN):
         found = _compare(spec, name)
         if found.diverged:
             break
