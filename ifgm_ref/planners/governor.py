@@ -66,13 +66,14 @@ from numpy.typing import NDArray
 
 from ifgm_ref.paper import traces
 from ifgm_ref.percepts.points import scan_points
-from ifgm_ref.pose import wrap_angle
-from ifgm_ref.protocol import Command, EpisodeParams, Observation
+from ifgm_ref.pose import Point, Pose, wrap_angle
+from ifgm_ref.protocol import Command, EpisodeParams, Observation, Planner
 
 __all__ = [
     "BrakingGovernor",
     "GovernorState",
     "Limits",
+    "StopsAtOnce",
     "admissible",
     "fan_room",
     "govern",
@@ -436,3 +437,31 @@ class BrakingGovernor:
         """``command`` governed (:func:`govern`)."""
         command, self.state = govern(command, observation, self.state, self.limits)
         return command
+
+
+class StopsAtOnce:
+    """``planner`` told that the robot stops at once (infinite braking and acceleration, no
+    response time), whatever the robot: its governor lets every command through, as the
+    paper's planners are. For measuring what the governor changes on a robot with mass
+    (``benchmarks/bench_ungoverned.py``, ``notebooks/06_physics.ipynb``).
+
+    >>> from ifgm_ref.params import RobotParams
+    >>> from ifgm_ref.planners import make_planner
+    >>> planner = StopsAtOnce(make_planner("ifgm"))
+    >>> heavy = EpisodeParams(robot=RobotParams(braking=1.0, acceleration=1.0, response=0.1))
+    >>> planner.reset(Pose(0.0, 0.0, 0.0), Point(5.0, 0.0), heavy)
+    >>> planner.name, planner.planner.governor.limits.stops_at_once
+    ('ifgm', True)
+    """
+
+    def __init__(self, planner: Planner) -> None:
+        self.planner, self.name = planner, planner.name
+
+    def reset(self, start: Pose, goal: Point, params: EpisodeParams) -> None:
+        """Start the episode as told, but with the paper's robot's dynamics."""
+        robot = replace(params.robot, braking=math.inf, acceleration=math.inf, response=0.0)
+        self.planner.reset(start, goal, replace(params, robot=robot))
+
+    def step(self, observation: Observation) -> Command:
+        """The planner's command."""
+        return self.planner.step(observation)
