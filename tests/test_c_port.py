@@ -33,6 +33,7 @@ from ifgm_ref.oracle.checks import CHECKS
 from ifgm_ref.oracle.implementation import Implementation
 from ifgm_ref.oracle.invariance import HEADING_TOL, SPEED_TOL, answer_errors
 from ifgm_ref.oracle.metamorphic import moved_recording
+from ifgm_ref.oracle.profiles import Profile
 from ifgm_ref.oracle.runner import Status, check_planner
 from ifgm_ref.oracle.vectors import QUANTITIES
 from ifgm_ref.params import SimParams
@@ -56,6 +57,7 @@ from ifgm_ref.world import World
 from ifgm_ref.worldgen.classes import random_world
 from tests.built_once import built_once
 from tests.test_invariance import _enclosure, long_mixed_example
+from tests.test_oracle import BRIEF
 
 ROOT = Path(__file__).resolve().parent.parent
 PORT = ROOT / "examples" / "c"
@@ -437,21 +439,25 @@ def test_a_key_is_compared_with_its_escapes_decoded(build: Path) -> None:
 QUICK_CHECKS = [name for name in SIMULATION if name != "stops_in_time"]
 
 
-def _oracle(build: Path, planner: str, checks: list[str] = QUICK_CHECKS) -> Any:
+def _oracle(
+    build: Path, planner: str, checks: list[str] = QUICK_CHECKS, profile: Profile | str = "quick"
+) -> Any:
     impl = Implementation.from_command(
         [str(build / "ifgm_json"), "--planner", planner], timeout=30.0, promises=planner
     )
     try:
-        return check_planner(impl, profile="quick", checks=checks, artifacts=None, jobs=2)
+        return check_planner(impl, profile=profile, checks=checks, artifacts=None, jobs=2)
     finally:
         impl.close()
 
 
-def test_the_c_ifgm_passes_the_quick_profile(build: Path) -> None:
-    """The C IFGM behind ``ifgm_json`` passes every check of the oracle's quick profile that
-    IFGM promises, at both levels: the paper's properties, and step-by-step agreement with
-    the reference (issue 26; about 80 s), ``stops_in_time`` apart (below)."""
-    report = _oracle(build, "ifgm")
+@pytest.mark.parametrize("profile", [BRIEF, pytest.param("quick", marks=pytest.mark.slow)])
+def test_the_c_ifgm_passes_the_quick_profile(build: Path, profile: Profile | str) -> None:
+    """The C IFGM behind ``ifgm_json`` passes every check of the oracle that IFGM promises,
+    at both levels: the paper's properties, and step-by-step agreement with the reference
+    (issue 26), ``stops_in_time`` apart (below): on the brief profile in the default run, on
+    the quick one under ``-m slow``."""
+    report = _oracle(build, "ifgm", profile=profile)
     assert report.ok, report.text()
     assert {r.status for r in report.results} <= {Status.PASSED, Status.NOT_APPLICABLE}
 

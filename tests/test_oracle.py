@@ -29,7 +29,7 @@ from ifgm_ref.oracle.check_types import Check, Kind
 from ifgm_ref.oracle.checks import CHECKS, checks_at
 from ifgm_ref.oracle.implementation import Implementation, promises_of
 from ifgm_ref.oracle.mutants import MUTANTS
-from ifgm_ref.oracle.profiles import Profile
+from ifgm_ref.oracle.profiles import PROFILES, Profile
 from ifgm_ref.oracle.runner import Status, check_planner, run_check
 from ifgm_ref.oracle.strategies import SOLVABLE_CLASSES, enclosed_worlds, open_worlds
 from ifgm_ref.oracle.variants import VARIANTS
@@ -45,6 +45,11 @@ WORLDS = Path(__file__).parent / "worlds"
 SIMULATION = [name for name in checks_at("paper") if CHECKS[name].kind is Kind.SIMULATION]
 #: Mutant hunting: the same 50 examples, but no shrinking (speed; the report is not needed).
 HUNT = Profile("hunt", 50, shrink=False)
+#: The default run's profile for the implementations other than the reference IFGM (which the
+#: plugin checks on the quick profile): every check, a fifth of the quick profile's examples.
+#: ``pytest -m slow`` runs each on the quick profile too.
+BRIEF = Profile("brief", 10)
+QUICK = PROFILES["quick"]
 #: The quick-profile check that rejects each broken variant, the one aimed at what it breaks:
 #: a gap steered at wrongly fails to pass a wide gap, a robot that never leaves or never turns
 #: out of a dead end fails to arrive, a length that ignores the robot's size fails scaling.
@@ -109,18 +114,19 @@ def test_a_failing_world_shrinks_to_one_disc_on_the_line() -> None:
 
 
 @pytest.mark.paper("s3.critical_shapes", "s3.safe_near_obstacles")
-def test_reference_iba_passes_every_property_it_promises() -> None:
-    """IBA passes the quick profile with no accepted failure: the false loop closure in
-    clutter that once ended a mixed world 'goal_unreachable' (errata row 25) is gone with
-    Bug1's round (row 34)."""
-    report = check_planner("iba", profile="quick", checks=SIMULATION, artifacts=None, jobs=2)
+@pytest.mark.parametrize("profile", [BRIEF, pytest.param(QUICK, marks=pytest.mark.slow)])
+def test_reference_iba_passes_every_property_it_promises(profile: Profile) -> None:
+    """IBA passes the profile with no accepted failure: the false loop closure in clutter
+    that once ended a mixed world 'goal_unreachable' (errata row 25) is gone with Bug1's
+    round (row 34). The quick profile takes over a minute, so it is under ``-m slow``."""
+    report = check_planner("iba", profile=profile, checks=SIMULATION, artifacts=None, jobs=2)
     not_ifgm = {"passes_wide_gaps", "dead_end_turns"}  # IBA goes round; it has no dead end
     for result in report.results:
         if result.check in not_ifgm:
             assert result.status is Status.NOT_APPLICABLE, result.line()
             continue
         assert result.status is Status.PASSED, result.line()
-        assert result.examples >= 50, result.line()
+        assert result.examples >= profile.max_examples, result.line()
 
 
 def test_reference_equations_pass_and_broken_ones_fail() -> None:
@@ -249,23 +255,27 @@ def test_a_seeded_profile_draws_repeatable_random_examples() -> None:
 
 
 @pytest.mark.parametrize(
-    "variant",
-    # Half a minute each in process: the default run keeps the wobble (the port the oracle
-    # issue saw rejected); `pytest -m slow` runs the other three. The velocity commands' port
-    # is in the default run through serve, on a smaller profile, in the test after the next.
-    [v if v == "heading_wobble" else pytest.param(v, marks=pytest.mark.slow) for v in VARIANTS],
+    ("variant", "profile"),
+    # One to two minutes each in process on the quick profile, so `pytest -m slow` runs the
+    # four there; the default run keeps the wobble (the port the oracle issue saw rejected)
+    # on the brief profile. The velocity commands' port is in the default run through serve,
+    # on a smaller profile, in the test after the next.
+    [
+        ("heading_wobble", BRIEF),
+        *(pytest.param(v, QUICK, marks=pytest.mark.slow) for v in VARIANTS),
+    ],
 )
-def test_faithful_variants_pass_the_quick_profile(variant: str) -> None:
+def test_faithful_variants_pass_every_check(variant: str, profile: Profile) -> None:
     """A port may wobble its heading by a degree, compute in float32, break exact ties the
     other way or answer velocity commands (ifgm_ref/oracle/variants.py): no check of the
-    quick profile fails it."""
+    profile fails it."""
     impl = Implementation.from_spec(f"ifgm_ref.oracle.variants:{VARIANTS[variant].__name__}")
-    _passes_the_quick_profile(impl)
+    _passes_every_check(impl, profile)
 
 
-def _passes_the_quick_profile(impl: Implementation) -> None:
+def _passes_every_check(impl: Implementation, profile: Profile = QUICK) -> None:
     __tracebackhide__ = True
-    report = check_planner(impl, profile="quick", checks=SIMULATION, artifacts=None, jobs=2)
+    report = check_planner(impl, profile=profile, checks=SIMULATION, artifacts=None, jobs=2)
     assert report.ok, report.text()
     assert {r.status for r in report.results} <= {Status.PASSED, Status.NOT_APPLICABLE}
 
@@ -279,7 +289,7 @@ def test_faithful_variants_pass_the_quick_profile_through_serve(variant: str) ->
     spec = f"ifgm_ref.oracle.variants:{VARIANTS[variant].__name__}"
     impl = Implementation.from_command(_serve(spec), timeout=30.0)
     try:
-        _passes_the_quick_profile(impl)
+        _passes_every_check(impl)
     finally:
         impl.close()
 
