@@ -45,11 +45,9 @@ WORLDS = Path(__file__).parent / "worlds"
 SIMULATION = [name for name in checks_at("paper") if CHECKS[name].kind is Kind.SIMULATION]
 #: Mutant hunting: the same 50 examples, but no shrinking (speed; the report is not needed).
 HUNT = Profile("hunt", 50, shrink=False)
-#: The default run's profile for the implementations other than the reference IFGM (which the
-#: plugin checks on the quick profile): every check, a fifth of the quick profile's examples.
-#: ``pytest -m slow`` runs each on the quick profile too.
-BRIEF = Profile("brief", 10)
-QUICK = PROFILES["quick"]
+#: The default run's profile (the plugin's too, through ``--ifgm-profile brief``): every check,
+#: a fifth of the quick profile's examples. ``pytest -m slow`` runs each on the quick profile.
+BRIEF, QUICK = PROFILES["brief"], PROFILES["quick"]
 #: The quick-profile check that rejects each broken variant, the one aimed at what it breaks:
 #: a gap steered at wrongly fails to pass a wide gap, a robot that never leaves or never turns
 #: out of a dead end fails to arrive, a length that ignores the robot's size fails scaling.
@@ -111,6 +109,18 @@ def test_a_failing_world_shrinks_to_one_disc_on_the_line() -> None:
 
 
 # -- the reference passes --------------------------------------------------------------------
+
+
+@pytest.mark.slow
+@pytest.mark.paper("s3.critical_shapes", "s3.safe_near_obstacles")
+def test_reference_ifgm_passes_the_quick_profile() -> None:
+    """The reference IFGM passes every check of the quick profile, with its equations (the
+    default run checks it on the brief profile, through the plugin: ``--ifgm-profile brief``
+    in ``pyproject.toml``)."""
+    report = check_planner("ifgm", profile=QUICK, equations=reference, artifacts=None, jobs=2)
+    assert report.ok, report.text()
+    assert {r.status for r in report.results} <= {Status.PASSED, Status.NOT_APPLICABLE}
+    assert sum(r.status is Status.PASSED for r in report.results) >= len(SIMULATION)
 
 
 @pytest.mark.paper("s3.critical_shapes", "s3.safe_near_obstacles")

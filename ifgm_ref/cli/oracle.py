@@ -43,9 +43,9 @@ def add_oracle(sub: Subcommands) -> None:
     oracle.add_argument(
         "--profile",
         default="quick",
-        choices=("quick", "standard", "thorough", "robust", "default"),
-        help="examples per check: quick 50 (the default), standard 200, thorough 1000; robust: "
-        "50 under the noise levels the planner promises ('default' is the old name of "
+        choices=("quick", "standard", "thorough", "robust", "brief", "default"),
+        help="examples per check: quick 50 (the default), standard 200, thorough 1000, brief "
+        "10; robust: 50 under the noise levels the planner promises ('default' is the old name of "
         "standard)",
     )
     oracle.add_argument(

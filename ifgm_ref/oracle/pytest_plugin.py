@@ -65,9 +65,9 @@ def pytest_addoption(parser: pytest.Parser) -> None:
         "--ifgm-profile",
         default="quick",
         choices=[*PROFILES, *PROFILE_ALIASES],
-        help="examples per check: quick 50 (default), standard 200, thorough 1000; robust: 50 "
-        "under the noise levels the implementation promises ('default' is the old name of "
-        "standard)",
+        help="examples per check: quick 50 (default), standard 200, thorough 1000, brief 10; "
+        "robust: 50 under the noise levels the implementation promises ('default' is the old "
+        "name of standard)",
     )
     group.addoption(
         "--ifgm-noise",

@@ -454,7 +454,7 @@ def check_planner(
     planner : callable, Implementation or str
         A factory returning a new planner (a class will do), an :class:`Implementation`, or a
         spec: a built-in name or ``module:attribute``.
-    profile : {"quick", "standard", "thorough", "robust"} or Profile, default "quick"
+    profile : {"quick", "standard", "thorough", "robust", "brief"} or Profile, default "quick"
         Examples per check (50, 200, 1000; robust: 50 under the promised noise), on its engine.
     promises : Promises or str, optional
         What it promises, or a built-in planner's name (default: a built-in's own, else IFGM's).
