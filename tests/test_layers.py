@@ -48,6 +48,8 @@ MAP_FREE_PREFIXES = (
     # the protocol over JSON lines: both of its ends see what a planner sees, nothing more;
     # and planners found by name
     "ifgm_ref.transport",
+    # unchanged ROS nodes as a planner: the stand-in and its broker see what a planner sees
+    "ifgm_ref.ros",
 )
 
 
@@ -100,6 +102,9 @@ SEPARATE = [
     ("ifgm_ref.transport", "ifgm_ref.oracle", "the oracle uses the transport, not the reverse"),
     ("ifgm_ref.transport", "ifgm_ref.bench", "the benchmark uses the transport"),
     ("ifgm_ref.transport", "ifgm_ref.cli", "the command line uses the transport"),
+    ("ifgm_ref.ros", "ifgm_ref.oracle", "the oracle runs ROS nodes, not the reverse"),
+    ("ifgm_ref.ros", "ifgm_ref.cli", "the command line runs ROS nodes"),
+    ("ifgm_ref.ros", "ifgm_ref.bench", "the benchmark does without ROS nodes"),
     ("ifgm_ref.bench", "ifgm_ref.oracle", "both take worlds and bounds from worldgen, convergence"),
     ("ifgm_ref.oracle", "ifgm_ref.bench", "both take worlds and bounds from worldgen, convergence"),
     ("ifgm_ref.worldgen", "ifgm_ref.oracle", "the oracle's strategies wrap the generators"),

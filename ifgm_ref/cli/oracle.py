@@ -16,12 +16,13 @@ from ifgm_ref.cli.common import (
     robot_of,
     with_engine,
 )
-from ifgm_ref.errors import ParameterError
+from ifgm_ref.cli.ros import add_ros_options, exactly_one
 from ifgm_ref.noise import KINDS
 from ifgm_ref.params import SimParams
 
 if TYPE_CHECKING:
     from ifgm_ref.cli.common import Subcommands
+    from ifgm_ref.oracle.implementation import Implementation
 
 
 def add_oracle(sub: Subcommands) -> None:
@@ -40,6 +41,7 @@ def add_oracle(sub: Subcommands) -> None:
     )
     oracle.add_argument("--planner", metavar="NAME", help="built-in name or module:attribute")
     oracle.add_argument("--cmd", metavar="PROGRAM", help="a JSON-lines protocol program")
+    add_ros_options(oracle)
     oracle.add_argument(
         "--profile",
         default="quick",
@@ -143,8 +145,7 @@ def run_oracle(args: argparse.Namespace) -> int:
 
     keep_hypothesis_out_of_the_working_folder()
 
-    if (args.planner is None) == (args.cmd is None):
-        raise ParameterError("give exactly one of --planner NAME and --cmd 'PROGRAM'")
+    exactly_one(args)
     if args.profile in PROFILE_ALIASES:
         new = PROFILE_ALIASES[args.profile]
         print(f"ifgm-ref: note: profile {args.profile!r} is now called {new!r}", file=sys.stderr)
@@ -153,7 +154,9 @@ def run_oracle(args: argparse.Namespace) -> int:
         name, _, reason = item.partition("=")
         expected[name] = reason or "expected"
     equations = None if args.equations is None else load_equations(args.equations)
-    if args.cmd is not None:
+    if args.ros_node is not None:
+        impl = _ros_implementation(args, equations)  # started and reset once, or it raises
+    elif args.cmd is not None:
         impl = Implementation.from_command(
             args.cmd,
             timeout=args.timeout,
@@ -190,6 +193,13 @@ def run_oracle(args: argparse.Namespace) -> int:
     # has them already and gets the summary only. Redirected stdout gets the whole report.
     print(report.summary() if same_terminal(sys.stdout, sys.stderr) else report.text())
     return 0 if report.ok else 1
+
+
+def _ros_implementation(args: argparse.Namespace, equations: object | None) -> Implementation:
+    """The nodes of ``--ros-node`` as the implementation (:mod:`ifgm_ref.cli.ros_oracle`)."""
+    from ifgm_ref.cli.ros_oracle import ros_implementation
+
+    return ros_implementation(args, equations)
 
 
 def keep_hypothesis_out_of_the_working_folder() -> None:

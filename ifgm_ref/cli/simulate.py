@@ -20,6 +20,7 @@ from ifgm_ref.cli.common import (
     robot_of,
     with_engine,
 )
+from ifgm_ref.cli.ros import add_ros_options, exactly_one, ros_planner
 from ifgm_ref.errors import ParameterError
 from ifgm_ref.noise import KINDS, NoiseLevels
 from ifgm_ref.params import SENSOR_PRESETS, SimParams
@@ -59,6 +60,7 @@ def add_simulate(sub: Subcommands) -> None:
         help="run a program speaking the JSON-lines protocol instead (docs/oracle-protocol.md)",
     )
     add_timeout_options(sim)
+    add_ros_options(sim)
     sim.add_argument(
         "--param",
         action="append",
@@ -164,10 +166,15 @@ def run_simulate(args: argparse.Namespace) -> int:
         else args.goal_tolerance,
     )
     sim = with_engine(sim, args)
-    if (args.planner is None) == (args.cmd is None):
-        raise ParameterError("give exactly one of --planner NAME and --cmd 'PROGRAM'")
+    exactly_one(args)
     check_outputs(args)  # before the run, not after it
-    if args.cmd is not None:
+    if args.ros_node is not None:
+        from ifgm_ref.bags.messages import metres_per_unit
+
+        params = planner_params(None, args.param or [])
+        with ros_planner(args, metres_per_unit("ft" if task is None else "m")) as nodes:
+            run, recording = _run(args, world, nodes, sim, params)
+    elif args.cmd is not None:
         from ifgm_ref.transport.external import ExternalPlanner
 
         params = planner_params(None, args.param or [])
