@@ -10,7 +10,9 @@ The planner is ifgm_ref.planners.ifgm.IFGMPlanner, unchanged; the node only tran
 reads the goal from its private parameters ~goal_x and ~goal_y (metres, odom frame), and the
 robot and the sensor from /ifgm_ref/robot and /ifgm_ref/sensor (docs/ros-nodes.md). It decides
 once per scan, in the scan's callback, from the latest odometry, and publishes the decision as
-a Twist; a stop the planner asks for goes to /ifgm_ref/stop. Everything is in metres: the
+a Twist, with its behaviour on /ifgm_ref/behaviour (and its Figure 3 branch on
+/ifgm_ref/branch, given _report_branch:=true); a stop the planner asks for goes to
+/ifgm_ref/stop. Everything is in metres: the
 planner derives its lengths from the robot and the sensor, so it runs in any unit.
 """
 
@@ -67,6 +69,14 @@ class IfgmNode:
         self.started = False
         self.cmd_vel = rospy.Publisher("/cmd_vel", Twist, queue_size=1)
         self.stop = rospy.Publisher("/ifgm_ref/stop", String, queue_size=1)
+        # Optional labels for the trace (a Twist cannot carry them): the behaviour always; the
+        # Figure 3 branch only if ~report_branch is true, since the oracle's dead_end_turns
+        # then reads the 45-degree turns from the commanded headings, and a velocity command
+        # only says one step's turn (the reference answering Twists fails it the same way:
+        # ifgm-ref oracle --planner ifgm_ref.oracle.variants:Twist --check dead_end_turns).
+        self.report_branch = rospy.get_param("~report_branch", False)
+        self.branch = rospy.Publisher("/ifgm_ref/branch", String, queue_size=1)
+        self.behaviour = rospy.Publisher("/ifgm_ref/behaviour", String, queue_size=1)
         rospy.Subscriber("/odom", Odometry, self.on_odom, queue_size=1)
         rospy.Subscriber("/scan", LaserScan, self.on_scan, queue_size=1)
 
@@ -99,6 +109,9 @@ class IfgmNode:
         twist.linear.x = linear
         twist.angular.z = angular
         self.cmd_vel.publish(twist)
+        if self.report_branch:
+            self.branch.publish(String(data=command.branch or ""))
+        self.behaviour.publish(String(data=command.behaviour or ""))
         if command.stop is not None:
             self.stop.publish(String(data=command.stop))
 

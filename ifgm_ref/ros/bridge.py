@@ -12,7 +12,8 @@ under the stand-in (:mod:`ifgm_ref.ros`) by a :class:`~ifgm_ref.ros.broker.Broke
    float32), both stamped ``t``, and the nodes run everything due at ``t``;
 3. the command executed from ``t`` to ``t + dt`` is the last ``/cmd_vel`` published at or
    before ``t``, held like a base controller holds it, or zero if there was none or it is older
-   than :data:`CMD_VEL_TIMEOUT`; a ``/ifgm_ref/stop`` or a node's end ends the episode.
+   than :data:`CMD_VEL_TIMEOUT`; a ``/ifgm_ref/stop`` or a node's end ends the episode;
+   the branch and behaviour labels published since the step before are the command's.
 """
 
 from __future__ import annotations
@@ -194,6 +195,7 @@ class RosPlanner:
             self.goal_topic, "geometry_msgs/PoseStamped", to_wire(pose), latch=True
         )
         self._broker.settle(0, inclusive=True)
+        self._broker.labels = {}
 
     def _step(self, observation: Observation) -> Command:
         t = nanoseconds(observation.t)
@@ -205,8 +207,10 @@ class RosPlanner:
         velocity = broker.command
         fresh = velocity is not None and t - velocity.t <= nanoseconds(CMD_VEL_TIMEOUT)
         linear, angular = (velocity.linear, velocity.angular) if fresh and velocity else (0.0, 0.0)
+        labels = {key: text or None for key, text in broker.labels.items()}  # "": none
+        broker.labels = {}
         command = Command.from_twist(
-            linear / self.scale, angular, observation.pose, self._params, stop=broker.stop
+            linear / self.scale, angular, observation.pose, self._params, stop=broker.stop, **labels
         )
         self._last = (
             command.twist(observation.pose, self._params) if not command.problem() else (0.0, 0.0)

@@ -24,7 +24,7 @@ from typing import Any
 
 from ifgm_ref.errors import ImplementationError
 from ifgm_ref.ros.process import NodeProcess
-from ifgm_ref.ros.rules import CMD_VEL, MAX_ACTIVATIONS, STOP_TOPIC
+from ifgm_ref.ros.rules import CMD_VEL, LABEL_TOPICS, MAX_ACTIVATIONS, STOP_TOPIC
 
 __all__ = ["Broker", "Velocity"]
 
@@ -80,6 +80,7 @@ class Broker:
         self.now = 0
         self.command: Velocity | None = None
         self.stop: str | None = None
+        self.labels: dict[str, str] = {}
         self.subscribers: dict[str, list[tuple[int, str]]] = {}
         self.latched: dict[str, tuple[str, Any]] = {}
         self.latching: set[tuple[int, str]] = set()
@@ -269,6 +270,8 @@ class Broker:
             self.latched[name] = (kind, data)
         if name == CMD_VEL[0] or name == STOP_TOPIC[0]:
             self._for_the_base(name, kind, data, sender)
+        elif name in LABEL_TOPICS and kind == "std_msgs/String":
+            self.labels[LABEL_TOPICS[name]] = str(data[0])
         seen: set[int] = set()
         for index, wanted in self.subscribers.get(name, []):
             if wanted == kind and index not in seen and self.nodes[index].alive:

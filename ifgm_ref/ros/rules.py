@@ -6,7 +6,14 @@ the stand-in.
 
 from __future__ import annotations
 
-__all__ = ["CMD_VEL", "CMD_VEL_TIMEOUT", "GOAL_TOPIC", "MAX_ACTIVATIONS", "STOP_TOPIC"]
+__all__ = [
+    "CMD_VEL",
+    "CMD_VEL_TIMEOUT",
+    "GOAL_TOPIC",
+    "LABEL_TOPICS",
+    "MAX_ACTIVATIONS",
+    "STOP_TOPIC",
+]
 
 #: A ``/cmd_vel`` older than this (s of simulated time) is no longer executed: the robot
 #: stops. 0.5 s is ``diff_drive_controller``'s default ``cmd_vel_timeout``, the common ROS
@@ -20,6 +27,10 @@ CMD_VEL = ("/cmd_vel", "geometry_msgs/Twist")
 #: The topic on which a node ends its episode, and its type: ``goal_unreachable`` or
 #: ``done`` (:class:`~ifgm_ref.protocol.PlannerStop`); any other text is an invalid command.
 STOP_TOPIC = ("/ifgm_ref/stop", "std_msgs/String")
+#: Optional topics (``std_msgs/String``) on which a node labels its decisions for the trace,
+#: as the recorded bags carry them (:mod:`ifgm_ref.bags.messages`): the Figure 3 branch and
+#: the behaviour. A label published since the step before is the step's.
+LABEL_TOPICS = {"/ifgm_ref/branch": "branch", "/ifgm_ref/behaviour": "behaviour"}
 #: The most node activations at one simulated time: beyond, nodes that keep waking each
 #: other without letting the clock move are reported, not waited for.
 MAX_ACTIVATIONS = 10_000
