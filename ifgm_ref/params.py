@@ -340,8 +340,22 @@ def jackal_lidar() -> SensorParams:
     return SensorParams(fov=1.5 * math.pi, rays=720, range_max=30.0, range_min=0.1)
 
 
+def lidar_180() -> SensorParams:
+    """A common 2D LiDAR looking ahead only: 180 degrees in 720 rays, 0.1 to 30 m.
+
+    Units are metres (as :func:`jackal_lidar`, the 270-degree one).
+
+    >>> s = lidar_180()
+    >>> round(math.degrees(s.fov)), s.rays, s.range_min, s.range_max
+    (180, 720, 0.1, 30.0)
+    """
+    return SensorParams(fov=math.pi, rays=720, range_max=30.0, range_min=0.1)
+
+
 #: Sensor presets by name (``--sensor NAME`` on the command line).
-SENSOR_PRESETS = {"paper_ir": paper_ir, "jackal_lidar": jackal_lidar}
+SENSOR_PRESETS = {"paper_ir": paper_ir, "jackal_lidar": jackal_lidar, "lidar_180": lidar_180}
+#: The length unit each preset of :data:`SENSOR_PRESETS` is written in.
+SENSOR_PRESET_UNITS = {"paper_ir": "ft", "jackal_lidar": "m", "lidar_180": "m"}
 
 
 #: The robot's fields ``--robot NAME=VALUE`` sets (its noise has ``--noise``).

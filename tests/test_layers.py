@@ -178,6 +178,7 @@ ORACLE_LAYERS = (
         "ifgm_ref.oracle.implementation",
         "ifgm_ref.oracle.check_types",
         "ifgm_ref.oracle.profiles",
+        "ifgm_ref.oracle.specification",
         "ifgm_ref.oracle.domains",
         "ifgm_ref.oracle.strategies",
         "ifgm_ref.oracle.percept_strategies",
@@ -198,6 +199,7 @@ ORACLE_LAYERS = (
     ),
     (
         "ifgm_ref.oracle.runner",
+        "ifgm_ref.oracle.counterexample",
         "ifgm_ref.oracle.pytest_plugin",
         "ifgm_ref.oracle.test_conformance",
     ),

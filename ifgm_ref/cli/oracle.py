@@ -23,6 +23,7 @@ from ifgm_ref.params import SimParams
 if TYPE_CHECKING:
     from ifgm_ref.cli.common import Subcommands
     from ifgm_ref.oracle.implementation import Implementation
+    from ifgm_ref.oracle.specification import Specification
 
 
 def add_oracle(sub: Subcommands) -> None:
@@ -72,6 +73,14 @@ def add_oracle(sub: Subcommands) -> None:
         metavar="PLANNER",
         help="check what this built-in planner promises (default: its own, or ifgm's)",
     )
+    oracle.add_argument(
+        "--spec",
+        metavar="FILE.toml",
+        help="the implementation's declared specification: what it promises, its level and "
+        "readings, goal tolerance, dt, sensor and robot, in its own length unit (docs/oracle.md, "
+        "'Declaring your implementation's specification'); not with --promises, --level, "
+        "--reading, --robot or --speed",
+    )
     _add_run_options(oracle)
     oracle.set_defaults(func=run_oracle)
 
@@ -80,7 +89,6 @@ def _add_level_options(oracle: argparse.ArgumentParser) -> None:
     """The level of conformance, and the readings the implementation declares for it."""
     oracle.add_argument(
         "--level",
-        default="paper",
         choices=("paper", "reference"),
         help="paper (the default): the paper's properties, which any valid reading passes; "
         "reference: those and agreement with the reference IFGM step by step "
@@ -154,6 +162,7 @@ def run_oracle(args: argparse.Namespace) -> int:
         name, _, reason = item.partition("=")
         expected[name] = reason or "expected"
     equations = None if args.equations is None else load_equations(args.equations)
+    spec = declared_by(args)  # before any program starts: a bad file is one line
     if args.ros_node is not None:
         impl = _ros_implementation(args, equations)  # started and reset once, or it raises
     elif args.cmd is not None:
@@ -186,6 +195,7 @@ def run_oracle(args: argparse.Namespace) -> int:
             jobs=args.jobs,
             noise=args.noise,
             level=args.level,
+            spec=spec,
         )
     finally:
         impl.close()
@@ -200,6 +210,20 @@ def _ros_implementation(args: argparse.Namespace, equations: object | None) -> I
     from ifgm_ref.cli.ros_oracle import ros_implementation
 
     return ros_implementation(args, equations)
+
+
+def declared_by(args: argparse.Namespace) -> Specification | None:
+    """The specification of ``--spec``, if given (said on stderr: what the run holds the
+    implementation to); an option that declares what the file declares is refused."""
+    from ifgm_ref.oracle.specification import load_specification, refuse_options
+
+    if args.spec is None:
+        return None
+    spec = load_specification(args.spec)
+    given = {"--promises": args.promises, "--level": args.level, "--reading": args.reading}
+    refuse_options(spec.source, {**given, "--robot": args.robot, "--speed": args.speed})
+    print(spec.held_to(), file=sys.stderr)
+    return spec
 
 
 def keep_hypothesis_out_of_the_working_folder() -> None:

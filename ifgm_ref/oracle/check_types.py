@@ -21,7 +21,7 @@ from hypothesis import strategies as st
 from ifgm_ref.convergence import time_bound
 from ifgm_ref.errors import IfgmRefError, ImplementationError
 from ifgm_ref.oracle.implementation import Implementation
-from ifgm_ref.params import SimParams
+from ifgm_ref.params import SensorParams, SimParams
 from ifgm_ref.simulator import Run
 from ifgm_ref.world import World
 from ifgm_ref.worldgen.draws import Draw
@@ -93,7 +93,7 @@ class Recorder:
 
     ``sim`` is what every episode of the check starts from: the engine and body of the
     profile (:meth:`~ifgm_ref.oracle.profiles.Profile.sim`; kinematic by default); ``robot``
-    the profile's changes to the robot of every world drawn.
+    the profile's changes to the robot of every world drawn, ``sensor`` (if any) its sensor.
     """
 
     examples: int = 0
@@ -103,6 +103,7 @@ class Recorder:
     tally: Counter[str] = field(default_factory=Counter)
     sim: SimParams = field(default_factory=SimParams)
     robot: tuple[tuple[str, float], ...] = ()
+    sensor: SensorParams | None = None
 
     @property
     def physical(self) -> bool:
@@ -110,8 +111,10 @@ class Recorder:
         return self.sim.engine != SimParams().engine
 
     def robot_of(self, world: World) -> World:
-        """``world`` with the profile's changes to its robot (``--robot``, ``--speed``)."""
-        return world.with_robot(dict(self.robot))
+        """``world`` with the profile's changes to its robot (``--robot``, ``--speed``) and
+        its sensor (a declared specification's)."""
+        world = world.with_robot(dict(self.robot))
+        return world if self.sensor is None else replace(world, sensor=self.sensor)
 
     def sim_for(self, world: World) -> SimParams:
         """The settings of an episode in ``world``: :attr:`sim` stopped at the world's

@@ -18,7 +18,7 @@ from ifgm_ref.engine import require_physics
 from ifgm_ref.errors import ImplementationError
 from ifgm_ref.noise import NoiseLevels
 from ifgm_ref.oracle.implementation import Promises
-from ifgm_ref.params import ENGINES, SimParams
+from ifgm_ref.params import DT, ENGINES, GOAL_TOLERANCE, SensorParams, SimParams
 from ifgm_ref.physics.bodies import BODIES
 
 __all__ = [
@@ -50,6 +50,9 @@ class Profile:
     ``mujoco`` engine's ``body`` (``None``: the robot's default). It changes no draw: the
     same examples run on either engine. ``robot`` changes these fields of the robot of every
     world drawn (``--robot``, ``--speed``: :func:`~ifgm_ref.params.changed_robot`), as pairs.
+    ``sensor`` (``None``: each world's own) replaces the sensor of every world drawn, and
+    every episode runs at ``dt`` and ends as reached within ``goal_tolerance``: what an
+    implementation declares in its specification (:mod:`ifgm_ref.oracle.specification`).
     """
 
     name: str
@@ -62,6 +65,9 @@ class Profile:
     engine: str = ENGINES[0]
     body: str | None = None
     robot: tuple[tuple[str, float], ...] = ()
+    sensor: SensorParams | None = None
+    dt: float = DT
+    goal_tolerance: float = GOAL_TOLERANCE
 
     def __post_init__(self) -> None:
         if self.engine not in ENGINES:
@@ -81,8 +87,10 @@ class Profile:
 
     def sim(self) -> SimParams:
         """The simulation settings every episode of its checks starts from: the engine and
-        body; each episode sets its own time bound."""
-        return SimParams(engine=self.engine, body=self.body)
+        body, the time step and the goal tolerance; each episode sets its own time bound."""
+        return SimParams(
+            dt=self.dt, goal_tolerance=self.goal_tolerance, engine=self.engine, body=self.body
+        )
 
     @property
     def is_robustness_run(self) -> bool:

@@ -39,6 +39,12 @@ from ifgm_ref.oracle.profiles import (
     with_noise,
 )
 from ifgm_ref.oracle.runner import CheckResult, run_check, tally
+from ifgm_ref.oracle.specification import (
+    Specification,
+    declared,
+    load_specification,
+    refuse_options,
+)
 from ifgm_ref.params import ENGINES
 from ifgm_ref.physics.bodies import BODIES
 from ifgm_ref.planners.ifgm_readings import parse_readings
@@ -80,6 +86,13 @@ def pytest_addoption(parser: pytest.Parser) -> None:
         help="check what this built-in planner promises (default: the built-in's own, or ifgm)",
     )
     group.addoption(
+        "--ifgm-spec",
+        metavar="FILE.toml",
+        help="the implementation's declared specification (as ifgm-ref oracle --spec): its "
+        "promises, level, readings, goal tolerance, dt, sensor and robot; not with "
+        "--ifgm-promises, --ifgm-level or --ifgm-reading",
+    )
+    group.addoption(
         "--ifgm-equations",
         metavar="MODULE",
         help="a module (or module:attribute) exposing eq1_gap_midpoint ... eq4_final_heading "
@@ -105,7 +118,6 @@ def _add_level_options(group: pytest.OptionGroup) -> None:
     """``--ifgm-level`` and the readings the implementation declares, ``--ifgm-reading``."""
     group.addoption(
         "--ifgm-level",
-        default="paper",
         choices=[str(level) for level in Level],
         help="paper (default): the paper's properties; reference: those and agreement with "
         "the reference IFGM step by step (agrees_with_reference)",
@@ -164,8 +176,13 @@ class OracleSession:
         self.results: list[CheckResult] = []
         self.expected = _expected_failures(config.getoption("ifgm_xfails"))
         self.profile = _profile(config)
-        self.levels = levels_up_to(config.getoption("ifgm_level"))
+        level = config.getoption("ifgm_level") or Level.PAPER
         self.implementation = _implementation(config)
+        self.spec = _specification(config)
+        if self.spec is not None:  # its promises, level, robot, sensor, dt and goal tolerance
+            held = declared(self.spec, self.implementation, self.profile)
+            self.implementation, self.profile, level = held[:3]
+        self.levels = levels_up_to(level)
 
     def run(self, check: str) -> CheckResult:
         """Run ``check`` against the implementation under test."""
@@ -227,6 +244,22 @@ def _implementation(config: pytest.Config) -> Implementation:
         raise pytest.UsageError(f"ifgm-ref oracle: cannot load the implementation: {err}") from err
 
 
+def _specification(config: pytest.Config) -> Specification | None:
+    """The specification of ``--ifgm-spec``, if given; an option that declares what the file
+    declares is refused (:func:`~ifgm_ref.oracle.specification.refuse_options`)."""
+    path = config.getoption("ifgm_spec")
+    if path is None:
+        return None
+    try:
+        spec = load_specification(path)
+        given = ("ifgm_promises", "ifgm_level", "ifgm_reading")
+        options = {"--" + name.replace("_", "-"): config.getoption(name) for name in given}
+        refuse_options(spec.source, options)
+    except IfgmRefError as err:
+        raise pytest.UsageError(f"ifgm-ref oracle: --ifgm-spec: {err}") from err
+    return spec
+
+
 def _profile(config: pytest.Config) -> Profile:
     """The profile of ``--ifgm-profile``, with the levels of ``--ifgm-noise`` if given, on the
     engine of ``--ifgm-engine`` and ``--ifgm-body``."""
@@ -274,18 +307,33 @@ def pytest_report_header(config: pytest.Config) -> list[str]:
     except pytest.UsageError:  # said once the suite is collected
         profile = profile_named(config.getoption("ifgm_profile"))
     promises = config.getoption("ifgm_promises") or (spec if spec in PROMISES else None)
+    declared_in = _declared_in(config)
+    promised = PROMISES.get(promises or "ifgm", Promises())
+    if declared_in is not None:
+        promises, promised = f"declared in {declared_in.source}", declared_in.promises
     lines = [
         f"ifgm-ref oracle: implementation {spec or 'cmd: ' + cmd}",
         f"ifgm-ref oracle: profile {profile.name} ({profile.max_examples} examples per check), "
         f"promises {promises or 'default'}, equations {config.getoption('ifgm_equations')}, "
         f"artifacts {config.getoption('ifgm_artifacts')}",
     ]
-    checked, promised = noise_tags(profile, PROMISES.get(promises or "ifgm", Promises()))
+    checked, noise = noise_tags(profile, promised)
     if checked is not None:
-        lines.append(f"ifgm-ref oracle: noise {checked} checked, {promised} promised")
+        lines.append(f"ifgm-ref oracle: noise {checked} checked, {noise} promised")
     if profile.physical:
         lines.append(f"ifgm-ref oracle: engine {engine_tag(profile)}")
+    if declared_in is not None:
+        lines += [f"ifgm-ref oracle: {line}" for line in declared_in.held_to().splitlines()]
     return lines
+
+
+def _declared_in(config: pytest.Config) -> Specification | None:
+    """The specification of ``--ifgm-spec`` for the header (``None``: none, or a bad one,
+    which is said once the suite is collected)."""
+    try:
+        return _specification(config)
+    except pytest.UsageError:
+        return None
 
 
 def pytest_terminal_summary(terminalreporter: Any, exitstatus: int, config: pytest.Config) -> None:

@@ -36,12 +36,12 @@ from ifgm_ref.noise import NoiseLevels
 from ifgm_ref.oracle.check_types import (
     Check,
     CheckFailed,
-    Evidence,
     Kind,
     Level,
     Recorder,
 )
 from ifgm_ref.oracle.checks import CHECKS, checks_at
+from ifgm_ref.oracle.counterexample import write_evidence
 from ifgm_ref.oracle.implementation import Implementation, Promises, promises_of
 from ifgm_ref.oracle.profiles import (
     Profile,
@@ -51,9 +51,8 @@ from ifgm_ref.oracle.profiles import (
     with_noise,
 )
 from ifgm_ref.oracle.robust import noisy_examples, run_statistical, with_world
-from ifgm_ref.params import SimParams
+from ifgm_ref.oracle.specification import Specification, declared, in_feet
 from ifgm_ref.protocol import Planner
-from ifgm_ref.worldfile import save_world
 
 
 class Status(StrEnum):
@@ -109,7 +108,8 @@ class Report:
     :meth:`~ifgm_ref.noise.NoiseLevels.tags` writes them: ``"none"`` when the implementation
     promised none) and which the implementation promises (``promised``); ``noise`` is ``None``
     for a noise-free run. ``engine`` names the engine the simulations ran on, and its body if
-    one was chosen (:func:`engine_tag`).
+    one was chosen (:func:`engine_tag`). ``held_to`` says what a declared specification held
+    the implementation to (:meth:`~.specification.Specification.held_to`; ``""``: none).
     """
 
     implementation: str
@@ -118,6 +118,7 @@ class Report:
     noise: str | None = None
     promised: str = "none"
     engine: str = "kinematic"
+    held_to: str = ""
 
     @property
     def ok(self) -> bool:
@@ -144,8 +145,9 @@ class Report:
         return f"{self.implementation} ({how}): {tally(self.results)}: {verdicts}"
 
     def text(self) -> str:
-        """Every result's line, then the summary."""
-        return "\n".join([*(r.line() for r in self.results), self.summary()])
+        """What a specification held it to (if any), every result's line, then the summary."""
+        held = [self.held_to] if self.held_to else []
+        return "\n".join([*held, *(r.line() for r in self.results), self.summary()])
 
 
 def tally(results: Iterable[CheckResult]) -> str:
@@ -187,7 +189,7 @@ def run_check(
     reason = check.applies(impl) or _noise_reason(check, profile, levels)
     if reason is not None:
         return CheckResult(check.name, Status.NOT_APPLICABLE, message=reason)
-    recorder = Recorder(sim=profile.sim(), robot=profile.robot)
+    recorder = Recorder(sim=profile.sim(), robot=profile.robot, sensor=profile.sensor)
     explore = _explorer(check, impl, profile, levels, recorder, progress)
     started = time.perf_counter()
     failure: Exception | None = None
@@ -250,7 +252,8 @@ def _explorer(
         n = profile.max_examples
         return functools.partial(run_statistical, check, impl, levels, n, first, recorder, progress)
     examples = check.strategy(impl)
-    if profile.robot:
+    changed = bool(profile.robot) or profile.sensor is not None
+    if changed:
         examples = examples.map(lambda drawn: with_world(drawn, recorder.robot_of))
     if levels is not None:
         examples = noisy_examples(examples, levels)
@@ -264,6 +267,8 @@ def _explorer(
 
     if levels is None and check.explicit is not None:
         for given_first in reversed(check.explicit()):
+            if changed and in_feet(given_first):  # BARN's samples keep their robot, in metres
+                given_first = with_world(given_first, recorder.robot_of)
             prop = example(given_first)(prop)
     return prop if profile.seed is None else seed(profile.seed)(prop)
 
@@ -373,48 +378,6 @@ def _result(
     return CheckResult(check, status, examples, worlds, seconds, message, folder)
 
 
-def write_evidence(
-    folder: Path, evidence: Evidence, check: Check, impl: Implementation, message: str,
-    *, sim: SimParams | None = None,
-) -> None:  # fmt: skip
-    """Write a failure's counterexample: world files, traces, plots and ``report.md``, whose
-    replay commands run on ``sim``'s engine and body (default: kinematic)."""
-    folder.mkdir(parents=True, exist_ok=True)
-    lines = [f"# {check.name}: failed", "", f"Property: {check.sentence}.", "", message, ""]
-    if evidence.inputs is not None:
-        lines += ["Inputs:", "", f"    {evidence.inputs!r}", ""]
-    names = ["world", "world_moved"][: len(evidence.worlds)]
-    for k, world in enumerate(evidence.worlds):
-        save_world(world, folder / f"{names[k]}.json")
-    for k, run in enumerate(evidence.runs):
-        stem = names[min(k, len(names) - 1)] + ("_rerun" if k >= len(names) else "")
-        (folder / f"{stem}_trace.csv").write_text(run.trace_csv())
-        mark = evidence.step if k == 0 else None
-        _plot(evidence.worlds[min(k, len(names) - 1)], run, folder / f"{stem}.png", mark)
-    if evidence.worlds:
-        planner = impl.label if not impl.label.startswith("cmd: ") else None
-        how = f"--planner {planner}" if planner else f'--cmd "{impl.label[5:]}"'
-        limit = f" --max-time {evidence.max_time:.6g}" if evidence.max_time else ""
-        if sim is not None and sim.engine != SimParams().engine:  # replay on the same engine
-            limit += f" --engine {sim.engine}" + (f" --body {sim.body}" if sim.body else "")
-        lines += ["Replay:", ""]
-        for name in names:
-            lines.append(
-                f"    ifgm-ref simulate {folder / name}.json {how}{limit} "
-                f"--plot {folder / name}_replay.png --trace {folder / name}_replay_trace.csv "
-                f"--record {folder / name}_replay.mcap"
-            )
-        lines.append("")
-    (folder / "report.md").write_text("\n".join(lines))
-
-
-def _plot(world: Any, run: Any, path: Path, mark: int | None) -> None:
-    from ifgm_ref.plotting import finest_colouring, plot_run, save_figure
-
-    colour_by = finest_colouring(run.trace)
-    save_figure(plot_run(world, run.trace, run.result, colour_by=colour_by, mark=mark), path)
-
-
 def _implementation(
     planner: Callable[[], Planner] | Implementation | str,
     promises: Promises | str | None,
@@ -445,7 +408,8 @@ def check_planner(
     stop_on_failure: bool = False,
     jobs: int = 1,
     noise: NoiseLevels | str | None = None,
-    level: Level | str = Level.PAPER,
+    level: Level | str | None = None,
+    spec: Specification | str | Path | None = None,
 ) -> Report:
     """Check a planner implementation against every property it promises.
 
@@ -467,30 +431,45 @@ def check_planner(
     on_fail : {None, "raise", "warn"}, default None
         Raise :class:`AssertionError` or warn when a check failed or errored.
     progress, stop_on_failure : bool, default False
-        Print each check's result on stderr as it finishes; stop after the first check that
-        fails or errors (the rest are not reported).
+        Print each result on stderr as it comes; stop at the first check that fails or errors.
     jobs : int, default 1
         Run the simulation checks in this many processes (the verdicts do not depend on it);
         the factory must then pickle (a program under test starts anew in each worker).
     noise : NoiseLevels or str, optional
-        Check under these noise levels (``"range=0.02,dropout=0.05"``), in any profile,
-        instead of those promised (:mod:`ifgm_ref.oracle.robust`).
+        Check under these noise levels (``"range=0.02"``, :mod:`~.robust`), not those promised.
     level : {"paper", "reference"}, default "paper"
-        The paper's properties, or those and ``agrees_with_reference``
-        (:func:`~ifgm_ref.oracle.checks.checks_at`); ``checks`` may name either level's.
+        The paper's properties, or also ``agrees_with_reference`` (:func:`~.checks.checks_at`).
+    spec : Specification or path, optional
+        Its declared specification (TOML: promises, level, robot, sensor, dt, goal tolerance).
 
     Returns
     -------
     Report
         One :class:`CheckResult` per check, the noise levels checked, and a summary.
     """
-    impl = _implementation(planner, promises, equations)
+    impl, profile, level, held_to = _declared(planner, promises, equations, profile, level, spec)
     expected = dict(expected_failed_checks or {})
     names, profile = _arguments(checks, expected, with_noise(profile, noise), jobs, level)
     done = _run_checks(names, impl, profile, artifacts, expected, jobs, progress, stop_on_failure)
-    report = _report(impl, profile, done)
+    report = replace(_report(impl, profile, done), held_to=held_to)
     _act_on(report, on_fail)
     return report
+
+
+def _declared(
+    planner: Callable[[], Planner] | Implementation | str,
+    promises: Promises | str | None,
+    equations: object | None,
+    profile: Profile | str,
+    level: Level | str | None,
+    spec: Specification | str | Path | None,
+) -> tuple[Implementation, Profile | str, Level | str, str]:
+    """The implementation, profile and level :func:`check_planner` runs, held to ``spec`` if
+    given (:func:`~.specification.declared`), and what that holds it to (``""``: nothing)."""
+    impl = _implementation(planner, promises, equations)
+    if spec is None:
+        return impl, profile, level or Level.PAPER, ""
+    return declared(spec, impl, profile, promises, level)
 
 
 def _report(impl: Implementation, profile: Profile, done: tuple[CheckResult, ...]) -> Report:

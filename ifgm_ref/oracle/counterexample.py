@@ -1,0 +1,62 @@
+"""A failing check's counterexample on disk: world files, traces, plots and ``report.md``.
+
+:func:`write_evidence` writes what a failing example left behind
+(:class:`~ifgm_ref.oracle.check_types.Evidence`) into one folder per check, with the commands
+that replay it on the same engine, body, time step and goal tolerance (``ifgm-ref simulate``).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+from ifgm_ref.oracle.check_types import Check, Evidence
+from ifgm_ref.oracle.implementation import Implementation
+from ifgm_ref.params import DT, GOAL_TOLERANCE, SimParams
+from ifgm_ref.worldfile import save_world
+
+__all__ = ["write_evidence"]
+
+
+def write_evidence(
+    folder: Path, evidence: Evidence, check: Check, impl: Implementation, message: str,
+    *, sim: SimParams | None = None,
+) -> None:  # fmt: skip
+    """Write a failure's counterexample: world files, traces, plots and ``report.md``, whose
+    replay commands run on ``sim``'s engine and body (default: kinematic)."""
+    folder.mkdir(parents=True, exist_ok=True)
+    lines = [f"# {check.name}: failed", "", f"Property: {check.sentence}.", "", message, ""]
+    if evidence.inputs is not None:
+        lines += ["Inputs:", "", f"    {evidence.inputs!r}", ""]
+    names = ["world", "world_moved"][: len(evidence.worlds)]
+    for k, world in enumerate(evidence.worlds):
+        save_world(world, folder / f"{names[k]}.json")
+    for k, run in enumerate(evidence.runs):
+        stem = names[min(k, len(names) - 1)] + ("_rerun" if k >= len(names) else "")
+        (folder / f"{stem}_trace.csv").write_text(run.trace_csv())
+        mark = evidence.step if k == 0 else None
+        _plot(evidence.worlds[min(k, len(names) - 1)], run, folder / f"{stem}.png", mark)
+    if evidence.worlds:
+        planner = impl.label if not impl.label.startswith("cmd: ") else None
+        how = f"--planner {planner}" if planner else f'--cmd "{impl.label[5:]}"'
+        limit = f" --max-time {evidence.max_time:.6g}" if evidence.max_time else ""
+        if sim is not None and sim.engine != SimParams().engine:  # replay on the same engine
+            limit += f" --engine {sim.engine}" + (f" --body {sim.body}" if sim.body else "")
+        if sim is not None and (sim.dt, sim.goal_tolerance) != (DT, GOAL_TOLERANCE):
+            limit += f" --dt {sim.dt:.6g} --goal-tolerance {sim.goal_tolerance:.6g}"
+        lines += ["Replay:", ""]
+        for name in names:
+            lines.append(
+                f"    ifgm-ref simulate {folder / name}.json {how}{limit} "
+                f"--plot {folder / name}_replay.png --trace {folder / name}_replay_trace.csv "
+                f"--record {folder / name}_replay.mcap"
+            )
+        lines.append("")
+    (folder / "report.md").write_text("\n".join(lines))
+
+
+def _plot(world: Any, run: Any, path: Path, mark: int | None) -> None:
+    from ifgm_ref.plotting import finest_colouring, plot_run, save_figure
+
+    colour_by = finest_colouring(run.trace)
+    save_figure(plot_run(world, run.trace, run.result, colour_by=colour_by, mark=mark), path)
