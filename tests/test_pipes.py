@@ -11,11 +11,12 @@ import subprocess
 import sys
 import textwrap
 import time
+import tracemalloc
 from collections.abc import Callable, Iterator
 
 import pytest
 
-from ifgm_ref.transport.pipes import Pipes, connect
+from ifgm_ref.transport.pipes import CHUNK, MAX_LINE, LineTooLongError, Pipes, connect
 
 #: A program's behaviour after its prelude, by name: it echoes, or misbehaves.
 PROGRAMS = {
@@ -29,6 +30,14 @@ PROGRAMS = {
     "deaf": "time.sleep(30)",
     # writes bytes that are not UTF-8
     "bad_bytes": "sys.stdout.buffer.write(b'caf\\xe9\\r\\n'); sys.stdout.flush()",
+    # a line of the longest length read, then one a byte longer
+    "longest": f"out('x' * {MAX_LINE} + '\\n'); out('y' * {MAX_LINE + 1} + '\\n')",
+    # a line of 100 MB, written a chunk at a time
+    "huge": f"for _ in range({100 * 2**20 // CHUNK}):\n    out('x' * {CHUNK})\nout('\\n')",
+    # a line that never ends
+    "endless": f"while True:\n    out('x' * {CHUNK})",
+    # lines without end
+    "flood": f"while True:\n    out('x\\n' * {CHUNK // 2})",
 }
 PRELUDE = """
 import sys, time
@@ -102,9 +111,46 @@ def test_the_end_of_output_keeps_the_last_line_and_then_reads_none(start: Connec
     assert [pipes.receive(soon()) for _ in range(4)] == ["one\n", "two", None, None]
 
 
-def test_bytes_that_are_not_utf8_are_replaced_and_crlf_read_as_newline(start: Connect) -> None:
+def test_bytes_that_are_not_utf8_are_escaped_and_crlf_read_as_newline(start: Connect) -> None:
     pipes = start("bad_bytes")
-    assert pipes.receive(soon()) == "caf\ufffd\n"
+    line = pipes.receive(soon())
+    assert ascii(line) == ascii("caf\udce9\n")  # the byte 0xe9, told from a U+FFFD sent
+
+
+def test_a_line_longer_than_max_line_is_refused(start: Connect) -> None:
+    pipes = start("longest")
+    assert pipes.receive(soon()) == "x" * MAX_LINE + "\n"
+    for _ in range(2):  # refused, and nothing more read
+        with pytest.raises(LineTooLongError) as info:
+            pipes.receive(soon())
+        assert info.value.start == "y" * 200
+
+
+@pytest.mark.parametrize("program", ["huge", "endless"])
+def test_a_line_without_end_takes_no_more_memory_than_max_line(
+    start: Connect, program: str
+) -> None:
+    tracemalloc.start()
+    try:
+        pipes = start(program)
+        with pytest.raises(LineTooLongError):
+            pipes.receive(soon())
+        _, peak = tracemalloc.get_traced_memory()
+    finally:
+        tracemalloc.stop()
+    assert peak < 4 * MAX_LINE  # the 100 MB (or more) were neither read nor held
+
+
+def test_a_flood_of_lines_is_read_only_as_asked(start: Connect) -> None:
+    tracemalloc.start()
+    try:
+        pipes = start("flood")
+        time.sleep(0.5)  # the program writes lines as fast as it can: tens of MB, unread
+        assert pipes.receive(soon()) == "x\n"
+        _, peak = tracemalloc.get_traced_memory()
+    finally:
+        tracemalloc.stop()
+    assert peak < MAX_LINE // 2  # a read's worth (tens of kB), not the flood
 
 
 def test_a_program_that_never_reads_cannot_block_the_caller(start: Connect) -> None:

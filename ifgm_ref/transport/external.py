@@ -13,11 +13,20 @@ of the program (its ``ready`` to the first ``reset``, start-up included), given
 ``startup_timeout`` seconds, as is the program's exit after ``bye``; its stderr is copied by a
 background thread to ``log`` (if given), the last lines kept for error messages. Every way a
 program can fail -- it cannot be started, exits, hangs, writes something that is not a
-protocol message, answers out of turn, exits non-zero at ``bye`` -- raises
-:class:`~ifgm_ref.errors.ImplementationError` saying what happened and at which message (and
-which timeout expired), and kills the program. A broken adapter stays broken: every later
-call raises the same error at once (:attr:`ExternalPlanner.failure`), so that the oracle
-never waits twice on a dead program.
+protocol message (a line that is not UTF-8, or longer than
+:data:`~ifgm_ref.transport.pipes.MAX_LINE` bytes, included), answers out of turn, exits
+non-zero at ``bye`` -- raises :class:`~ifgm_ref.errors.ImplementationError` saying what
+happened and at which message (and which timeout expired), and kills the program. A broken
+adapter stays broken: every later call raises the same error at once
+(:attr:`ExternalPlanner.failure`), so that the oracle never waits twice on a dead program.
+
+Nothing the program starts outlives it: on POSIX it runs in a session of its own (it has no
+controlling terminal, so it cannot write to the oracle's, and a kill reaches its process
+group), and once it has exited, after ``bye`` as after a failure, its whole process group is
+killed before it is reaped, so a process it left behind cannot hold its pipes or run on. (A
+process that leaves the group, with ``setsid``, escapes this.) Its output is read at most
+:data:`~ifgm_ref.transport.pipes.MAX_LINE` at a time -- a longer line on stdout is a failure,
+one on stderr is copied in pieces -- so no output, however long, fills the oracle's memory.
 """
 
 from __future__ import annotations
@@ -26,6 +35,7 @@ import collections
 import contextlib
 import io
 import os
+import re
 import shlex
 import signal
 import subprocess
@@ -40,7 +50,7 @@ from typing import IO, Any, NoReturn, TextIO
 from ifgm_ref.errors import ImplementationError, ParameterError, ProtocolError
 from ifgm_ref.pose import Point, Pose
 from ifgm_ref.protocol import Command, EpisodeParams, Observation
-from ifgm_ref.transport.pipes import Pipes, connect
+from ifgm_ref.transport.pipes import MAX_LINE, LineTooLongError, Pipes, connect
 from ifgm_ref.transport.wire import (
     bye_message,
     decode,
@@ -84,6 +94,17 @@ STDERR_TAIL = 20
 DRAIN_WAIT = 1.0
 #: How long to wait for a killed program to be reaped, s (SIGKILL cannot be ignored).
 REAP_WAIT = 5.0
+#: The longest wait between two looks at whether a program has exited, s: the exit is awaited
+#: without reaping the program (so that its process id, which names its process group, stays
+#: its own until the group is killed), which POSIX lets one poll, not block on with a
+#: timeout. 50 ms, as :meth:`subprocess.Popen.wait` polls, is nothing next to an exit.
+EXIT_POLL = 0.05
+#: How many characters of one stderr line an error message quotes: a traceback's lines fit;
+#: one endless line does not flood the message.
+STDERR_WIDTH = 1000
+#: What a line read holds where the program's bytes were not UTF-8 (lone surrogates, as
+#: :mod:`~ifgm_ref.transport.pipes` decodes them: ``surrogateescape``).
+_NOT_UTF8 = re.compile("[\udc80-\udcff]")
 
 #: How a message names each timeout, with the command-line option that sets it.
 PER_REPLY = "the per-reply timeout, --timeout"
@@ -235,14 +256,13 @@ class ExternalPlanner:
         deadline = time.monotonic() + self.startup_timeout
         self._pipes.send(encode(bye_message()), deadline)  # one that is not read: no exit
         self._pipes.close_input()
-        try:
-            status = process.wait(timeout=max(0.0, deadline - time.monotonic()))
-        except subprocess.TimeoutExpired:
+        if not _exited(process, deadline - time.monotonic()):
             self._fail(
                 f"program did not exit within {self.startup_timeout!r} s after bye "
                 f"({STARTUP}, which bounds the exit too; program killed)",
                 tail=True,
             )
+        status = _kill_process(process)  # and whatever it left running in its group
         self._drain()
         if status != 0:
             self._fail(f"program {_status(status)} after bye", tail=True)
@@ -340,12 +360,26 @@ class ExternalPlanner:
                 raise TimeoutError
             line = self._pipes.receive(deadline)
         except TimeoutError:
+            if self._process is not None and _exited(self._process, 0.0):
+                # gone, but a process it started holds its stdout open: say what it did
+                self._wait_for_exit(
+                    what,
+                    f", but what it started held its stdout open for {wait!r} s "
+                    f"({which}; its process group killed)",
+                )
             self._fail(f"no reply within {wait!r} s to {what} ({which}; program killed)", tail=True)
+        except LineTooLongError as err:
+            self._fail(_too_long(err, f"in reply to {what}"))
         if line is None:
             self._wait_for_exit(what)
         return line
 
     def _parse(self, parser: Any, line: str, what: str) -> Any:
+        if (byte := _NOT_UTF8.search(line)) is not None:
+            self._fail(
+                f"reply to {what} is not UTF-8 (byte 0x{ord(byte.group()) - 0xDC00:02x} at "
+                f"column {byte.start() + 1}): {_quote(line)}"
+            )
         try:
             return parser(decode(line, what=f"reply to {what}"))
         except ProtocolError as err:
@@ -357,29 +391,31 @@ class ExternalPlanner:
     def _check_quiet(self, what: str, *, after: bool = False) -> None:
         """Fail if the program wrote a line nobody asked for (it would desynchronise replies)."""
         assert self._pipes is not None
+        when = f"after {what}" if after else f"before {what}"
         try:
             line = self._pipes.receive(deadline=0.0)  # long past: look, do not wait
         except TimeoutError:
             return
+        except LineTooLongError as err:
+            self._fail(_too_long(err, f"nobody asked for, {when}"))
         if line is None:
             if after:
                 return
             self._wait_for_exit(what)
-        when = f"after {what}" if after else f"before {what}"
-        self._fail(f"program wrote a line nobody asked for {when}: {quote(line)}")
+        self._fail(f"program wrote a line nobody asked for {when}: {_quote(line)}")
 
-    def _wait_for_exit(self, what: str) -> NoReturn:
-        """The program closed its pipes: report its exit (killing it if it lingers)."""
+    def _wait_for_exit(self, what: str, how: str = "") -> NoReturn:
+        """The program closed its stdout (or exited, ``how`` says what then): report its exit,
+        killing it if it lingers, and its process group in any case."""
         process = self._process
         assert process is not None
-        try:
-            status = process.wait(timeout=self.timeout)
-        except subprocess.TimeoutExpired:
+        if not _exited(process, self.timeout):
             self._fail(
                 f"program closed its stdout before answering {what} (program killed)", tail=True
             )
+        status = _kill_process(process)
         self._drain()
-        self._fail(f"program {_status(status)} before answering {what}", tail=True)
+        self._fail(f"program {_status(status)} before answering {what}{how}", tail=True)
 
     def _drain(self) -> None:
         """Let what reads stdout and stderr finish reading what the ended program wrote."""
@@ -430,20 +466,63 @@ class ExternalPlanner:
 
 
 def _copy_lines(stream: IO[str], tail: collections.deque[str], log: TextIO | None) -> None:
-    """Keep the last lines of ``stream`` in ``tail``, copying each to ``log`` (a thread)."""
+    """Keep the last lines of ``stream`` in ``tail``, copying each to ``log`` (a thread).
+
+    A line is read :data:`~ifgm_ref.transport.pipes.MAX_LINE` characters at a time, and
+    ``tail`` keeps the first :data:`STDERR_WIDTH` of each: one endless line holds no more.
+    """
+    whole = True  # whether the piece read last ended its line
     try:
-        for line in stream:
-            tail.append(line.rstrip("\r\n"))
+        while piece := stream.readline(MAX_LINE):
+            if whole:
+                line = piece.rstrip("\r\n")
+                cut = len(line) > STDERR_WIDTH or not piece.endswith("\n")
+                tail.append(f"{line[:STDERR_WIDTH]} [...]" if cut else line)
+            whole = piece.endswith("\n")
             if log is not None:
-                log.write(line)
+                log.write(piece)
                 log.flush()
     except (OSError, ValueError):
         pass
 
 
-def _kill_process(process: subprocess.Popen[bytes]) -> None:
-    """Kill ``process`` and its process group if it still runs, and reap it."""
-    if process.poll() is None:
+def _exited(process: subprocess.Popen[bytes], timeout: float) -> bool:
+    """Whether ``process`` has exited, waiting up to ``timeout`` s (``<= 0``: just look).
+
+    On POSIX the process is left unreaped: a zombie keeps its process id, which names its
+    process group, so that :func:`_kill_process` kills that group and no other.
+    """
+    if os.name != "posix":
+        try:
+            process.wait(timeout=max(0.0, timeout))
+        except subprocess.TimeoutExpired:
+            return False
+        return True
+    deadline, delay = time.monotonic() + timeout, 0.0005
+    while True:
+        if process.returncode is not None:
+            return True
+        try:
+            if os.waitid(os.P_PID, process.pid, os.WEXITED | os.WNOHANG | os.WNOWAIT):
+                return True
+        except ChildProcessError:  # reaped by someone else
+            return True
+        left = deadline - time.monotonic()
+        if left <= 0.0:
+            return False
+        time.sleep(min(delay, left))
+        delay = min(2 * delay, EXIT_POLL)
+
+
+def _kill_process(process: subprocess.Popen[bytes]) -> int | None:
+    """Kill ``process`` and its process group, and reap it; its ``returncode`` (``None`` if
+    it could not be reaped within :data:`REAP_WAIT`).
+
+    The group is killed even when the process has exited (after ``bye``, say): what it
+    started and left running dies with it. Unless the process was already reaped: its id
+    might then name another's group.
+    """
+    if process.returncode is None:
         try:
             if os.name == "posix":
                 os.killpg(process.pid, signal.SIGKILL)
@@ -453,14 +532,35 @@ def _kill_process(process: subprocess.Popen[bytes]) -> None:
             pass
     with contextlib.suppress(subprocess.TimeoutExpired):
         process.wait(timeout=REAP_WAIT)
+    return process.returncode
 
 
-def _status(status: int) -> str:
-    """Say how a program ended from its ``returncode``.
+def _too_long(err: LineTooLongError, where: str) -> str:
+    """Say that the program wrote a line longer than the pipes read, and how it began."""
+    return (
+        f"program wrote a line longer than {MAX_LINE} bytes {where}, read no further "
+        f"(program killed); it began {_quote(err.start)}..."
+    )
 
-    >>> _status(3), _status(-9)
-    ('exited with status 3', 'was killed by signal SIGKILL')
+
+def _quote(line: str) -> str:
+    """:func:`~ifgm_ref.transport.wire.quote`, with the bytes that were not UTF-8 shown as
+    U+FFFD.
+
+    >>> _quote("caf\\udce9\\n")
+    "'caf\ufffd'"
     """
+    return quote(_NOT_UTF8.sub("\ufffd", line))
+
+
+def _status(status: int | None) -> str:
+    """Say how a program ended from its ``returncode`` (``None``: it was not reaped).
+
+    >>> _status(3), _status(-9), _status(None)
+    ('exited with status 3', 'was killed by signal SIGKILL', 'could not be reaped')
+    """
+    if status is None:
+        return "could not be reaped"
     if status >= 0:
         return f"exited with status {status}"
     try:

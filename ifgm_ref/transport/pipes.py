@@ -11,7 +11,12 @@
   be woken, which costs more than the round trip itself (``benchmarks/README.md``).
 
 Neither lets a program block its caller: a line it does not read is still being written when
-the deadline passes, and a reply it does not write is waited for until the deadline.
+the deadline passes, and a reply it does not write is waited for until the deadline. Neither
+lets a program fill the caller's memory: a line is read up to :data:`MAX_LINE` bytes and no
+further (:class:`LineTooLongError`), and lines are read only as they are asked for (polled) or
+queued at most :data:`QUEUED_LINES` ahead (threaded), so a program that writes without end
+blocks on its own full pipe. Bytes that are not UTF-8 reach the caller as lone surrogates
+(``surrogateescape``), so that it can tell them from a program's own U+FFFD and refuse them.
 """
 
 from __future__ import annotations
@@ -24,18 +29,50 @@ import selectors
 import subprocess
 import threading
 import time
-from typing import IO, Protocol
+from typing import IO, NoReturn, Protocol
 
-__all__ = ["POLLED", "Pipes", "PolledPipes", "ThreadedPipes", "connect"]
+__all__ = [
+    "MAX_LINE",
+    "POLLED",
+    "LineTooLongError",
+    "Pipes",
+    "PolledPipes",
+    "ThreadedPipes",
+    "connect",
+]
 
 #: Whether :func:`connect` polls the pipes (POSIX) or hands them to threads.
 POLLED = os.name == "posix"
 #: The most read from the program's stdout at once, bytes.
 CHUNK = 1 << 16
+#: The longest line read from a program, bytes, its newline not counted. A reply is a few
+#: hundred bytes (a ``command`` with every field and long labels stays under 1 kB): a line
+#: a thousand times that is no reply, and reading on would let a program that writes without
+#: end, or a 100 MB line, fill the oracle's memory. At most this and one :data:`CHUNK` are
+#: ever held for one line.
+MAX_LINE = 1 << 20
+#: How many lines the threaded reader queues ahead of the caller: a program in turn has one
+#: reply outstanding, and one more line shows the caller a line nobody asked for. Past that
+#: the reader waits, and a program that floods its stdout blocks on the full pipe.
+QUEUED_LINES = 2
+#: How many characters of a line too long :class:`LineTooLongError` keeps, to be quoted.
+LINE_START = 200
+
+
+class LineTooLongError(Exception):
+    """The program wrote a line of more than :data:`MAX_LINE` bytes; it was not read further.
+
+    ``start`` holds its first :data:`LINE_START` characters, for the error message.
+    """
+
+    def __init__(self, start: str) -> None:
+        super().__init__(f"a line longer than {MAX_LINE} bytes, beginning {start!r}")
+        self.start = start
 
 
 class Pipes(Protocol):
-    """A program's stdin and stdout as lines of text (UTF-8; bytes that are not, replaced)."""
+    """A program's stdin and stdout as lines of text (UTF-8; bytes that are not, as lone
+    surrogates: ``surrogateescape``)."""
 
     def send(self, line: str, deadline: float) -> bool:
         """Write ``line`` and a newline; ``False`` if it was not all written by ``deadline``
@@ -45,7 +82,9 @@ class Pipes(Protocol):
     def receive(self, deadline: float) -> str | None:
         """The next line from the program (with its newline; the last may lack it), or
         ``None`` once its stdout has ended; :class:`TimeoutError` if none came by
-        ``deadline``. A deadline already past looks without waiting."""
+        ``deadline``. A deadline already past looks without waiting. A line of more than
+        :data:`MAX_LINE` bytes raises :class:`LineTooLongError`, then and at every later
+        call: the pipes read nothing more."""
         ...
 
     def close_input(self) -> None:
@@ -71,7 +110,11 @@ def connect(process: subprocess.Popen[bytes], *, polled: bool | None = None) -> 
 
 
 def _text(line: bytes) -> str:
-    return line.decode("utf-8", errors="replace").replace("\r\n", "\n")
+    return line.decode("utf-8", errors="surrogateescape").replace("\r\n", "\n")
+
+
+def _too_long(line: bytes | bytearray) -> LineTooLongError:
+    return LineTooLongError(_text(bytes(line[: 4 * LINE_START]))[:LINE_START])
 
 
 class PolledPipes:
@@ -88,6 +131,7 @@ class PolledPipes:
         self._readable.register(self._out, selectors.EVENT_READ)
         self._buffer = bytearray()
         self._ended = False
+        self._too_long: LineTooLongError | None = None
 
     def send(self, line: str, deadline: float) -> bool:
         data = memoryview((line + "\n").encode("utf-8"))
@@ -102,7 +146,13 @@ class PolledPipes:
         return True
 
     def receive(self, deadline: float) -> str | None:
-        while (end := self._buffer.find(b"\n")) < 0 and not self._ended:
+        if self._too_long is not None:
+            raise self._too_long
+        searched = 0  # the buffer holds no newline before this
+        while (end := self._buffer.find(b"\n", searched)) < 0 and not self._ended:
+            searched = len(self._buffer)
+            if searched > MAX_LINE:
+                self._refuse()
             if not _wait(self._readable, deadline):
                 raise TimeoutError
             self._read()
@@ -111,8 +161,16 @@ class PolledPipes:
             if end < 0:
                 return None
         line = bytes(self._buffer[: end + 1])
+        if len(line) - line.endswith(b"\n") > MAX_LINE:
+            self._refuse()
         del self._buffer[: end + 1]
         return _text(line)
+
+    def _refuse(self) -> NoReturn:
+        """Give up on the line in the buffer, too long: raise, now and at every receive."""
+        self._too_long = _too_long(self._buffer)
+        self._buffer = bytearray()
+        raise self._too_long
 
     def _read(self) -> None:
         try:
@@ -151,15 +209,19 @@ class ThreadedPipes:
 
     def __init__(self, stdin: IO[bytes], stdout: IO[bytes], *, name: str) -> None:
         self._stdin = io.TextIOWrapper(stdin, encoding="utf-8")
-        self._stdout = io.TextIOWrapper(stdout, encoding="utf-8", errors="replace")
+        self._stdout = stdout
         self._outbox: queue.Queue[str | None] = queue.Queue()
-        self._replies: queue.Queue[str | None] = queue.Queue()
+        self._replies: queue.Queue[bytes | None] = queue.Queue(maxsize=QUEUED_LINES)
+        self._closed = threading.Event()
         self._ended = False
+        self._too_long: LineTooLongError | None = None
         self._writer = threading.Thread(
             target=_write_lines, args=(self._stdin, self._outbox), name=f"stdin of {name}"
         )
         self._reader = threading.Thread(
-            target=_read_lines, args=(self._stdout, self._replies), name=f"stdout of {name}"
+            target=_read_lines,
+            args=(self._stdout, self._replies, self._closed),
+            name=f"stdout of {name}",
         )
         for thread in (self._writer, self._reader):
             thread.daemon = True
@@ -170,14 +232,21 @@ class ThreadedPipes:
         return True
 
     def receive(self, deadline: float) -> str | None:
+        if self._too_long is not None:
+            raise self._too_long
         if self._ended:
             return None
         try:
             line = self._replies.get(timeout=max(0.0, deadline - time.monotonic()))
         except queue.Empty:
             raise TimeoutError from None
-        self._ended = line is None
-        return line
+        if line is None:
+            self._ended = True
+            return None
+        if len(line) - line.endswith(b"\n") > MAX_LINE:  # the reader stopped there
+            self._too_long = _too_long(line)
+            raise self._too_long
+        return _text(line)
 
     def close_input(self) -> None:
         self._outbox.put(None)
@@ -187,6 +256,10 @@ class ThreadedPipes:
 
     def close(self) -> None:
         self._outbox.put(None)  # lets the writer end if it waits for a line
+        self._closed.set()  # and the reader, once it has queued the line in hand:
+        with contextlib.suppress(queue.Empty):
+            while True:  # room for it (the reader checks _closed between two lines)
+                self._replies.get_nowait()
         # A pipe its thread still uses (blocked on a full pipe, or a grandchild holds it
         # open) is left to that thread: closing a buffered stream under it would wait for it.
         for pipe, thread in ((self._stdin, self._writer), (self._stdout, self._reader)):
@@ -206,11 +279,20 @@ def _write_lines(stream: IO[str], outbox: queue.Queue[str | None]) -> None:
         pass  # the program is gone (broken pipe) or the pipe was closed: the reader sees it
 
 
-def _read_lines(stream: IO[str], replies: queue.Queue[str | None]) -> None:
-    """Queue every line of ``stream``, then ``None``."""
+def _read_lines(
+    stream: IO[bytes], replies: queue.Queue[bytes | None], closed: threading.Event
+) -> None:
+    """Queue every line of ``stream``, then ``None``; stop after queueing the first
+    :data:`MAX_LINE` + 1 bytes of a line too long, or once ``closed`` is set."""
     try:
-        for line in stream:
-            replies.put(line)
+        while not closed.is_set():
+            line = stream.readline(MAX_LINE + 1)
+            if not line:
+                break
+            replies.put(line)  # waits while QUEUED_LINES are queued
+            if len(line) - line.endswith(b"\n") > MAX_LINE:
+                return  # the caller refuses it: read no further
     except (OSError, ValueError):
         pass  # closed under us
-    replies.put(None)
+    if not closed.is_set():
+        replies.put(None)
