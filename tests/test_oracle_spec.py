@@ -27,6 +27,7 @@ from ifgm_ref.oracle.specification import (
     load_specification,
     refuse_options,
 )
+from ifgm_ref.params import SensorParams
 from ifgm_ref.planners import make_planner
 from ifgm_ref.pose import Point, Pose, distance
 from ifgm_ref.protocol import Command, EpisodeParams, Observation
@@ -116,6 +117,13 @@ def test_the_paper_example_declares_the_defaults() -> None:
     assert (round(math.degrees(spec.sensor.fov)), spec.sensor.rays) == (135, 76)
     assert (spec.sensor.range_min, spec.sensor.range_max) == (0.0, 15.0)
     assert dict(spec.robot)["braking"] == math.inf
+
+
+def test_what_a_file_leaves_out_is_exactly_the_oracles_default() -> None:
+    spec = Specification.parse({"unit": "m"}, "port.toml")
+    assert (spec.goal_tolerance, spec.dt, spec.robot, spec.level) == (0.5, 0.1, (), "paper")
+    assert spec.sensor == SensorParams()  # the paper's IR, in feet whatever the file's unit
+    assert spec.promises == Implementation.from_spec("ifgm").promises
 
 
 def test_a_sensor_preset_in_metres_is_converted_and_overridden_in_the_files_unit(
@@ -329,6 +337,7 @@ def test_the_plugin_takes_a_spec_and_says_what_it_holds_to(pytester: pytest.Pyte
 
 
 _STOPS_SHORT_MODULE = f"""
+from ifgm_ref.params import SensorParams
 from ifgm_ref.planners import make_planner
 from ifgm_ref.pose import distance
 from ifgm_ref.protocol import Command

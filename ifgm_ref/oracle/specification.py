@@ -154,7 +154,9 @@ class Specification:
         return cls(
             source=source,
             unit=unit,
-            goal_tolerance=feet * _number(data, "goal_tolerance", GOAL_TOLERANCE / feet, source),
+            goal_tolerance=feet * _number(data, "goal_tolerance", 1.0, source)
+            if "goal_tolerance" in data
+            else GOAL_TOLERANCE,
             dt=_number(data, "dt", DT, source),
             sensor=sensor,
             sensor_from=sensor_from,
