@@ -25,6 +25,7 @@ from typing import Any
 from ifgm_ref.errors import ImplementationError
 from ifgm_ref.ros.process import NodeProcess
 from ifgm_ref.ros.rules import CMD_VEL, LABEL_TOPICS, MAX_ACTIVATIONS, STOP_TOPIC
+from ifgm_ref.transport.external import PER_REPLY, STARTUP
 
 __all__ = ["Broker", "Velocity"]
 
@@ -179,14 +180,19 @@ class Broker:
     # --- what nodes say -------------------------------------------------------------------
 
     def _read(self, node: _Node, wait: float, what: str) -> dict[str, Any]:
-        return node.process.receive(time.monotonic() + wait, what)
+        return node.process.receive(time.monotonic() + wait, what, self._which(wait))
+
+    def _which(self, wait: float) -> str:
+        """How an error names the timeout ``wait``, with its option."""
+        option = STARTUP if wait == self.startup_timeout else PER_REPLY
+        return f"{wait:g} s, {option}"
 
     def _run_lines(self, index: int, wait: float, what: str) -> None:
         """Handle node ``index``'s lines until it blocks (``idle``) or its child ended."""
         node = self.nodes[index]
         deadline = time.monotonic() + wait
         while True:
-            line = node.process.receive(deadline, what)
+            line = node.process.receive(deadline, what, self._which(wait))
             op = line.get("op")
             if op == "idle":
                 wake = line.get("wake")

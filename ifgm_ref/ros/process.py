@@ -121,8 +121,9 @@ class NodeProcess:
         except OSError as err:
             raise self.failure(f"cannot write to it ({err})") from None
 
-    def receive(self, deadline: float, waiting_for: str) -> dict[str, Any]:
-        """The node's next line, awaited until ``deadline`` (``time.monotonic()``).
+    def receive(self, deadline: float, waiting_for: str, timeout: str = "") -> dict[str, Any]:
+        """The node's next line, awaited until ``deadline`` (``time.monotonic()``); ``timeout``
+        names the timeout that set it, for the error message.
 
         Raises
         ------
@@ -134,7 +135,7 @@ class NodeProcess:
             left = deadline - time.monotonic()
             ready = select.select([self._sock], [], [], max(left, 0.0))[0] if left > 0 else []
             if not ready:
-                raise self.failure(f"no answer while {waiting_for} (process killed)")
+                raise self.failure(f"no answer while {waiting_for} ({timeout}; process killed)")
             chunk = self._sock.recv(1 << 16)
             if not chunk:
                 raise self.failure(f"it {self._status()} while {waiting_for}")
