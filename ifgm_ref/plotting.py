@@ -8,6 +8,7 @@ the sensor's 135-degree field of view (section 4, Figure 2) is drawn at those po
 from __future__ import annotations
 
 import math
+import textwrap
 from collections import Counter
 from collections.abc import Callable, Sequence
 from pathlib import Path
@@ -207,6 +208,12 @@ def draw_believed_path(ax: Axes, trace: Sequence[TraceStep]) -> bool:
     return True
 
 
+#: The longest line of a run's title, characters: a ``--cmd`` program's path makes titles of
+#: any length, and a title wider than the axes runs into the legend beside them (at the
+#: default 12 pt, 60 characters fit the axes of :func:`plot_run`'s 9.5 in figure).
+TITLE_WIDTH = 60
+
+
 def plot_run(
     world: World,
     trace: Sequence[TraceStep],
@@ -233,10 +240,11 @@ def plot_run(
     ax.set_aspect("equal", adjustable="datalim")
     ax.autoscale_view()
     name = world.name or "world"
-    ax.set_title(
+    title = (
         f"{result.planner} in {name}: {result.stop_reason} after {result.time_s:.1f} s, "
         f"path {result.path_length:.1f} {unit}"
     )
+    ax.set_title(textwrap.fill(title, TITLE_WIDTH))
     fig.legend(loc="outside right upper", fontsize="small")
     return fig
 

@@ -182,6 +182,18 @@ class Command:
             rate = wrap_angle(self.heading - pose.theta) / params.dt
         return speed, min(max(rate, -robot.max_turn_rate), robot.max_turn_rate)
 
+    def executed_speed(self, robot: RobotParams) -> str:
+        """This command's speed as the robot executes it, clipped to its top speed, with the
+        speed asked beside it when it was clipped: for messages.
+
+        >>> robot = RobotParams()  # 0.403 m/s in ft/s
+        >>> Command(0.0, 1.0).executed_speed(robot), Command(0.0, 50.0).executed_speed(robot)
+        ('1.0000', '1.3221 (asked 50.0000)')
+        """
+        executed = min(self.speed, robot.speed)
+        asked = f" (asked {self.speed:.4f})" if executed < self.speed else ""
+        return f"{executed:.4f}{asked}"
+
     def problem(self) -> str | None:
         """Say what is wrong with this command, or ``None`` when it can be executed."""
         if not math.isfinite(self.heading):

@@ -132,7 +132,8 @@ class TraceStep:
     ``clearance`` is that of the disc swept from this sample to the next (or standing here,
     for the last sample), in ft. ``x``, ``y`` and ``theta`` are the true pose; the
     ``believed_`` ones the pose the planner was told, which differs with odometry noise
-    (:mod:`ifgm_ref.noise`).
+    (:mod:`ifgm_ref.noise`). ``speed_cmd`` is the speed the planner asked for,
+    ``speed_executed`` the one the robot was driven at: clipped to the robot's top speed.
     """
 
     t: float
@@ -147,6 +148,7 @@ class TraceStep:
     believed_x: float | None = None
     believed_y: float | None = None
     believed_theta: float | None = None
+    speed_executed: float | None = None
 
 
 TRACE_FIELDS = tuple(TraceStep.__dataclass_fields__)
@@ -307,7 +309,8 @@ class _Episode:
     ) -> None:
         """Record the step decided at time ``t`` (told ``believed``) from :attr:`pose` to
         ``new_pose``."""
-        self.trace.append(_sample(t, self.pose, command, clearance, believed))
+        top = self.engine.robot.speed
+        self.trace.append(_sample(t, self.pose, command, clearance, believed, top))
         self.min_clearance = min(self.min_clearance, clearance)
         moved = distance(self.pose, new_pose)
         self.path_length += moved
@@ -420,7 +423,12 @@ def _problem(command: object) -> str | None:
 
 
 def _sample(
-    t: float, pose: Pose, command: Command | None, clearance: float, believed: Pose
+    t: float,
+    pose: Pose,
+    command: Command | None,
+    clearance: float,
+    believed: Pose,
+    top_speed: float = math.inf,
 ) -> TraceStep:
     return TraceStep(
         t=t,
@@ -435,4 +443,5 @@ def _sample(
         believed_x=believed.x,
         believed_y=believed.y,
         believed_theta=believed.theta,
+        speed_executed=None if command is None else min(command.speed, top_speed),
     )

@@ -15,13 +15,15 @@ import pytest
 
 from ifgm_ref.oracle.check_types import Kind
 from ifgm_ref.oracle.checks import CHECKS
-from ifgm_ref.oracle.implementation import Implementation, Promises
+from ifgm_ref.oracle.implementation import Implementation, Promises, promises_of
 from ifgm_ref.oracle.profiles import Profile
-from ifgm_ref.oracle.runner import Status, run_check
+from ifgm_ref.oracle.runner import CheckResult, Report, Status, run_check
 from ifgm_ref.planners import PLANNERS
 from ifgm_ref.pose import Point, Pose
 from ifgm_ref.protocol import Command, EpisodeParams, Observation
 
+#: The reference IFGM, with what it promises.
+IFGM = Implementation(PLANNERS["ifgm"].factory, "ifgm", promises_of("ifgm"))
 #: A few examples per check, shrinking on: enough to meet every failing path of a check.
 SMALL = Profile("small", 4)
 
@@ -94,7 +96,42 @@ def test_every_check_gives_a_verdict(check: str, planner: str, tmp_path) -> None
         ),
     )
     result = run_check(CHECKS[check], impl, SMALL, artifacts=tmp_path)
-    assert result.status in (Status.PASSED, Status.FAILED), result.line()
+    assert result.status in (Status.PASSED, Status.NOT_EXERCISED, Status.FAILED), result.line()
+    if result.status is Status.NOT_EXERCISED:
+        assert result.message.startswith("nothing to check: "), result.line()
     if result.status is Status.FAILED:
         assert result.message and "\n" not in result.message
         assert result.artifacts is not None and (result.artifacts / "report.md").is_file()
+
+
+#: The checks that hold vacuously when nothing happens, and what each must meet.
+VACUOUS = {
+    "collision_free": "moved within its sensor's range of an obstacle",
+    "rigid_motion_invariant": "the robot moved",
+    "scale_invariant": "the robot moved",
+    "ignores_unseen_obstacles": "the robot moved",
+    "stops_in_time": "the robot moved",
+    "dead_end_turns": "a dead end reported as dead_end_turn",
+}
+
+
+@pytest.mark.parametrize("check", VACUOUS)
+def test_a_check_that_met_nothing_is_not_exercised(check: str) -> None:
+    """A robot that only turns in place passes none of the checks of what it would do: each
+    says it met nothing to check, and the summary counts it apart from the passes."""
+    everything = Promises(turns_at_dead_ends=True, stops_in_time=True)
+    impl = Implementation(Spinner, "spinner", everything)
+    result = run_check(CHECKS[check], impl, SMALL, artifacts=None)
+    assert result.status is Status.NOT_EXERCISED, result.line()
+    assert VACUOUS[check] in result.message and f"of {result.examples} examples" in result.message
+    report = Report("spinner", "small", (result, CheckResult("x", Status.PASSED, 1, 1)))
+    assert report.summary().endswith(": 1 not exercised, 1 passed"), report.summary()
+    assert report.ok  # met nothing to check is not a failure
+
+
+@pytest.mark.parametrize("check", VACUOUS)
+def test_the_reference_meets_what_each_check_checks(check: str) -> None:
+    """The reference IFGM moves, comes near obstacles and meets dead ends: each of these
+    checks passes it, not exercised by none."""
+    result = run_check(CHECKS[check], IFGM, SMALL, artifacts=None)
+    assert result.status is Status.PASSED, result.line()

@@ -92,13 +92,27 @@ def test_branch_legend_goes_by_steps_and_rare_branches_are_marked() -> None:
     plt.close(fig)
 
 
+#: A ``--cmd`` program's name as long as a path makes it, for a run's title.
+LONG_NAME = "cmd: python3 " + "/home/someone/projects/my_port/build" * 4 + " --verbose"
+
+
 @pytest.mark.parametrize(
-    ("world", "planner"), [("wall_posts", IFGMPlanner), ("scenario2", FGMPlanner)]
+    ("world", "planner", "name"),
+    [
+        ("wall_posts", IFGMPlanner, None),
+        ("scenario2", FGMPlanner, None),
+        ("u_trap", FGMPlanner, LONG_NAME),
+    ],
 )
-def test_run_plot_labels_and_legend_lie_within_the_figure(world: str, planner: type) -> None:
+def test_run_plot_labels_and_legend_lie_within_the_figure(
+    world: str, planner: type, name: str | None
+) -> None:
+    """Labels, title and legend stay within the figure, and the title (wrapped when a
+    program's name makes it long) never covers the legend."""
     built = resolve_world(world)
     run = simulate(built, planner(), progress=False)
-    fig = plot_run(built, run.trace, run.result, colour_by="branch")
+    result = run.result if name is None else dataclasses.replace(run.result, planner=name)
+    fig = plot_run(built, run.trace, result, colour_by="branch")
     fig.canvas.draw()
     figure, axes, legend = fig.bbox, fig.axes[0].get_tightbbox(), _legend(fig).get_window_extent()
     for box in (axes, legend):

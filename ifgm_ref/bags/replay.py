@@ -352,14 +352,20 @@ def difference(
 ) -> str:
     """What differs between a logged step and the reference's, ``""`` when they agree:
     speeds and turn rates within the robot's limits, and the two steps' branches (compared
-    when both name one: :func:`~ifgm_ref.flowchart.same_branch`).
+    when both name one: :func:`~ifgm_ref.flowchart.same_branch`). The logged speed is
+    compared as the robot executes it, clipped to its top speed; the message gives the speed
+    asked beside it when it was clipped.
 
     >>> params = EpisodeParams()  # dt 0.1 s: 0.1 rad of heading is 1 rad/s of turn rate
     >>> difference((1.0, 0.5), (1.0, 1.2), ("a", "a"), params, Tolerance())
     ''
     >>> difference((1.0, 0.5), (0.0, 1.6), ("a", "b"), params, Tolerance())
-    'heading after a step off by 0.11 rad (more than 0.1); speed off by 1 (more than 0.132); \
-branch a against b'
+    'heading after a step off by 0.11 rad (more than 0.1); speed off by 1 (more than 0.132; \
+as executed); branch a against b'
+    >>> difference((6.0, 0.5), (0.3, 0.5), ("a", "a"), params, Tolerance())  # top speed 1.32
+    'speed off by 1.02 (more than 0.132; as executed, asked 6)'
+    >>> difference((6.0, 0.5), (1.3, 0.5), ("a", "a"), params, Tolerance())
+    ''
     """
     found: list[str] = []
     heading = abs(logged[1] - reference[1]) * params.dt
@@ -367,9 +373,12 @@ branch a against b'
         found.append(
             f"heading after a step off by {heading:.3g} rad (more than {tolerance.heading:g})"
         )
-    speed, limit = abs(logged[0] - reference[0]), tolerance.speed * params.robot.speed
+    asked, limit = logged[0], tolerance.speed * params.robot.speed
+    executed = min(asked, params.robot.speed)  # what the robot was driven at
+    speed = abs(executed - reference[0])
     if speed > limit:
-        found.append(f"speed off by {speed:.3g} (more than {limit:.3g})")
+        clipped = f", asked {asked:.3g}" if executed < asked else ""
+        found.append(f"speed off by {speed:.3g} (more than {limit:.3g}; as executed{clipped})")
     logged_branch, reference_branch = branches
     if logged_branch and reference_branch and not same_branch(logged_branch, reference_branch):
         found.append(f"branch {logged_branch} against {reference_branch}")

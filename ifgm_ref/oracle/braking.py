@@ -29,7 +29,7 @@ from dataclasses import replace
 from hypothesis import strategies as st
 
 from ifgm_ref.oracle.check_types import Check, CheckFailed, Kind, Recorder
-from ifgm_ref.oracle.episodes import episode, place_of
+from ifgm_ref.oracle.episodes import MOVING, episode, place_of
 from ifgm_ref.oracle.implementation import Implementation
 from ifgm_ref.oracle.strategies import any_solvable_worlds
 from ifgm_ref.planners.governor import GovernorState, Limits, admissible, next_state
@@ -98,7 +98,8 @@ def _stops_test(
         raise CheckFailed(
             f"at t={recording.steps[k][0].t:.2f} s the command's stop needs {needed:.4f}, but "
             f"should fit in the {room:.4f} free in the way it may sweep (speed "
-            f"{command.speed:.4f}, braking {world.robot.braking:.4g}) [{place_of(impl, world)}]"
+            f"{command.executed_speed(world.robot)}, braking {world.robot.braking:.4g}) "
+            f"[{place_of(impl, world)}]"
         )
     if run.result.collided or run.result.min_clearance < 0.0:
         raise CheckFailed(
@@ -124,4 +125,5 @@ def stops_in_time() -> Check:
         lambda impl: st.tuples(any_solvable_worlds(), dynamics),
         _stops_test,
         _applies,
+        meets=MOVING,
     )

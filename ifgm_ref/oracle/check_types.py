@@ -32,6 +32,7 @@ __all__ = [
     "Evidence",
     "Kind",
     "Level",
+    "Meets",
     "PlannerFault",
     "Recorder",
     "levels_up_to",
@@ -123,6 +124,28 @@ class Recorder:
 
 
 @dataclass(frozen=True)
+class Meets:
+    """What a check has to meet to have tested anything: the :attr:`Recorder.tally` key
+    that counts it, and the thing in words ("a dead end reported as dead_end_turn").
+
+    A property of the form "whenever X, then Y" passes vacuously when X never happens: a
+    planner that reports no dead end passes "every dead end turns 45 degrees at a time", a
+    robot that never moves passes "rotating the problem rotates the trajectory". Such a
+    pass is reported apart (issue 42).
+    """
+
+    key: str
+    what: str
+
+    def missed(self, recorder: Recorder) -> str | None:
+        """Why ``recorder``'s examples tested nothing (``None`` if they met the thing)."""
+        if recorder.tally[self.key]:
+            return None
+        examples = f"{recorder.examples} example{'' if recorder.examples == 1 else 's'}"
+        return f"nothing to check: {self.what} in none of {examples}"
+
+
+@dataclass(frozen=True)
 class Check:
     """One property: its name, its sentence, its example strategy and its test, and whether
     it applies to an implementation.
@@ -131,7 +154,8 @@ class Check:
     seeded draws (a world generator of :mod:`ifgm_ref.worldgen.classes`). ``level`` says
     which level of conformance it belongs to; a run checks the paper's level unless asked
     for the reference's too. ``explicit`` gives examples run every time, before the drawn
-    ones (noise-free runs only).
+    ones (noise-free runs only). ``meets`` says what the check must meet to have tested
+    anything: a check that passed without meeting it is "not exercised", never "passed".
     """
 
     name: str
@@ -143,3 +167,4 @@ class Check:
     sample: Callable[[Draw], Any] | None = None
     level: Level = Level.PAPER
     explicit: Callable[[], Sequence[Any]] | None = None
+    meets: Meets | None = None

@@ -44,12 +44,13 @@ from ifgm_ref.oracle.check_types import (
     Evidence,
     Kind,
     Level,
+    Meets,
     Recorder,
     levels_up_to,
 )
 from ifgm_ref.oracle.conformance import compare, divergence_message, reference_episode
 from ifgm_ref.oracle.dead_end import dead_end_turns, turn_errors
-from ifgm_ref.oracle.episodes import _xy, episode, place_of
+from ifgm_ref.oracle.episodes import MOVING, NEAR, _xy, ending, episode, place_of
 from ifgm_ref.oracle.equation_checks import (
     equation_checks,
 )
@@ -114,23 +115,19 @@ def _collision_test(impl: Implementation, world: World, recorder: Recorder) -> N
 @traces("s3.critical_shapes")
 def _converges_test(impl: Implementation, world: World, recorder: Recorder) -> None:
     run = episode(impl, world, recorder)
-    result = run.result
-    if not result.reached:
+    if not run.result.reached:
         raise CheckFailed(
-            f"stop_reason={result.stop_reason!r} after {result.time_s:.1f} s, but should be "
-            f"'goal_reached' within the bound {time_bound(world):.1f} s "
-            f"(min clearance {result.min_clearance:.3f} ft) [{place_of(impl, world)}]"
+            f"{ending(run)}, but should be 'goal_reached' within the bound "
+            f"{time_bound(world):.1f} s [{place_of(impl, world)}]"
         )
 
 
 def _unreachable_test(impl: Implementation, world: World, recorder: Recorder) -> None:
     run = episode(impl, world, recorder)
-    result = run.result
-    if result.stop_reason != "goal_unreachable":
+    if run.result.stop_reason != "goal_unreachable":
         raise CheckFailed(
-            f"stop_reason={result.stop_reason!r} after {result.time_s:.1f} s, but should be "
-            f"'goal_unreachable' within the bound {time_bound(world):.1f} s "
-            f"[{place_of(impl, world)}]"
+            f"{ending(run)}, but should be 'goal_unreachable' within the bound "
+            f"{time_bound(world):.1f} s [{place_of(impl, world)}]"
         )
 
 
@@ -290,17 +287,19 @@ def _gap_test(impl: Implementation, example: tuple[World, Polygon], rec: Recorde
     run = episode(impl, world, rec)
     where = f"{place_of(impl, world)}, gap {_show_polygon(gap)}"
     if not run.result.reached:
-        raise CheckFailed(
-            f"stop_reason={run.result.stop_reason!r}, but should be 'goal_reached' through "
-            f"the gap [{where}]"
-        )
+        raise CheckFailed(f"{ending(run)}, but should be 'goal_reached' through the gap [{where}]")
     path = shapely.LineString([(s.x, s.y) for s in run.trace])  # reached: 2 or more points
     if not path.intersects(gap.geometry):
         raise CheckFailed(
             f"path passed {path.distance(gap.geometry):.2f} ft from the gap, but should go "
             f"through it [{where}]"
         )
-    _check_case1(run.trace, gap, where)
+    rec.tally.update(through=1, case1=_check_case1(run.trace, gap, where))
+    rec.summary = f"{rec.tally['through']} run(s) through the gap; " + (
+        f"the Case-1 rule met in {rec.tally['case1']}"
+        if rec.tally["case1"]
+        else "its Case-1 part not exercised: no avoidance branch reported before the gap"
+    )
     centre = gap.geometry.centroid
     for step in run.trace[:-1]:
         if step.heading_cmd is None:  # no command recorded at this sample
@@ -323,10 +322,12 @@ def _gap_test(impl: Implementation, example: tuple[World, Polygon], rec: Recorde
             break
 
 
-def _check_case1(trace: Sequence[TraceStep], gap: Polygon, where: str) -> None:
+def _check_case1(trace: Sequence[TraceStep], gap: Polygon, where: str) -> bool:
     """A planner that reports its branches and avoids the wall before it reaches the gap
     (a gap wider than ``d_th``, the wall either side) takes Case-1 there: FGM steers
-    (section 4). One whose way through the gap is clear never avoids and passes."""
+    (section 4). One whose way through the gap is clear never avoids and passes. Whether
+    the rule applied: an avoidance branch was reported before the gap (a planner that reports
+    no branches never meets it)."""
     before: set[str] = set()
     for a, b in itertools.pairwise(trace):
         if shapely.LineString([(a.x, a.y), (b.x, b.y)]).intersects(gap.geometry):
@@ -338,6 +339,7 @@ def _check_case1(trace: Sequence[TraceStep], gap: Polygon, where: str) -> None:
             f"before the gap it avoided the wall by {', '.join(sorted(avoided))}, but never "
             f"case1_gap: a gap wider than d_th with the wall either side is Case-1 [{where}]"
         )
+    return bool(avoided)
 
 
 def _show_polygon(polygon: Polygon) -> str:
@@ -457,6 +459,7 @@ CHECKS: dict[str, Check] = {
             lambda impl: st.one_of(any_solvable_worlds(), enclosed_worlds()),
             _collision_test,
             _collision_applies,
+            meets=Meets(NEAR, "the robot moved within its sensor's range of an obstacle"),
         ),
         *(_convergence_check(c) for c in SOLVABLE_CLASSES),
         Check(
@@ -475,6 +478,7 @@ CHECKS: dict[str, Check] = {
             lambda impl: st.tuples(_promised_worlds(impl), placements()),
             _invariance_test,
             _always,
+            meets=MOVING,
         ),
         Check(
             "scale_invariant",
@@ -483,6 +487,7 @@ CHECKS: dict[str, Check] = {
             _scale_examples,
             scale_test,
             _scale_applies,
+            meets=MOVING,
         ),
         Check(
             "ignores_unseen_obstacles",
@@ -491,6 +496,7 @@ CHECKS: dict[str, Check] = {
             _unseen,
             _unseen_test,
             _always,
+            meets=MOVING,
         ),
         Check(
             "passes_wide_gaps",
@@ -518,6 +524,7 @@ CHECKS: dict[str, Check] = {
             _dead_end_test,
             _turns_apply,
             explicit=lambda: [resolve_world("u_trap"), resolve_world("h_block")],
+            meets=Meets("dead_ends", "a dead end reported as dead_end_turn"),
         ),
         Check(
             "agrees_with_reference",

@@ -38,7 +38,7 @@ from ifgm_ref.oracle.profiles import (
     profile_named,
     with_noise,
 )
-from ifgm_ref.oracle.runner import CheckResult, run_check, tally
+from ifgm_ref.oracle.runner import CheckResult, run_check, tally, verdicts
 from ifgm_ref.oracle.specification import (
     Specification,
     declared,
@@ -344,4 +344,5 @@ def pytest_terminal_summary(terminalreporter: Any, exitstatus: int, config: pyte
     terminalreporter.write_sep("-", "ifgm-ref oracle")
     for result in results:
         terminalreporter.write_line(result.line())
-    terminalreporter.write_line(f"{config.stash[_KEY].implementation.label}: {tally(results)}")
+    label = config.stash[_KEY].implementation.label
+    terminalreporter.write_line(f"{label}: {tally(results)}: {verdicts(results)}")

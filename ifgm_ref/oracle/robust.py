@@ -69,7 +69,7 @@ from hypothesis import strategies as st
 from ifgm_ref.noise import NoiseLevels
 from ifgm_ref.oracle.check_types import Check, CheckFailed, Evidence, PlannerFault, Recorder
 from ifgm_ref.oracle.implementation import Implementation
-from ifgm_ref.simulator import Run
+from ifgm_ref.simulator import Run, StopReason
 from ifgm_ref.stats import wilson_interval
 from ifgm_ref.world import World
 from ifgm_ref.worldgen.draws import RandomDraw
@@ -162,11 +162,17 @@ def statistical_verdict(successes: int, n: int) -> tuple[bool, str]:
 
 
 def _why(run: Run | None) -> str:
-    """How a miss ended: its stop reason, or that it arrived but broke the property on the way
-    (``passes_wide_gaps``: round the wall, or its first turn away from the gap)."""
+    """How a miss ended: its stop reason (a stall with the rule that fired: ``stalled (disc
+    rule)``), or that it arrived but broke the property on the way (``passes_wide_gaps``:
+    round the wall, or its first turn away from the gap)."""
     if run is None:
         return "no run"
-    return "arrived otherwise" if run.result.reached else run.result.stop_reason
+    result = run.result
+    if result.reached:
+        return "arrived otherwise"
+    if result.stop_reason == StopReason.STALLED and result.detail:
+        return f"{result.stop_reason} ({result.detail.split(':')[0]})"
+    return str(result.stop_reason)
 
 
 def run_statistical(

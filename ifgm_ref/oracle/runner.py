@@ -20,6 +20,7 @@ import re
 import sys
 import time
 import traceback
+from collections import Counter
 from collections.abc import Callable, Iterable, Mapping
 from concurrent.futures import ProcessPoolExecutor, as_completed
 from dataclasses import dataclass, field, replace
@@ -59,6 +60,9 @@ class Status(StrEnum):
     """The verdict of one check."""
 
     PASSED = "passed"
+    #: It found no fault, but met nothing it checks (:class:`~.check_types.Meets`): counted
+    #: apart from the passes, and not a failure of the run.
+    NOT_EXERCISED = "not exercised"
     FAILED = "failed"
     EXPECTED_FAILURE = "expected failure"
     UNEXPECTED_PASS = "unexpectedly passed"
@@ -87,7 +91,12 @@ class CheckResult:
     @property
     def ok(self) -> bool:
         """Whether this verdict lets the run pass."""
-        return self.status in (Status.PASSED, Status.EXPECTED_FAILURE, Status.NOT_APPLICABLE)
+        return self.status in (
+            Status.PASSED,
+            Status.NOT_EXERCISED,
+            Status.EXPECTED_FAILURE,
+            Status.NOT_APPLICABLE,
+        )
 
     def line(self) -> str:
         """One line for a terminal."""
@@ -133,16 +142,12 @@ class Report:
 
     def summary(self) -> str:
         """How much was checked and what came of it, in one line."""
-        counts: dict[str, int] = {}
-        for r in self.results:
-            counts[r.status] = counts.get(r.status, 0) + 1
-        verdicts = ", ".join(f"{n} {status}" for status, n in counts.items())
         how = f"profile {self.profile}"
         if self.engine != "kinematic":
             how += f", engine {self.engine}"
         if self.noise is not None:
             how += f", noise {self.noise} checked, {self.promised} promised"
-        return f"{self.implementation} ({how}): {tally(self.results)}: {verdicts}"
+        return f"{self.implementation} ({how}): {tally(self.results)}: {verdicts(self.results)}"
 
     def text(self) -> str:
         """What a specification held it to (if any), every result's line, then the summary."""
@@ -164,6 +169,18 @@ def tally(results: Iterable[CheckResult]) -> str:
         f"{_counted(len(ran), 'property', 'properties')} checked, "
         f"{_counted(examples, 'example')}, {_counted(worlds, 'world')}"
     )
+
+
+def verdicts(results: Iterable[CheckResult]) -> str:
+    """How many checks got each verdict, in the order met; those that met nothing to check
+    ("not exercised") are counted apart from the passes.
+
+    >>> verdicts([CheckResult("a", Status.PASSED), CheckResult("b", Status.NOT_EXERCISED),
+    ...           CheckResult("c", Status.PASSED)])
+    '2 passed, 1 not exercised'
+    """
+    counts = Counter(r.status for r in results)
+    return ", ".join(f"{n} {status}" for status, n in counts.items())
 
 
 def _counted(n: int, one: str, many: str | None = None) -> str:
@@ -211,6 +228,9 @@ def run_check(
     seconds = time.perf_counter() - started
     common = (check.name, recorder.examples, len(recorder.worlds), seconds)
     if failure is None:
+        missed = None if check.meets is None else check.meets.missed(recorder)
+        if missed is not None:
+            return _result(*common, Status.NOT_EXERCISED, missed)
         if expected_failure is not None:
             return _result(*common, Status.UNEXPECTED_PASS, f"expected to fail: {expected_failure}")
         return _result(*common, Status.PASSED, recorder.summary)
@@ -566,5 +586,6 @@ __all__ = [
     "crash",
     "run_check",
     "tally",
+    "verdicts",
     "write_evidence",
 ]
