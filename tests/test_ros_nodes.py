@@ -271,6 +271,36 @@ def test_each_episode_starts_the_nodes_afresh_and_runs_alike() -> None:
     assert runs[0] == runs[1] and runs[0][0] == 0.0
 
 
+# -- ROS 2: rclpy nodes over the same broker ----------------------------------------------------
+
+
+def test_ros2_messages_are_humble_s() -> None:
+    header = message_class("std_msgs/Header", "ros2")()
+    assert [name for name, _ in header._spec] == ["stamp", "frame_id"]
+    assert (header.stamp.sec, header.stamp.nanosec) == (0, 0)
+    set_bool = package_namespace("std_srvs", "srv", "ros2")["SetBool"]
+    assert set_bool.Request(True).data and set_bool.Response().message == ""
+
+
+def test_an_rclpy_node_drives_as_its_rospy_twin() -> None:
+    world = resolve_world("free")
+    runs = []
+    for distro, path in (("ros1", "straight.py"), ("ros2", "ros2_straight.py")):
+        with RosPlanner([node(NODES / path)], scale=FT, distro=distro) as planner:
+            runs.append(simulate(world, planner, progress=None).result)
+    assert [r.stop_reason for r in runs] == ["goal_reached"] * 2
+    assert math.isclose(runs[0].path_length, runs[1].path_length, rel_tol=1e-9)
+
+
+def test_rclpy_services_parameters_and_futures_between_two_processes() -> None:
+    server, client = (
+        node(NODES / "ros2_switch.py", "--ros-args", "-p", f"role:={role}")
+        for role in ("server", "client")
+    )
+    commands = drive([server, client], 3, distro="ros2")
+    assert round(commands[-1].speed * FT, 9) == 0.1
+
+
 # -- real nodes: the reference IFGM behind rospy, and a course-style Bug2 -----------------------
 
 BUG2_NODES = [node(BUG2 / "bug2.py"), node(BUG2 / "go_to_point.py"), node(BUG2 / "follow_wall.py")]

@@ -13,7 +13,10 @@ if TYPE_CHECKING:
     from ifgm_ref.ros.bridge import RosPlanner
 
 #: What ``--planner``, ``--cmd`` and ``--ros-node`` say when not exactly one is given.
-EXACTLY_ONE = "give exactly one of --planner NAME, --cmd 'PROGRAM' and --ros-node 'COMMAND'"
+EXACTLY_ONE = (
+    "give exactly one of --planner NAME, --cmd 'PROGRAM', --ros-node 'COMMAND' and "
+    "--ros2-node 'COMMAND'"
+)
 
 
 def add_ros_options(parser: argparse.ArgumentParser) -> None:
@@ -25,6 +28,12 @@ def add_ros_options(parser: argparse.ArgumentParser) -> None:
         help="run this ROS 1 rospy node unchanged as (part of) the planner, e.g. "
         "'python3 my_nodes/bug2.py _rate:=20' (repeatable: one per node; no ROS install "
         "needed; docs/ros-nodes.md)",
+    )
+    parser.add_argument(
+        "--ros2-node",
+        action="append",
+        metavar="COMMAND",
+        help="the same for a ROS 2 rclpy node (ROS 2 Humble's messages; not with --ros-node)",
     )
     parser.add_argument(
         "--remap",
@@ -45,9 +54,15 @@ def add_ros_options(parser: argparse.ArgumentParser) -> None:
 
 
 def exactly_one(args: argparse.Namespace) -> None:
-    """Refuse anything but exactly one of ``--planner``, ``--cmd`` and ``--ros-node``."""
-    if sum(option is not None for option in (args.planner, args.cmd, args.ros_node)) != 1:
+    """Refuse anything but exactly one of ``--planner``, ``--cmd``, ``--ros-node`` and
+    ``--ros2-node``; ROS 2 nodes are then run as ``args.ros_node``, with ``args.ros_distro``
+    ``ros2`` (``ros1`` otherwise)."""
+    given = (args.planner, args.cmd, args.ros_node, args.ros2_node)
+    if sum(option is not None for option in given) != 1:
         raise ParameterError(EXACTLY_ONE)
+    args.ros_distro = "ros1" if args.ros2_node is None else "ros2"
+    if args.ros2_node is not None:
+        args.ros_node = args.ros2_node
 
 
 def ros_options(args: argparse.Namespace, scale: float) -> dict[str, object]:
@@ -59,6 +74,7 @@ def ros_options(args: argparse.Namespace, scale: float) -> dict[str, object]:
         "startup_timeout": args.startup_timeout,
         "remaps": tuple(args.remap),
         "goal_topic": args.ros_goal_topic,
+        "distro": getattr(args, "ros_distro", "ros1"),
     }
 
 

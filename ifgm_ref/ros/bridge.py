@@ -30,8 +30,8 @@ from ifgm_ref.protocol import Command, EpisodeParams, Observation
 from ifgm_ref.ros.broker import Broker
 from ifgm_ref.ros.messages import message_class, to_wire
 from ifgm_ref.ros.names import parse_remap
-from ifgm_ref.ros.process import NodeProcess
-from ifgm_ref.ros.rostime import Time, nanoseconds
+from ifgm_ref.ros.process import SHIMS, SHIMS2, NodeProcess
+from ifgm_ref.ros.rostime import NS, Time, nanoseconds
 from ifgm_ref.ros.rules import CMD_VEL_TIMEOUT, GOAL_TOPIC
 from ifgm_ref.transport.external import TIMEOUT, timeouts
 
@@ -97,6 +97,8 @@ class RosPlanner:
         The planner's name (default: ``ros:`` and the commands).
     log : text stream, optional
         Where the nodes' output is copied.
+    distro : str, default ``"ros1"``
+        ``ros1`` for rospy nodes, ``ros2`` for rclpy nodes (ROS 2 Humble's messages).
     """
 
     def __init__(
@@ -110,7 +112,10 @@ class RosPlanner:
         goal_topic: str = GOAL_TOPIC,
         name: str | None = None,
         log: TextIO | None = None,
+        distro: str = "ros1",
     ) -> None:
+        if distro not in ("ros1", "ros2"):
+            raise ParameterError(f"`distro` must be ros1 or ros2, got {distro!r}")
         if not commands:
             raise ParameterError("give at least one --ros-node command")
         if not (math.isfinite(scale) and scale > 0):
@@ -123,7 +128,9 @@ class RosPlanner:
         self.scale = scale
         self.goal_topic = goal_topic
         self.name = name or "ros: " + " + ".join(commands)
-        nodes = [NodeProcess(c, i, log) for i, c in enumerate(commands)]
+        self.distro = distro
+        shims = SHIMS if distro == "ros1" else SHIMS2
+        nodes = [NodeProcess(c, i, log, shims) for i, c in enumerate(commands)]
         self._broker = Broker(
             nodes, timeout=self.timeout, startup_timeout=self.startup_timeout, remaps=remapped
         )
@@ -187,8 +194,8 @@ class RosPlanner:
         glob, private = episode_params(goal, params, self.scale)
         self._broker.begin(glob, private)
         self._episode = True
-        pose = message_class("geometry_msgs/PoseStamped")()
-        pose.header.frame_id = "map"
+        pose = message_class("geometry_msgs/PoseStamped", self.distro)()
+        self._stamp(pose.header, 0, "map")
         pose.pose.position.x, pose.pose.position.y = goal.x * self.scale, goal.y * self.scale
         pose.pose.orientation.w = 1.0
         self._broker.publish(
@@ -217,10 +224,18 @@ class RosPlanner:
         )
         return command
 
+    def _stamp(self, header: Any, t: int, frame: str) -> None:
+        """Stamp ``header`` at ``t`` ns in ``frame`` (ROS 1's time, or ROS 2's message)."""
+        header.frame_id = frame
+        if self.distro == "ros1":
+            header.stamp = Time.from_nsec(t)
+        else:
+            header.stamp.sec, header.stamp.nanosec = divmod(t, NS)
+
     def _odometry(self, t: int, pose: Pose) -> list[Any]:
-        odom = message_class("nav_msgs/Odometry")()
-        odom.header.stamp = Time.from_nsec(t)
-        odom.header.frame_id, odom.child_frame_id = "odom", "base_link"
+        odom = message_class("nav_msgs/Odometry", self.distro)()
+        self._stamp(odom.header, t, "odom")
+        odom.child_frame_id = "base_link"
         odom.pose.pose.position.x, odom.pose.pose.position.y = (
             pose.x * self.scale,
             pose.y * self.scale,
@@ -234,9 +249,8 @@ class RosPlanner:
     def _scan(self, t: int, observation: Observation) -> list[Any]:
         scan = observation.scan
         f32 = np.float32
-        msg = message_class("sensor_msgs/LaserScan")()
-        msg.header.stamp = Time.from_nsec(t)
-        msg.header.frame_id = "base_link"
+        msg = message_class("sensor_msgs/LaserScan", self.distro)()
+        self._stamp(msg.header, t, "base_link")
         msg.angle_min, msg.angle_max = float(f32(scan.angle_min)), float(f32(scan.angle_max))
         msg.angle_increment = float(f32(scan.angle_increment))
         msg.scan_time = float(f32(self._params.dt))

@@ -34,7 +34,7 @@ from dataclasses import dataclass, field
 from functools import partial
 from typing import Any
 
-from ifgm_ref.ros.names import resolve, split_argv
+from ifgm_ref.ros.names import resolve, split_argv, split_ros2_argv
 from ifgm_ref.ros.rostime import set_clock
 
 __all__ = ["FD_VARIABLE", "Client", "client", "current_time"]
@@ -67,7 +67,10 @@ class Client:
     """The node's link to the broker and its state (one per process: :func:`client`)."""
 
     name: str = "/unnamed"
+    distro: str = "ros1"
     now: int = 0
+    events: int = 0
+    private: dict[str, Any] = field(default_factory=dict)
     started: bool = False
     shutdown: str | None = None
     remaps: dict[str, str] = field(default_factory=dict)
@@ -79,13 +82,15 @@ class Client:
     timers: list[Any] = field(default_factory=list)
     shutdown_hooks: list[Callable[..., Any]] = field(default_factory=list)
     next_id: int = 0
+    _renamed: str | None = None
     _sock: socket.socket | None = None
     _reader: Any = None
 
     # --- start: init_node, the zygote --------------------------------------------------------
 
-    def init_node(self, name: str, anonymous: bool, argv: list[str]) -> None:
-        """Connect, say hello, and become the zygote: return only in an episode's child."""
+    def init_node(self, name: str, anonymous: bool, argv: list[str], distro: str = "ros1") -> None:
+        """Connect, say hello, and become the zygote: return only in an episode's child
+        (``distro`` ``ros2``: ``rclpy.init``, whose nodes are named later, :meth:`name_node`)."""
         if self._sock is not None:
             raise RuntimeError("rospy.init_node() has already been called")
         fd = os.environ.get(FD_VARIABLE)
@@ -94,7 +99,10 @@ class Client:
                 f"this rospy is ifgm-ref's stand-in and runs only under ifgm-ref ({FD_VARIABLE} "
                 "is not set): ifgm-ref simulate WORLD --ros-node 'python3 node.py'"
             )
-        _, argv_remaps, private, renamed = split_argv(argv)
+        self.distro = distro
+        split = split_ros2_argv if distro == "ros2" else split_argv
+        _, argv_remaps, private, renamed = split(argv)
+        self._renamed = renamed
         index = os.environ.get(INDEX_VARIABLE, "0")
         base = renamed or name
         self.name = resolve(f"{base}_{index}" if anonymous and not renamed else base, "/")
@@ -119,15 +127,22 @@ class Client:
         self.started = True
         self.remaps = {**order.get("remaps", {}), **argv_remaps}
         self.params = dict(order.get("params", {}))
-        for key, value in private.items():
-            self.params[resolve("~" + key, self.name)] = value
-        for key, value in order.get("private", {}).items():
-            self.params[resolve("~" + key, self.name)] = value
+        self.private = {**private, **order.get("private", {})}
+        if self.distro == "ros1":
+            self.name_node(self.name)
         for registration in self.registrations:
             self._announce(registration)
         import atexit
 
         atexit.register(self._flush)
+
+    def name_node(self, name: str) -> str:
+        """Name the node (rclpy names it after ``init``; ``__node:=`` wins) and set its
+        private parameters under that name; its global name."""
+        self.name = resolve(self._renamed or name, "/") if self.distro == "ros2" else name
+        for key, value in self.private.items():
+            self.params[resolve("~" + key, self.name)] = value
+        return self.name
 
     # --- registrations ------------------------------------------------------------------------
 
@@ -218,9 +233,11 @@ class Client:
         self.now = max(self.now, int(order["t"]))
         for delivery in order.get("deliver", []):
             self._dispatch(delivery)
+            self.events += 1
         for timer in list(self.timers):
             if timer.due is not None and timer.due <= self.now:
                 _guarded(timer.fire, f"timer {timer!r}")
+                self.events += 1
 
     def _dispatch(self, delivery: dict[str, Any]) -> None:
         kind = delivery["kind"]
@@ -242,7 +259,7 @@ class Client:
         for reg in list(self.registrations):
             if reg.kind == "sub" and reg.active and reg.resolved == topic:
                 if reg.type not in decoded:
-                    decoded[reg.type] = from_wire(reg.type, data)
+                    decoded[reg.type] = from_wire(reg.type, data, self.distro)
                 assert reg.handler is not None
                 _guarded(partial(reg.handler, decoded[reg.type]), f"callback of {topic}")
 
@@ -253,9 +270,9 @@ class Client:
         reply["caller"] = delivery["caller"]
         for reg in self.registrations:
             if reg.kind == "srv" and reg.resolved == delivery["name"]:
-                service = service_class(reg.type)
+                service = service_class(reg.type, self.distro)
                 try:
-                    request = from_wire(service._request_class._type, delivery["data"])
+                    request = from_wire(service.Request._type, delivery["data"], self.distro)
                     assert reg.handler is not None
                     reply["data"] = to_wire(_response(service, reg.handler(request)))
                 except Exception as err:  # rospy reports a handler's error to the caller

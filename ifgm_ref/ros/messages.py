@@ -63,10 +63,14 @@ _FLOATS = frozenset({"float32", "float64"})
 Spec = tuple[Nodetype, Any]
 
 
+#: The typestores: ROS 1 Noetic for rospy nodes, ROS 2 Humble for rclpy nodes.
+STORES = {"ros1": Stores.ROS1_NOETIC, "ros2": Stores.ROS2_HUMBLE}
+
+
 @functools.cache
-def _definitions() -> dict[str, tuple[list[Any], list[tuple[str, Spec]]]]:
+def _definitions(distro: str = "ros1") -> dict[str, tuple[list[Any], list[tuple[str, Spec]]]]:
     """rosbags' field definitions by its names (``pkg/msg/Name``), std_srvs' added."""
-    found = dict(get_typestore(Stores.ROS1_NOETIC).fielddefs)
+    found = dict(get_typestore(STORES[distro]).fielddefs)
     for name, texts in SERVICES.items():
         package, base = name.split("/")
         for part, text in zip(("Request", "Response"), texts, strict=True):
@@ -74,13 +78,13 @@ def _definitions() -> dict[str, tuple[list[Any], list[tuple[str, Spec]]]]:
     return cast(dict[str, tuple[list[Any], list[tuple[str, Spec]]]], found)
 
 
-def _key(ros1_type: str) -> str:
-    """rosbags' name of a ROS 1 type: ``geometry_msgs/Twist`` -> ``geometry_msgs/msg/Twist``."""
+def _key(ros1_type: str, distro: str = "ros1") -> str:
+    """rosbags' name of a type: ``geometry_msgs/Twist`` -> ``geometry_msgs/msg/Twist``."""
     parts = ros1_type.split("/")
     if len(parts) == 2:
         parts.insert(1, "msg")
     key = "/".join(parts)
-    if len(parts) != 3 or key not in _definitions():
+    if len(parts) != 3 or key not in _definitions(distro):
         raise ValueError(f"unknown message type {ros1_type!r}")
     return key
 
@@ -93,6 +97,8 @@ class Message:
     _type: ClassVar[str] = ""
     #: The fields' names and rosbags types, in order.
     _spec: ClassVar[tuple[tuple[str, Spec], ...]] = ()
+    #: ``ros1`` or ``ros2``: which typestore made it.
+    _distro: ClassVar[str] = "ros1"
 
     def __init__(self, *args: Any, **kwargs: Any) -> None:
         names = [name for name, _ in self._spec]
@@ -104,7 +110,7 @@ class Message:
                 raise TypeError(f"{self._type}: unknown or repeated field {name!r}")
             values[name] = value
         for name, spec in self._spec:
-            setattr(self, name, values[name] if name in values else _default(spec))
+            setattr(self, name, values[name] if name in values else _default(spec, self._distro))
 
     def __eq__(self, other: object) -> bool:
         if type(other) is not type(self):
@@ -118,8 +124,8 @@ class Message:
         return f"{self._type}({inner})"
 
 
-def _default(spec: Spec) -> Any:
-    """A field's default value (genpy's)."""
+def _default(spec: Spec, distro: str = "ros1") -> Any:
+    """A field's default value (genpy's; ROS 2's time is a message)."""
     kind, detail = spec
     if kind is Nodetype.BASE:
         name = detail[0]
@@ -127,27 +133,30 @@ def _default(spec: Spec) -> Any:
             "" if name == "string" else False if name == "bool" else 0.0 if name in _FLOATS else 0
         )
     if kind is Nodetype.NAME:
-        return SPANS[detail]() if detail in SPANS else _class_of_key(detail)()
+        if detail in SPANS and distro == "ros1":
+            return SPANS[detail]()
+        return _class_of_key(detail, distro)()
     inner, length = detail
-    return [_default(inner) for _ in range(length)] if kind is Nodetype.ARRAY else []
+    return [_default(inner, distro) for _ in range(length)] if kind is Nodetype.ARRAY else []
 
 
 @functools.cache
-def _class_of_key(key: str) -> type[Message]:
+def _class_of_key(key: str, distro: str = "ros1") -> type[Message]:
     """The class of rosbags type ``key``, generated once."""
-    consts, fields = _definitions()[key]
+    consts, fields = _definitions(distro)[key]
     package, _, base = key.split("/")
     namespace: dict[str, Any] = {
         "__slots__": tuple(name for name, _ in fields),
         "_type": f"{package}/{base}",
         "_spec": tuple(fields),
+        "_distro": distro,
         "__module__": f"{package}.msg",
     }
     namespace.update({name: value for name, _, value in consts})
     return type(base, (Message,), namespace)
 
 
-def message_class(ros1_type: str) -> type[Any]:
+def message_class(ros1_type: str, distro: str = "ros1") -> type[Any]:
     """The class of the ROS 1 message type ``ros1_type`` (``sensor_msgs/LaserScan``).
 
     >>> message_class("std_msgs/String")().data
@@ -160,19 +169,22 @@ def message_class(ros1_type: str) -> type[Any]:
     ValueError
         For a type the typestore does not hold.
     """
-    return _class_of_key(_key(ros1_type))
+    return _class_of_key(_key(ros1_type, distro), distro)
 
 
 class ServiceType:
-    """A service type (``std_srvs/SetBool``): its request and response classes."""
+    """A service type (``std_srvs/SetBool``): its request and response classes (also as
+    ``Request`` and ``Response``, ROS 2's names)."""
 
     _type: ClassVar[str] = ""
     _request_class: ClassVar[type[Message]]
     _response_class: ClassVar[type[Message]]
+    Request: ClassVar[type[Message]]
+    Response: ClassVar[type[Message]]
 
 
 @functools.cache
-def service_class(ros1_type: str) -> type[ServiceType]:
+def service_class(ros1_type: str, distro: str = "ros1") -> type[ServiceType]:
     """The service type ``ros1_type``, one of :data:`SERVICES`.
 
     >>> SetBool = service_class("std_srvs/SetBool")
@@ -182,13 +194,14 @@ def service_class(ros1_type: str) -> type[ServiceType]:
     if ros1_type not in SERVICES:
         raise ValueError(f"unknown service type {ros1_type!r}; known: {', '.join(SERVICES)}")
     package, base = ros1_type.split("/")
-    request = message_class(f"{package}/{base}Request")
-    response = message_class(f"{package}/{base}Response")
-    namespace = {"_type": ros1_type, "_request_class": request, "_response_class": response}
+    request = message_class(f"{package}/{base}Request", distro)
+    response = message_class(f"{package}/{base}Response", distro)
+    namespace: dict[str, Any] = {"_type": ros1_type, "Request": request, "Response": response}
+    namespace.update({"_request_class": request, "_response_class": response})
     return type(base, (ServiceType,), {**namespace, "__module__": f"{package}.srv"})
 
 
-def package_namespace(package: str, kind: str) -> dict[str, Any]:
+def package_namespace(package: str, kind: str, distro: str = "ros1") -> dict[str, Any]:
     """What ``package.msg`` or ``package.srv`` (``kind``) exports: every class by name.
 
     >>> sorted(package_namespace("std_srvs", "srv"))[:3]
@@ -198,17 +211,17 @@ def package_namespace(package: str, kind: str) -> dict[str, Any]:
         found: dict[str, Any] = {}
         for name in SERVICES:
             if name.startswith(package + "/"):
-                service = service_class(name)
+                service = service_class(name, distro)
                 base = name.split("/")[1]
                 found[base] = service
                 found[base + "Request"] = service._request_class
                 found[base + "Response"] = service._response_class
         return found
     prefix = f"{package}/msg/"
-    keys = [k for k in _definitions() if k.startswith(prefix)]
+    keys = [k for k in _definitions(distro) if k.startswith(prefix)]
     if package == "std_srvs":
         keys = []
-    return {key[len(prefix) :]: _class_of_key(key) for key in keys}
+    return {key[len(prefix) :]: _class_of_key(key, distro) for key in keys}
 
 
 def to_wire(message: Message) -> list[Any]:
@@ -226,7 +239,7 @@ def _value_to_wire(value: Any, spec: Spec) -> Any:
             return int(value)
         return bool(value) if name == "bool" else str(value)
     if kind is Nodetype.NAME:
-        if detail in SPANS:
+        if isinstance(value, Time | Duration):
             return [value.secs, value.nsecs]
         if not isinstance(value, Message):
             raise TypeError(f"expected a message of type {detail}, got {value!r}")
@@ -235,7 +248,7 @@ def _value_to_wire(value: Any, spec: Spec) -> Any:
     return [_value_to_wire(item, inner) for item in value]
 
 
-def from_wire(ros1_type: str, data: list[Any]) -> Message:
+def from_wire(ros1_type: str, data: list[Any], distro: str = "ros1") -> Message:
     """The message of type ``ros1_type`` that :func:`to_wire` gave as ``data``.
 
     Raises
@@ -243,28 +256,28 @@ def from_wire(ros1_type: str, data: list[Any]) -> Message:
     ValueError
         For an unknown type, or data that does not fit it.
     """
-    return _from_wire_key(_key(ros1_type), data)
+    return _from_wire_key(_key(ros1_type, distro), data, distro)
 
 
-def _from_wire_key(key: str, data: list[Any]) -> Message:
-    cls = _class_of_key(key)
+def _from_wire_key(key: str, data: list[Any], distro: str) -> Message:
+    cls = _class_of_key(key, distro)
     if not isinstance(data, list) or len(data) != len(cls._spec):
         raise ValueError(f"{cls._type}: expected {len(cls._spec)} fields, got {data!r:.80}")
     message = cls.__new__(cls)
     for (name, spec), item in zip(cls._spec, data, strict=True):
-        setattr(message, name, _value_from_wire(item, spec))
+        setattr(message, name, _value_from_wire(item, spec, distro))
     return message
 
 
-def _value_from_wire(item: Any, spec: Spec) -> Any:
+def _value_from_wire(item: Any, spec: Spec, distro: str) -> Any:
     kind, detail = spec
     if kind is Nodetype.BASE:
         return item
     if kind is Nodetype.NAME:
-        if detail in SPANS:
+        if detail in SPANS and distro == "ros1":
             return SPANS[detail](int(item[0]), int(item[1]))
-        return _from_wire_key(detail, item)
+        return _from_wire_key(detail, item, distro)
     inner = detail[0]
     if inner[0] is Nodetype.BASE:
         return list(item)
-    return [_value_from_wire(x, inner) for x in item]
+    return [_value_from_wire(x, inner, distro) for x in item]

@@ -19,7 +19,7 @@ from __future__ import annotations
 from collections.abc import Mapping, Sequence
 from typing import Any
 
-__all__ = ["parse_remap", "resolve", "scalar", "split_argv"]
+__all__ = ["parse_remap", "resolve", "scalar", "split_argv", "split_ros2_argv"]
 
 
 def resolve(name: str, node: str, remaps: Mapping[str, str] | None = None) -> str:
@@ -91,3 +91,38 @@ def split_argv(
         else:
             remaps[resolve(source, "/")] = resolve(target, "/")
     return left, remaps, private, name
+
+
+def split_ros2_argv(
+    argv: Sequence[str],
+) -> tuple[list[str], dict[str, str], dict[str, Any], str | None]:
+    """Split a ROS 2 node's argv as rclpy does (``--ros-args -p name:=value -r from:=to``,
+    ``-r __node:=name``, up to ``--``), in :func:`split_argv`'s four parts.
+
+    >>> split_ros2_argv(["n.py", "--ros-args", "-p", "rate:=20", "-r", "scan:=/base_scan"])
+    (['n.py'], {'/scan': '/base_scan'}, {'rate': 20}, None)
+    """
+    left: list[str] = []
+    remaps: dict[str, str] = {}
+    params: dict[str, Any] = {}
+    name: str | None = None
+    inside, expect = False, ""
+    for arg in argv:
+        if not inside:
+            inside = arg == "--ros-args"
+            if not inside:
+                left.append(arg)
+        elif arg == "--":
+            inside = False
+        elif arg in ("-p", "--param", "-r", "--remap"):
+            expect = arg.lstrip("-")[0]
+        elif expect:
+            source, _, target = arg.partition(":=")
+            if expect == "p":
+                params[source] = scalar(target)
+            elif source == "__node":
+                name = target
+            else:
+                remaps[resolve(source, "/")] = resolve(target, "/")
+            expect = ""
+    return left, remaps, params, name

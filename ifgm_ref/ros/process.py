@@ -27,11 +27,13 @@ from typing import IO, Any, TextIO
 from ifgm_ref.errors import ImplementationError
 from ifgm_ref.ros.client import FD_VARIABLE, INDEX_VARIABLE
 
-__all__ = ["SHIMS", "NodeProcess"]
+__all__ = ["SHIMS", "SHIMS2", "NodeProcess"]
 
 #: The folder of shim packages (``rospy``, ``tf``, ``sensor_msgs``, ...) put first on a
 #: node's ``PYTHONPATH``.
 SHIMS = Path(__file__).resolve().parent / "shims"
+#: The same for ROS 2 nodes (``rclpy`` and ROS 2 Humble's message packages).
+SHIMS2 = Path(__file__).resolve().parent / "shims2"
 #: The folder that holds the ``ifgm_ref`` package, put after them (a node imports the
 #: stand-in from the same tree as the broker's).
 ROOT = Path(__file__).resolve().parents[2]
@@ -52,14 +54,19 @@ class NodeProcess:
         The node's place among the nodes (0, 1, ...).
     log : text stream, optional
         Where the node's output is copied as it comes.
+    shims : path, default :data:`SHIMS`
+        The shim packages put first on its ``PYTHONPATH`` (:data:`SHIMS2` for ROS 2).
     """
 
-    def __init__(self, command: str, index: int, log: TextIO | None = None) -> None:
+    def __init__(
+        self, command: str, index: int, log: TextIO | None = None, shims: Path = SHIMS
+    ) -> None:
         self.command = command
         self.argv = shlex.split(command)
         if not self.argv:
             raise ImplementationError("a --ros-node command cannot be empty")
         self.index = index
+        self.shims = shims
         self.name = f"node {index} ({command})"
         self._log = log
         self._process: subprocess.Popen[bytes] | None = None
@@ -83,7 +90,7 @@ class NodeProcess:
         """
         ours, theirs = socket.socketpair()
         env = dict(os.environ)
-        path = [str(SHIMS), str(ROOT), env.get("PYTHONPATH", "")]
+        path = [str(self.shims), str(ROOT), env.get("PYTHONPATH", "")]
         env["PYTHONPATH"] = os.pathsep.join(p for p in path if p)
         env.update({FD_VARIABLE: str(theirs.fileno()), INDEX_VARIABLE: str(self.index)})
         env.setdefault("PYTHONHASHSEED", "0")  # the same set order on every run
