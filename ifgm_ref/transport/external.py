@@ -37,7 +37,6 @@ import io
 import os
 import re
 import shlex
-import signal
 import subprocess
 import threading
 import time
@@ -51,6 +50,7 @@ from ifgm_ref.errors import ImplementationError, ParameterError, ProtocolError
 from ifgm_ref.pose import Point, Pose
 from ifgm_ref.protocol import Command, EpisodeParams, Observation
 from ifgm_ref.transport.pipes import MAX_LINE, LineTooLongError, Pipes, connect
+from ifgm_ref.transport.processes import copy_lines, exited, kill_process, status_text
 from ifgm_ref.transport.wire import (
     bye_message,
     decode,
@@ -92,16 +92,6 @@ STDERR_TAIL = 20
 #: How long to wait for the stderr copier to drain after the program ended, s: the pipe is
 #: closed by then unless a grandchild still holds it, which must not stall the report.
 DRAIN_WAIT = 1.0
-#: How long to wait for a killed program to be reaped, s (SIGKILL cannot be ignored).
-REAP_WAIT = 5.0
-#: The longest wait between two looks at whether a program has exited, s: the exit is awaited
-#: without reaping the program (so that its process id, which names its process group, stays
-#: its own until the group is killed), which POSIX lets one poll, not block on with a
-#: timeout. 50 ms, as :meth:`subprocess.Popen.wait` polls, is nothing next to an exit.
-EXIT_POLL = 0.05
-#: How many characters of one stderr line an error message quotes: a traceback's lines fit;
-#: one endless line does not flood the message.
-STDERR_WIDTH = 1000
 #: What a line read holds where the program's bytes were not UTF-8 (lone surrogates, as
 #: :mod:`~ifgm_ref.transport.pipes` decodes them: ``surrogateescape``).
 _NOT_UTF8 = re.compile("[\udc80-\udcff]")
@@ -256,16 +246,16 @@ class ExternalPlanner:
         deadline = time.monotonic() + self.startup_timeout
         self._pipes.send(encode(bye_message()), deadline)  # one that is not read: no exit
         self._pipes.close_input()
-        if not _exited(process, deadline - time.monotonic()):
+        if not exited(process, deadline - time.monotonic()):
             self._fail(
                 f"program did not exit within {self.startup_timeout!r} s after bye "
                 f"({STARTUP}, which bounds the exit too; program killed)",
                 tail=True,
             )
-        status = _kill_process(process)  # and whatever it left running in its group
+        status = kill_process(process)  # and whatever it left running in its group
         self._drain()
         if status != 0:
-            self._fail(f"program {_status(status)} after bye", tail=True)
+            self._fail(f"program {status_text(status)} after bye", tail=True)
         self._check_quiet("bye", after=True)
         self._forget()
 
@@ -337,13 +327,13 @@ class ExternalPlanner:
         assert process.stderr is not None
         self._stderr = io.TextIOWrapper(process.stderr, encoding="utf-8", errors="replace")
         self._stderr_copier = threading.Thread(
-            target=_copy_lines,
+            target=copy_lines,
             args=(self._stderr, self._stderr_tail, self._log),
             name=f"stderr of pid {process.pid}",
             daemon=True,
         )
         self._stderr_copier.start()
-        self._finalizer = weakref.finalize(self, _kill_process, process)
+        self._finalizer = weakref.finalize(self, kill_process, process)
 
     def _exchange(self, message: dict[str, Any], what: str, *, startup: bool = False) -> str:
         """Send ``message`` and return the reply line, or fail saying what went wrong.
@@ -360,7 +350,7 @@ class ExternalPlanner:
                 raise TimeoutError
             line = self._pipes.receive(deadline)
         except TimeoutError:
-            if self._process is not None and _exited(self._process, 0.0):
+            if self._process is not None and exited(self._process, 0.0):
                 # gone, but a process it started holds its stdout open: say what it did
                 self._wait_for_exit(
                     what,
@@ -409,13 +399,13 @@ class ExternalPlanner:
         killing it if it lingers, and its process group in any case."""
         process = self._process
         assert process is not None
-        if not _exited(process, self.timeout):
+        if not exited(process, self.timeout):
             self._fail(
                 f"program closed its stdout before answering {what} (program killed)", tail=True
             )
-        status = _kill_process(process)
+        status = kill_process(process)
         self._drain()
-        self._fail(f"program {_status(status)} before answering {what}{how}", tail=True)
+        self._fail(f"program {status_text(status)} before answering {what}{how}", tail=True)
 
     def _drain(self) -> None:
         """Let what reads stdout and stderr finish reading what the ended program wrote."""
@@ -443,7 +433,7 @@ class ExternalPlanner:
 
     def _kill(self) -> None:
         if self._process is not None:
-            _kill_process(self._process)
+            kill_process(self._process)
             self._drain()
         self._forget()
 
@@ -465,76 +455,6 @@ class ExternalPlanner:
                 stderr.close()
 
 
-def _copy_lines(stream: IO[str], tail: collections.deque[str], log: TextIO | None) -> None:
-    """Keep the last lines of ``stream`` in ``tail``, copying each to ``log`` (a thread).
-
-    A line is read :data:`~ifgm_ref.transport.pipes.MAX_LINE` characters at a time, and
-    ``tail`` keeps the first :data:`STDERR_WIDTH` of each: one endless line holds no more.
-    """
-    whole = True  # whether the piece read last ended its line
-    try:
-        while piece := stream.readline(MAX_LINE):
-            if whole:
-                line = piece.rstrip("\r\n")
-                cut = len(line) > STDERR_WIDTH or not piece.endswith("\n")
-                tail.append(f"{line[:STDERR_WIDTH]} [...]" if cut else line)
-            whole = piece.endswith("\n")
-            if log is not None:
-                log.write(piece)
-                log.flush()
-    except (OSError, ValueError):
-        pass
-
-
-def _exited(process: subprocess.Popen[bytes], timeout: float) -> bool:
-    """Whether ``process`` has exited, waiting up to ``timeout`` s (``<= 0``: just look).
-
-    On POSIX the process is left unreaped: a zombie keeps its process id, which names its
-    process group, so that :func:`_kill_process` kills that group and no other.
-    """
-    if os.name != "posix":
-        try:
-            process.wait(timeout=max(0.0, timeout))
-        except subprocess.TimeoutExpired:
-            return False
-        return True
-    deadline, delay = time.monotonic() + timeout, 0.0005
-    while True:
-        if process.returncode is not None:
-            return True
-        try:
-            if os.waitid(os.P_PID, process.pid, os.WEXITED | os.WNOHANG | os.WNOWAIT):
-                return True
-        except ChildProcessError:  # reaped by someone else
-            return True
-        left = deadline - time.monotonic()
-        if left <= 0.0:
-            return False
-        time.sleep(min(delay, left))
-        delay = min(2 * delay, EXIT_POLL)
-
-
-def _kill_process(process: subprocess.Popen[bytes]) -> int | None:
-    """Kill ``process`` and its process group, and reap it; its ``returncode`` (``None`` if
-    it could not be reaped within :data:`REAP_WAIT`).
-
-    The group is killed even when the process has exited (after ``bye``, say): what it
-    started and left running dies with it. Unless the process was already reaped: its id
-    might then name another's group.
-    """
-    if process.returncode is None:
-        try:
-            if os.name == "posix":
-                os.killpg(process.pid, signal.SIGKILL)
-            else:
-                process.kill()
-        except (ProcessLookupError, PermissionError):
-            pass
-    with contextlib.suppress(subprocess.TimeoutExpired):
-        process.wait(timeout=REAP_WAIT)
-    return process.returncode
-
-
 def _too_long(err: LineTooLongError, where: str) -> str:
     """Say that the program wrote a line longer than the pipes read, and how it began."""
     return (
@@ -551,22 +471,6 @@ def _quote(line: str) -> str:
     "'caf\ufffd'"
     """
     return quote(_NOT_UTF8.sub("\ufffd", line))
-
-
-def _status(status: int | None) -> str:
-    """Say how a program ended from its ``returncode`` (``None``: it was not reaped).
-
-    >>> _status(3), _status(-9), _status(None)
-    ('exited with status 3', 'was killed by signal SIGKILL', 'could not be reaped')
-    """
-    if status is None:
-        return "could not be reaped"
-    if status >= 0:
-        return f"exited with status {status}"
-    try:
-        return f"was killed by signal {signal.Signals(-status).name}"
-    except ValueError:
-        return f"was killed by signal {-status}"
 
 
 class ExternalFactory:
