@@ -161,17 +161,21 @@ class Logger:
         """Dropped, as at the default level."""
 
     def info(self, message: Any, **_ignored: Any) -> None:
+        """Log at level INFO."""
         _log("INFO", message)
 
     def warning(self, message: Any, **_ignored: Any) -> None:
+        """Log at level WARN."""
         _log("WARN", message)
 
     warn = warning
 
     def error(self, message: Any, **_ignored: Any) -> None:
+        """Log at level ERROR."""
         _log("ERROR", message)
 
     def fatal(self, message: Any, **_ignored: Any) -> None:
+        """Log at level FATAL."""
         _log("FATAL", message)
 
 
@@ -264,12 +268,15 @@ class Node:
         client().name_node(node_name)
 
     def get_name(self) -> str:
+        """The node's name."""
         return self._name
 
     def get_namespace(self) -> str:
+        """The node's namespace: ``/`` here."""
         return "/"
 
     def create_publisher(self, msg_type: type[Message], topic: str, qos: Any, **_: Any) -> Any:
+        """A publisher of ``msg_type`` on ``topic`` (``publish(message)``)."""
         return Publisher(topic, msg_type)
 
     def create_subscription(
@@ -280,14 +287,17 @@ class Node:
         qos: Any,
         **_: Any,
     ) -> Any:
+        """Call ``callback(message)`` for each ``msg_type`` message on ``topic``."""
         return Subscriber(topic, msg_type, callback)
 
     def create_timer(self, period: float, callback: Callable[[], Any], **_: Any) -> Any:
+        """Call ``callback()`` every ``period`` s of simulated time."""
         return _Timer(period, lambda event: callback())  # type: ignore[arg-type]
 
     def create_service(
         self, srv_type: type[ServiceType], name: str, callback: Callable[[Any, Any], Any], **_: Any
     ) -> Registration:
+        """Offer ``name``, answered by ``callback(request, response)``."""
         handle = Registration(
             "srv",
             name,
@@ -297,12 +307,15 @@ class Node:
         return client().register(handle)
 
     def create_client(self, srv_type: type[ServiceType], name: str, **_: Any) -> Client:
+        """A client of the service ``name``."""
         return Client(srv_type, name)
 
     def get_clock(self) -> Clock:
+        """The simulated clock."""
         return Clock()
 
     def get_logger(self) -> Logger:
+        """The node's logger."""
         return Logger()
 
     def declare_parameter(self, name: str, value: Any = None, *_: Any, **__: Any) -> Parameter:
@@ -313,6 +326,7 @@ class Node:
         return self.get_parameter(name)
 
     def declare_parameters(self, namespace: str, parameters: Sequence[Any]) -> list[Parameter]:
+        """Declare ``(name, default)`` pairs under ``namespace``."""
         prefix = f"{namespace}." if namespace else ""
         return [self.declare_parameter(prefix + p[0], *p[1:2]) for p in parameters]
 
@@ -322,10 +336,12 @@ class Node:
         return Parameter(name, None if key is None else client().params[key])
 
     def get_parameter_or(self, name: str, alternative: Any = None) -> Parameter:
+        """The parameter ``name``, or ``alternative`` if unset."""
         key = self._key(name)
         return alternative if key is None else Parameter(name, client().params[key])
 
     def has_parameter(self, name: str) -> bool:
+        """Whether ``name`` is set."""
         return self._key(name) is not None
 
     def _key(self, name: str) -> str | None:
@@ -340,9 +356,11 @@ class Node:
         """Nothing to release."""
 
     def destroy_timer(self, timer: Any) -> None:
+        """Stop ``timer``."""
         timer.shutdown()
 
     def destroy_subscription(self, subscription: Any) -> None:
+        """Stop ``subscription``."""
         subscription.unregister()
 
     def destroy_publisher(self, publisher: Any) -> None:
