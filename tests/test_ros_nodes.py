@@ -271,6 +271,20 @@ def test_each_episode_starts_the_nodes_afresh_and_runs_alike() -> None:
     assert runs[0] == runs[1] and runs[0][0] == 0.0
 
 
+def test_simulate_and_oracle_take_ros_nodes_on_the_command_line(tmp_path: Path) -> None:
+    ifgm_ref = [sys.executable, "-m", "ifgm_ref"]
+    simulate_nodes = [*ifgm_ref, "simulate", "free", "--ros-node", probe("echo"), "--json"]
+    done = subprocess.run([*simulate_nodes, "--max-time", "2"], capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    assert '"stop_reason": "time_limit"' in done.stdout and "probe: a print" in done.stderr
+    both = subprocess.run([*simulate_nodes, "--planner", "ifgm"], capture_output=True, text=True)
+    assert both.returncode == 2 and "exactly one of --planner" in both.stderr
+    oracle = [*ifgm_ref, "oracle", "--ros-node", probe("crash"), "--artifacts", str(tmp_path)]
+    checked = [*oracle, "--check", "converges_open", "--profile", "brief"]
+    crashed = subprocess.run(checked, capture_output=True, text=True)
+    assert crashed.returncode == 1 and "the probe crashes on purpose" in crashed.stdout
+
+
 # -- ROS 2: rclpy nodes over the same broker ----------------------------------------------------
 
 

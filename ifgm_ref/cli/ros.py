@@ -4,6 +4,7 @@ unchanged ROS 1 nodes as the planner (``docs/ros-nodes.md``)."""
 from __future__ import annotations
 
 import argparse
+import sys
 from typing import TYPE_CHECKING
 
 from ifgm_ref.errors import ParameterError
@@ -79,7 +80,12 @@ def ros_options(args: argparse.Namespace, scale: float) -> dict[str, object]:
 
 
 def ros_planner(args: argparse.Namespace, scale: float) -> RosPlanner:
-    """The planner of ``--ros-node`` (``ifgm-ref simulate``)."""
+    """The planner of ``--ros-node`` (``ifgm-ref simulate``), the nodes' output copied to
+    stderr."""
     from ifgm_ref.ros.bridge import RosPlanner
 
-    return RosPlanner(args.ros_node, **ros_options(args, scale))  # type: ignore[arg-type]
+    options = {
+        **ros_options(args, scale),
+        "log": sys.stderr,
+    }  # the nodes' output, as rosrun shows it
+    return RosPlanner(args.ros_node, **options)  # type: ignore[arg-type]

@@ -195,10 +195,12 @@ class Implementation:
 
     @property
     def is_program(self) -> bool:
-        """Whether it is a program run through the JSON-lines protocol (``from_command``)."""
+        """Whether it is a program run through the JSON-lines protocol (``from_command``) or
+        ROS nodes (``--ros-node``, :class:`~ifgm_ref.ros.bridge.RosFactory`)."""
+        from ifgm_ref.ros.bridge import RosFactory
         from ifgm_ref.transport.external import ExternalFactory
 
-        return isinstance(self.factory, ExternalFactory)
+        return isinstance(self.factory, ExternalFactory | RosFactory)
 
     def close(self) -> None:
         """Stop a program under test (a factory with ``close``, e.g. ``from_command``)."""
