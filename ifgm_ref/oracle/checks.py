@@ -388,9 +388,10 @@ def _dead_end_test(impl: Implementation, world: World, rec: Recorder) -> None:
     run = episode(impl, world, rec)
     dt = run.trace[1].t - run.trace[0].t if len(run.trace) > 1 else 0.0
     dead_band = world.robot.max_turn_rate * dt / 2
+    in_parts = rec.physical or not world.robot.stops_at_once  # it brakes before it turns
     for start, commanded in dead_end_turns(run.trace):
         rec.tally.update(dead_ends=1)
-        if why := turn_errors(start, commanded, dead_band):
+        if why := turn_errors(start, commanded, dead_band, in_parts=in_parts):
             raise CheckFailed(f"{why} [{place_of(impl, world)}]")
     rec.summary = f"{rec.tally['dead_ends']} dead end(s) met, none turned otherwise"
 

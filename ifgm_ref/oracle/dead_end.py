@@ -23,7 +23,7 @@ from ifgm_ref.flowchart import Branch
 from ifgm_ref.pose import wrap_angle
 from ifgm_ref.simulator import TraceStep
 
-__all__ = ["STEP", "STEPS", "dead_end_turns", "turn_errors"]
+__all__ = ["STEP", "STEPS", "dead_end_turns", "part_errors", "turn_errors"]
 
 #: One turn, rad (section 4).
 STEP = math.pi / 4
@@ -50,12 +50,19 @@ def dead_end_turns(trace: Sequence[TraceStep]) -> Iterator[tuple[float, list[flo
             start, commanded = None, []
 
 
-def turn_errors(start: float, commanded: Sequence[float], dead_band: float) -> str:
+def turn_errors(
+    start: float, commanded: Sequence[float], dead_band: float, *, in_parts: bool = False
+) -> str:
     """What is wrong with one dead end's turns (``""``: nothing): each commanded heading
     holds the current target, or moves on to the next, 45 degrees further the same way,
     each within ``dead_band + SLACK``; the first target is 45 degrees from ``start``, and
-    there are at most :data:`STEPS` targets."""
+    there are at most :data:`STEPS` targets.
+
+    ``in_parts`` reads the turns of a robot that cannot stop at once: :func:`part_errors`.
+    """
     tol = dead_band + SLACK
+    if in_parts:
+        return part_errors(start, commanded, tol)
     target, sign, steps = start, 0, 0
     for k, heading in enumerate(commanded):
         if abs(wrap_angle(heading - target)) <= tol and steps:
@@ -74,6 +81,52 @@ def turn_errors(start: float, commanded: Sequence[float], dead_band: float) -> s
             return (
                 f"dead-end step {k}: a turn of {45 * steps} degrees in all, but the turns "
                 f"stop at 180 (section 4)"
+            )
+    return ""
+
+
+def part_errors(start: float, commanded: Sequence[float], tol: float) -> str:
+    """What is wrong with one dead end's turns on a robot that cannot stop at once (``""``:
+    nothing), each within ``tol``: the headings commanded turn one way, never back, 180
+    degrees at most from ``start``, and every heading held (commanded twice running, or
+    last) is a multiple of 45 degrees from ``start``.
+
+    A robot with mass brakes before it turns in place, and its braking governor caps the
+    turn at ``u w <= b`` while it moves (:mod:`ifgm_ref.planners.governor`): the commands
+    on the way to a target are parts of the turn, and one may pass a target the planner has
+    already moved on from. Where the turns rest is what the paper fixes: 45 degrees apart,
+    one way, 180 at most.
+
+    >>> parts = [0.0, 0.1, 0.4, math.pi / 4, math.pi / 4, 1.0, 1.9, math.pi / 2 + 0.7854]
+    >>> part_errors(0.0, parts, 0.05)
+    ''
+    >>> part_errors(0.0, [0.4, 0.3], 0.05)  # back: a part never undoes one  # doctest: +ELLIPSIS
+    'dead-end step 1: commanded heading 0.3000 rad turns back (-5.7 degrees), but the turns ...'
+    >>> part_errors(0.0, [0.4, 0.6, 0.6], 0.05)  # doctest: +ELLIPSIS
+    'dead-end step 1: holds heading 0.6000 rad, 34.4 degrees from where it began, but ...'
+    """
+    turned, sign, last = 0.0, 0, start
+    for k, heading in enumerate(commanded):
+        moved = wrap_angle(heading - last)
+        way = 0 if abs(moved) <= tol else (1 if moved > 0 else -1)
+        if sign and way == -sign:
+            return (
+                f"dead-end step {k}: commanded heading {heading:.4f} rad turns back "
+                f"({math.degrees(moved):+.1f} degrees), but the turns go one way"
+            )
+        sign, turned, last = sign or way, turned + moved, heading
+        if abs(turned) > STEPS * STEP + tol:
+            return (
+                f"dead-end step {k}: {math.degrees(abs(turned)):.0f} degrees in all, but the "
+                f"turns stop at 180 (section 4)"
+            )
+        held = k + 1 == len(commanded) or abs(wrap_angle(commanded[k + 1] - heading)) <= SLACK
+        off = abs(turned - STEP * round(turned / STEP))
+        if held and off > tol:
+            return (
+                f"dead-end step {k}: holds heading {heading:.4f} rad, "
+                f"{math.degrees(abs(turned)):.1f} degrees from where it began, but a turn "
+                f"rests at a multiple of 45 (within {math.degrees(tol):.1f} degrees)"
             )
     return ""
 
