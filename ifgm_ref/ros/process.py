@@ -21,6 +21,7 @@ import socket
 import subprocess
 import threading
 import time
+import weakref
 from pathlib import Path
 from typing import IO, Any, TextIO
 
@@ -74,6 +75,7 @@ class NodeProcess:
         self._buffer = b""
         self._tail: collections.deque[str] = collections.deque(maxlen=TAIL)
         self._copier: threading.Thread | None = None
+        self._finalizer: weakref.finalize[..., NodeProcess] | None = None
 
     @property
     def running(self) -> bool:
@@ -119,6 +121,8 @@ class NodeProcess:
             target=_copy, args=(self._process.stdout, self._tail, self._log), daemon=True
         )
         self._copier.start()
+        # a planner dropped without close() (a worker that ends) leaves no node behind
+        self._finalizer = weakref.finalize(self, _kill_group, self._process)
 
     def send(self, line: dict[str, Any]) -> None:
         """Write one line to the node (the node reads it when it next waits)."""
@@ -181,12 +185,11 @@ class NodeProcess:
     def kill(self) -> None:
         """Kill the node's process group and reap it (nothing if it is not running)."""
         process, self._process = self._process, None
+        if self._finalizer is not None:
+            self._finalizer.detach()
+            self._finalizer = None
         if process is not None:
-            if process.poll() is None:
-                with contextlib.suppress(ProcessLookupError, PermissionError):
-                    os.killpg(process.pid, signal.SIGKILL)
-            with contextlib.suppress(subprocess.TimeoutExpired):
-                process.wait(timeout=REAP_WAIT)
+            _kill_group(process)
         if self._sock is not None:
             self._sock.close()
             self._sock = None
@@ -199,6 +202,15 @@ class NodeProcess:
             return self._process.wait(timeout=timeout)
         except subprocess.TimeoutExpired:
             return None
+
+
+def _kill_group(process: subprocess.Popen[bytes]) -> None:
+    """Kill ``process``'s group if it still runs, and reap it."""
+    if process.poll() is None:
+        with contextlib.suppress(ProcessLookupError, PermissionError):
+            os.killpg(process.pid, signal.SIGKILL)
+    with contextlib.suppress(subprocess.TimeoutExpired):
+        process.wait(timeout=REAP_WAIT)
 
 
 def _copy(stream: IO[bytes], tail: collections.deque[str], log: TextIO | None) -> None:
