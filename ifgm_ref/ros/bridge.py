@@ -34,6 +34,7 @@ from ifgm_ref.ros.process import SHIMS, SHIMS2, NodeProcess
 from ifgm_ref.ros.rostime import NS, Time, nanoseconds
 from ifgm_ref.ros.rules import CMD_VEL_TIMEOUT, GOAL_TOPIC
 from ifgm_ref.transport.external import TIMEOUT, timeouts
+from ifgm_ref.validate import POSITIVE, require
 
 __all__ = ["CMD_VEL_TIMEOUT", "GOAL_TOPIC", "RosFactory", "RosPlanner", "episode_params"]
 
@@ -118,8 +119,7 @@ class RosPlanner:
             raise ParameterError(f"`distro` must be ros1 or ros2, got {distro!r}")
         if not commands:
             raise ParameterError("give at least one --ros-node command")
-        if not (math.isfinite(scale) and scale > 0):
-            raise ParameterError(f"`scale` must be a finite number > 0, got {scale!r}")
+        require("scale", scale, POSITIVE)
         try:
             remapped = dict(parse_remap(text) for text in remaps)
         except ValueError as err:

@@ -262,7 +262,7 @@ class Timer:
     ) -> None:
         self.period = period.to_nsec() if isinstance(period, Duration) else nanoseconds(period)
         if self.period <= 0:
-            raise ROSException("a timer's period must be > 0")
+            raise ROSException("a timer's period must be longer than 0 s")
         self.callback, self.oneshot = callback, oneshot
         self.due: int | None = client().now + self.period
         self.last: int | None = None

@@ -15,10 +15,11 @@ the same on every run.
 
 from __future__ import annotations
 
-import math
 from collections.abc import Callable
 from functools import total_ordering
 from typing import Any, Self
+
+from ifgm_ref.validate import violation
 
 __all__ = ["Duration", "Time", "nanoseconds", "set_clock"]
 
@@ -32,8 +33,8 @@ def nanoseconds(seconds: float) -> int:
     >>> nanoseconds(0.1), nanoseconds(1 / 3)
     (100000000, 333333333)
     """
-    if not math.isfinite(seconds):
-        raise ValueError(f"a time must be finite, got {seconds!r} s")
+    if why := violation(seconds):
+        raise ValueError(f"a time in s {why}")
     return round(seconds * NS)
 
 
