@@ -3,12 +3,12 @@ runs for a minute, and adds its pid to the file given as the first argument. The
 second argument says: ``bye`` drives straight at the goal and exits with status 0 at ``bye``;
 ``exit`` exits with status 0 at once, before answering anything."""
 
-import json
-import math
 import os
 import signal
 import sys
 import time
+
+from seek_goal import answer_until_bye
 
 
 def main() -> None:
@@ -23,18 +23,7 @@ def main() -> None:
         file.write(f"{pid}\n")
     if sys.argv[2] == "exit":
         return
-    for line in sys.stdin:
-        message = json.loads(line)
-        if message["type"] == "bye":
-            return
-        if message["type"] == "reset":
-            speed, reply = message["robot"]["speed"], {"type": "ready"}
-        else:
-            (x, y, _), (gx, gy) = message["pose"], message["goal"]
-            heading = math.atan2(gy - y, gx - x)
-            reply = {"type": "command", "heading": heading, "speed": speed}
-        sys.stdout.write(json.dumps(reply) + "\n")
-        sys.stdout.flush()
+    answer_until_bye()
 
 
 if __name__ == "__main__":

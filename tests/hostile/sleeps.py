@@ -3,12 +3,19 @@ argument says: at ``reset`` (before its first reply), at the first ``observe``, 
 (it never exits); until then it drives straight at the goal. It writes its pid to the file
 given as the second argument."""
 
-import json
-import math
 import os
 import signal
 import sys
 import time
+from typing import Any
+
+from seek_goal import answer_until_bye
+
+
+def _sleep_at(message: dict[str, Any]) -> None:
+    """Sleep for an hour at the message the first argument names."""
+    if message["type"] == sys.argv[1]:
+        time.sleep(3600)
 
 
 def main() -> None:
@@ -17,20 +24,7 @@ def main() -> None:
         signal.signal(each, signal.SIG_IGN)
     with open(sys.argv[2], "w") as file:
         file.write(str(os.getpid()))
-    for line in sys.stdin:
-        message = json.loads(line)
-        if message["type"] == sys.argv[1]:
-            time.sleep(3600)
-        if message["type"] == "bye":
-            return
-        if message["type"] == "reset":
-            speed, reply = message["robot"]["speed"], {"type": "ready"}
-        else:
-            (x, y, _), (gx, gy) = message["pose"], message["goal"]
-            heading = math.atan2(gy - y, gx - x)
-            reply = {"type": "command", "heading": heading, "speed": speed}
-        sys.stdout.write(json.dumps(reply) + "\n")
-        sys.stdout.flush()
+    answer_until_bye(_sleep_at)
 
 
 if __name__ == "__main__":

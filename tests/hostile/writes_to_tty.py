@@ -1,9 +1,9 @@
 """A program that writes to the terminal (``/dev/tty``) at its start and at every message,
 saying on stderr whether it could, and otherwise drives straight at the goal."""
 
-import json
-import math
 import sys
+
+from seek_goal import answer_until_bye
 
 NOTE = b"HOSTILE PROGRAM WAS HERE\n"
 
@@ -21,19 +21,7 @@ def scribble() -> None:
 def main() -> None:
     """Scribble on the terminal, then answer every message."""
     scribble()
-    for line in sys.stdin:
-        scribble()
-        message = json.loads(line)
-        if message["type"] == "bye":
-            return
-        if message["type"] == "reset":
-            speed, reply = message["robot"]["speed"], {"type": "ready"}
-        else:
-            (x, y, _), (gx, gy) = message["pose"], message["goal"]
-            heading = math.atan2(gy - y, gx - x)
-            reply = {"type": "command", "heading": heading, "speed": speed}
-        sys.stdout.write(json.dumps(reply) + "\n")
-        sys.stdout.flush()
+    answer_until_bye(lambda message: scribble())
 
 
 if __name__ == "__main__":
