@@ -7,8 +7,9 @@ that stops reading (``ifgm-ref planners | head -1``) ends the command quietly wi
 
 One module per subcommand or group of them, each adding its parser (``add_NAME``) and
 running it (``run_NAME``): :mod:`.simulate`; :mod:`.listings` (``worlds``, ``planners``);
-:mod:`.artefacts` (``figures``, ``vectors``, ``trace-matrix``); :mod:`.oracle`;
-:mod:`.bench`; :mod:`.serve`; :mod:`.replay`; :mod:`.docs`. What they share is in :mod:`.common`.
+:mod:`.artefacts` (``figures``, ``vectors``, ``trace-matrix``); :mod:`.oracle`; :mod:`.suite`;
+:mod:`.report`; :mod:`.bench`; :mod:`.serve`; :mod:`.replay`; :mod:`.docs`. What they share
+is in :mod:`.common`.
 """
 
 from __future__ import annotations
@@ -25,8 +26,10 @@ from ifgm_ref.cli.docs import add_docs
 from ifgm_ref.cli.listings import add_planners, add_worlds
 from ifgm_ref.cli.oracle import add_oracle
 from ifgm_ref.cli.replay import add_replay
+from ifgm_ref.cli.report import add_report
 from ifgm_ref.cli.serve import add_serve
 from ifgm_ref.cli.simulate import add_simulate
+from ifgm_ref.cli.suite import add_suite
 from ifgm_ref.errors import IfgmRefError
 
 __all__ = ["EXIT_BROKEN_PIPE", "build_parser", "main"]
@@ -42,6 +45,8 @@ SUBCOMMANDS = (
     add_planners,
     add_vectors,
     add_oracle,
+    add_suite,
+    add_report,
     add_bench,
     add_trace_matrix,
     add_serve,

@@ -17,6 +17,8 @@ from ifgm_ref.cli.common import (
     with_engine,
 )
 from ifgm_ref.cli.ros import add_ros_options, exactly_one
+from ifgm_ref.cli.suite import add_suite_options, refuse_drawing_options, run_suite
+from ifgm_ref.errors import ParameterError
 from ifgm_ref.noise import KINDS
 from ifgm_ref.params import SimParams
 
@@ -82,6 +84,7 @@ def add_oracle(sub: Subcommands) -> None:
         "--reading, --robot or --speed",
     )
     _add_run_options(oracle)
+    add_suite_options(oracle)
     oracle.set_defaults(func=run_oracle)
 
 
@@ -161,6 +164,10 @@ def run_oracle(args: argparse.Namespace) -> int:
     for item in args.expect_failure or []:
         name, _, reason = item.partition("=")
         expected[name] = reason or "expected"
+    if args.suite is not None:
+        refuse_drawing_options(args)
+    elif args.results is not None or args.tier != "full":
+        raise ParameterError("--tier and --results apply only with --suite")
     equations = None if args.equations is None else load_equations(args.equations)
     spec = declared_by(args)  # before any program starts: a bad file is one line
     if args.ros_node is not None:
@@ -178,6 +185,11 @@ def run_oracle(args: argparse.Namespace) -> int:
         impl = Implementation.from_spec(args.planner, promises=args.promises, equations=equations)
     if args.reading:
         impl.declare_readings(parse_readings(args.reading))
+    if args.suite is not None:
+        try:
+            return run_suite(args, impl)
+        finally:
+            impl.close()
     try:
         sim = with_engine(SimParams(), args)  # MuJoCo installed, a body only on it
         robot = tuple(robot_of(args).items())

@@ -48,7 +48,12 @@ from ifgm_ref.oracle.check_types import (
     Recorder,
     levels_up_to,
 )
-from ifgm_ref.oracle.conformance import compare, divergence_message, reference_episode
+from ifgm_ref.oracle.conformance import (
+    ReferenceEpisode,
+    compare,
+    divergence_message,
+    reference_episode,
+)
 from ifgm_ref.oracle.dead_end import dead_end_turns, turn_errors
 from ifgm_ref.oracle.episodes import MOVING, NEAR, _xy, ending, episode, place_of
 from ifgm_ref.oracle.equation_checks import (
@@ -89,7 +94,7 @@ from ifgm_ref.simulator import Run, TraceStep
 from ifgm_ref.world import Polygon, World
 from ifgm_ref.worldgen.classes import GENERATORS, enclosed_world, gap_wall, placed
 
-__all__ = ["CHECKS", "FIRST_TURN", "checks_at", "scale_test"]
+__all__ = ["CHECKS", "FIRST_TURN", "agrees_with", "checks_at", "scale_test"]
 
 #: ``passes_wide_gaps``: a commanded heading this far off the goal bearing (rad, 5 degrees),
 #: steering the robot away from the goal bearing or holding it there, is the robot's first
@@ -362,13 +367,21 @@ def _determinism_test(impl: Implementation, world: World, rec: Recorder) -> None
 def _agrees_test(impl: Implementation, world: World, rec: Recorder) -> None:
     """Replay the reference IFGM's episode in ``world`` into ``impl``, open loop, and compare
     step by step (:mod:`ifgm_ref.oracle.conformance`)."""
+    sim = rec.sim_for(world)
+    reference = reference_episode(world, sim, Readings.declared(impl.promises.readings))
+    agrees_with(impl, world, reference, rec)
+
+
+def agrees_with(
+    impl: Implementation, world: World, reference: ReferenceEpisode, rec: Recorder
+) -> None:
+    """Replay ``reference``, the reference's episode in ``world`` (run, or rebuilt from a
+    suite case: :mod:`ifgm_ref.oracle.suite.recorded`), into ``impl`` and compare."""
     rec.examples += 1
     rec.worlds.add(world)
     if currently_in_test_context():
         note(f"world: {world}")
-    sim = rec.sim_for(world)
-    reference = reference_episode(world, sim, Readings.declared(impl.promises.readings))
-    rec.evidence = Evidence([world], [reference.run], sim.max_time)
+    rec.evidence = Evidence([world], [reference.run], rec.sim_for(world).max_time)
     where = place_of(impl, world)
     found = compare(impl, reference, where)
     total = len(reference.recording.steps)

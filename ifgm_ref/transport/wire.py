@@ -49,6 +49,7 @@ from ifgm_ref.protocol import Command, EpisodeParams, Observation
 from ifgm_ref.validate import POSITIVE, REAL, Domain, violation
 
 __all__ = [
+    "PROTOCOL_VERSION",
     "QUOTE_LIMIT",
     "MessageType",
     "Reset",
@@ -68,6 +69,9 @@ __all__ = [
     "reset_message",
 ]
 
+#: The protocol's version (docs/oracle-protocol.md): raised whenever a message or a field
+#: changes meaning or disappears; a suite's case files say which version they were written for.
+PROTOCOL_VERSION = 1
 #: Longest piece of an offending line quoted in an error message, characters: enough to see
 #: the type and the first fields of a message, short enough for one terminal line or two.
 QUOTE_LIMIT = 200

@@ -1,0 +1,166 @@
+"""Writing a suite version: drawing its cases once, judging them by the reference, freezing them.
+
+``ifgm-ref suite build --version v1`` draws each simulation check's examples from the check's
+own strategy (derandomized, ``examples`` per check, the explicit ones first), runs the
+reference on each -- IFGM, or IBA for the checks only IBA's promises reach -- and keeps the
+cases it passes having met something to check; a reference-level case also records the
+reference's answers (:mod:`.recorded`). It writes one file of cases per property, the
+equation vectors and traces (``vectors.json``, the file ``ifgm-ref vectors`` writes) and a
+manifest. The quick tier is chosen by measurement (:mod:`.tiers`), and its kill matrix
+written beside the cases (``kill-matrix.json``).
+"""
+
+from __future__ import annotations
+
+import json
+import time
+from collections.abc import Callable
+from dataclasses import replace
+from pathlib import Path
+from typing import Any
+
+import hypothesis
+from hypothesis import HealthCheck, Phase, given, settings
+from hypothesis import seed as hypothesis_seed
+
+from ifgm_ref.errors import ImplementationError
+from ifgm_ref.oracle.check_types import Check, CheckFailed, Kind, Recorder
+from ifgm_ref.oracle.checks import CHECKS
+from ifgm_ref.oracle.conformance import HEADING_TOL, POINT_TIE, SPEED_TOL, TIE
+from ifgm_ref.oracle.implementation import Implementation
+from ifgm_ref.oracle.stable_draws import global_constants_only
+from ifgm_ref.oracle.suite.cases import Case, write_cases
+from ifgm_ref.oracle.suite.recorded import recorded
+from ifgm_ref.oracle.suite.tiers import broken_implementations, kill_matrix, quick_cover, with_tiers
+from ifgm_ref.oracle.suite.versions import SUITES, manifest_path
+from ifgm_ref.oracle.vectors import write_vectors
+from ifgm_ref.params import SimParams
+from ifgm_ref.transport.wire import PROTOCOL_VERSION
+from ifgm_ref.world import World
+
+__all__ = ["CLASS_FLAGGED", "REFERENCES", "build_suite", "drawn_examples"]
+
+#: The reference planners that judge the cases, in order: a check's cases are drawn for, and
+#: judged by, the first whose promises it applies to.
+REFERENCES = ("ifgm", "iba")
+#: The checks whose worlds are drawn from the classes the implementation converges in: their
+#: cases carry their world's class as a flag (``class:u``).
+CLASS_FLAGGED = frozenset(
+    {"rigid_motion_invariant", "scale_invariant", "ignores_unseen_obstacles", "deterministic"}
+)
+
+
+def drawn_examples(check: Check, impl: Implementation, count: int, seed: int) -> list[Any]:
+    """``check``'s explicit examples, then ``count`` drawn from its strategy for ``impl``
+    (derandomized by ``seed``), duplicates left out, in the order drawn."""
+    examples: list[Any] = list(check.explicit()) if check.explicit is not None else []
+
+    @settings(
+        max_examples=count,
+        phases=[Phase.generate],
+        database=None,
+        deadline=None,
+        suppress_health_check=list(HealthCheck),
+    )
+    @hypothesis_seed(seed)
+    @given(check.strategy(impl))
+    def collect(example: Any) -> None:
+        if example not in examples:
+            examples.append(example)
+
+    with global_constants_only():  # the same examples whatever is installed or imported
+        collect()
+    return examples
+
+
+def _world_of(example: Any) -> World:
+    return example if isinstance(example, World) else example[0]
+
+
+def _judged(check: Check, impl: Implementation, example: Any, sim: SimParams) -> tuple[str, float]:
+    """The reference's verdict on ``example`` (``pass``, ``fail`` or ``skip``: it met
+    nothing to check) and its seconds."""
+    recorder = Recorder(sim=sim)
+    started = time.perf_counter()
+    try:
+        check.test(impl, example, recorder)
+    except CheckFailed:
+        return "fail", time.perf_counter() - started
+    missed = None if check.meets is None else check.meets.missed(recorder)
+    return "skip" if missed is not None else "pass", time.perf_counter() - started
+
+
+def _check_cases(
+    check: Check, count: int, seed: int, progress: Callable[[str], None], seconds: dict[str, float]
+) -> list[Case]:
+    impls = [Implementation.from_spec(name) for name in REFERENCES]
+    impl = next((i for i in impls if check.applies(i) is None), None)
+    if impl is None:
+        raise ImplementationError(f"no reference planner promises {check.name}")
+    sim = SimParams()
+    cases: list[Case] = []
+    for example in drawn_examples(check, impl, count, seed):
+        verdict, spent = _judged(check, impl, example, sim)
+        if verdict == "skip":
+            continue
+        if verdict == "fail":  # the reference must pass its own oracle: a bug to fix, not a case
+            raise ImplementationError(f"the reference {impl.label} fails {check.name} on {example}")
+        world = _world_of(example)
+        flags = (f"class:{world.name}",) if check.name in CLASS_FLAGGED else ()
+        case = Case(f"{check.name}/{len(cases) + 1:04d}", check.name, example, flags=flags, sim=sim)
+        if check.name == "agrees_with_reference":
+            case = replace(case, recorded=recorded(world, replace(sim, max_time=_bound(world))))
+        cases.append(case)
+        seconds[case.id] = spent
+    progress(f"{check.name}: {len(cases)} cases")
+    return cases
+
+
+def _bound(world: World) -> float:
+    return Recorder().sim_for(world).max_time
+
+
+def build_suite(
+    version: str,
+    *,
+    examples: int = 50,
+    seed: int = 0,
+    root: Path = SUITES,
+    checks: list[str] | None = None,
+    progress: Callable[[str], None] = lambda line: None,
+) -> Path:
+    """Write suite ``version`` under ``root`` (refused if it exists: a version is frozen) and
+    return its folder."""
+    folder = root / version
+    if manifest_path(folder).exists():
+        raise ImplementationError(f"suite {version} exists in {root}; versions are frozen")
+    folder.mkdir(parents=True, exist_ok=True)
+    names = checks or [n for n, c in CHECKS.items() if c.kind is Kind.SIMULATION]
+    seconds: dict[str, float] = {}
+    cases = [c for n in names for c in _check_cases(CHECKS[n], examples, seed, progress, seconds)]
+    matrix = kill_matrix(cases, broken_implementations(), progress)
+    quick = quick_cover(cases, matrix, seconds)
+    cases = with_tiers(cases, quick)
+    for name in names:
+        header = {"suite": version, "protocol": PROTOCOL_VERSION, "property": name}
+        write_cases(folder / f"{name}.jsonl", header, [c for c in cases if c.check == name])
+    kills = {"quick": quick, "killed": matrix, "reference_seconds": seconds}
+    (folder / "kill-matrix.json").write_text(json.dumps(kills, indent=1) + "\n")
+    write_vectors(folder / "vectors.json")
+    manifest = {
+        "suite": version,
+        "protocol": PROTOCOL_VERSION,
+        "generator": f"ifgm-ref suite build (hypothesis {hypothesis.__version__})",
+        "examples_per_check": examples,
+        "seed": seed,
+        "sim": {"engine": "kinematic", "dt": SimParams().dt},
+        "tolerances": {
+            "heading": HEADING_TOL,
+            "speed": SPEED_TOL,
+            "tie": TIE,
+            "point_tie": POINT_TIE,
+        },
+        "properties": {name: CHECKS[name].sentence for name in names},
+    }
+    manifest_path(folder).write_text(json.dumps(manifest, indent=2) + "\n")
+    return folder

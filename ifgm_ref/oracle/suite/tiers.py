@@ -1,0 +1,93 @@
+"""Choosing the quick tier by measurement: the kill matrix, and a greedy set cover over it.
+
+Every known-broken implementation (the mutants of :mod:`ifgm_ref.oracle.mutants`, and the
+built-in planners that do not keep IFGM's promises, held to them) runs every case of the
+full tier; the **kill matrix** records which cases each fails. The quick tier is then the
+smallest set found greedily that still kills every implementation the full tier kills: one
+case per property first (the cheapest the reference passes; a property the quick tier never
+exercised would let a port break it unseen), then, while some killed implementation
+survives, the case that kills the most survivors (ties: the cheaper, then the first id).
+Greedy set cover is within a factor ``ln n`` of the smallest cover, and with a dozen broken
+implementations it is small; docs/oracle.md gives the measured sizes and times.
+"""
+
+from __future__ import annotations
+
+import functools
+from collections.abc import Callable, Mapping
+from dataclasses import replace
+
+from ifgm_ref.oracle.implementation import Implementation, promises_of
+from ifgm_ref.oracle.mutants import MUTANTS
+from ifgm_ref.oracle.suite.cases import Case
+from ifgm_ref.oracle.suite.run import run_case
+from ifgm_ref.planners import make_planner
+
+__all__ = [
+    "BROKEN_PLANNERS",
+    "broken_implementations",
+    "kill_matrix",
+    "quick_cover",
+    "with_tiers",
+]
+
+#: Built-in planners that break IFGM's promises (they never claimed them): held to them,
+#: they are broken implementations the suite must reject.
+BROKEN_PLANNERS = ("fgm", "apf", "bug2", "straight")
+
+
+def broken_implementations() -> dict[str, Implementation]:
+    """Every known-broken implementation by name: ``mutant:NAME`` and ``planner:NAME``."""
+    ifgm = promises_of("ifgm")
+    found = {
+        f"mutant:{name}": Implementation.from_spec(f"ifgm_ref.oracle.mutants:{cls.__name__}")
+        for name, cls in MUTANTS.items()
+    }
+    for name in BROKEN_PLANNERS:
+        factory = functools.partial(make_planner, name)
+        found[f"planner:{name}"] = Implementation(factory, f"{name} (ifgm's promises)", ifgm)
+    return found
+
+
+def kill_matrix(
+    cases: list[Case],
+    impls: Mapping[str, Implementation],
+    progress: Callable[[str], None] = lambda line: None,
+) -> dict[str, list[str]]:
+    """The ids of the cases each implementation fails (or errs on), by implementation."""
+    matrix = {}
+    for name, impl in impls.items():
+        killed = [c.id for c in cases if run_case(c, impl).verdict in ("fail", "error")]
+        matrix[name] = killed
+        progress(f"{name}: killed by {len(killed)} of {len(cases)} cases")
+    return matrix
+
+
+def quick_cover(
+    cases: list[Case], matrix: Mapping[str, list[str]], seconds: Mapping[str, float]
+) -> list[str]:
+    """The quick tier's case ids (module docstring): one per property, then a greedy cover
+    of ``matrix``; ``seconds`` is each case's cost (the reference's time on it).
+
+    >>> cases = [Case(f"p/{k}", "p", None) for k in range(3)] + [Case("q/1", "q", None)]
+    >>> quick_cover(cases, {"a": ["p/1", "p/2"], "b": ["p/2"]},
+    ...             {"p/0": 1.0, "p/1": 1.0, "p/2": 2.0, "q/1": 1.0})
+    ['p/0', 'q/1', 'p/2']
+    """
+    chosen: list[str] = []
+    for check in dict.fromkeys(c.check for c in cases):
+        own = [c.id for c in cases if c.check == check]
+        chosen.append(min(own, key=lambda i: (seconds[i], own.index(i))))
+    order = [c.id for c in cases]
+    alive = {name for name, killed in matrix.items() if killed and not set(killed) & set(chosen)}
+    while alive:
+        gains = {i: sum(i in matrix[name] for name in alive) for i in order if i not in chosen}
+        best = max(gains, key=lambda i: (gains[i], -seconds[i], -order.index(i)))
+        chosen.append(best)
+        alive = {name for name in alive if best not in matrix[name]}
+    return chosen
+
+
+def with_tiers(cases: list[Case], quick: list[str]) -> list[Case]:
+    """``cases`` with the ``quick`` ones in the quick tier, the rest in the full one."""
+    return [replace(c, tier="quick" if c.id in quick else "full") for c in cases]
