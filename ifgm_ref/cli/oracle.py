@@ -148,11 +148,8 @@ def _add_run_options(oracle: argparse.ArgumentParser) -> None:
 
 def run_oracle(args: argparse.Namespace) -> int:
     """Run the checks; print the report; return 0 when every check passed (or as expected)."""
-    from ifgm_ref.oracle.equation_checks import load_equations
-    from ifgm_ref.oracle.implementation import Implementation
     from ifgm_ref.oracle.profiles import PROFILE_ALIASES, profile_named
     from ifgm_ref.oracle.runner import check_planner
-    from ifgm_ref.planners.ifgm_readings import parse_readings
 
     keep_hypothesis_out_of_the_working_folder()
 
@@ -168,23 +165,8 @@ def run_oracle(args: argparse.Namespace) -> int:
         refuse_drawing_options(args)
     elif args.results is not None or args.tier != "full":
         raise ParameterError("--tier and --results apply only with --suite")
-    equations = None if args.equations is None else load_equations(args.equations)
     spec = declared_by(args)  # before any program starts: a bad file is one line
-    if args.ros_node is not None:
-        impl = _ros_implementation(args, equations)  # started and reset once, or it raises
-    elif args.cmd is not None:
-        impl = Implementation.from_command(
-            args.cmd,
-            timeout=args.timeout,
-            startup_timeout=args.startup_timeout,
-            promises=args.promises,
-            equations=equations,
-        )
-        impl.answers_reset()  # a program that cannot start is bad input, not 11 errors
-    else:
-        impl = Implementation.from_spec(args.planner, promises=args.promises, equations=equations)
-    if args.reading:
-        impl.declare_readings(parse_readings(args.reading))
+    impl = _implementation(args)
     if args.suite is not None:
         try:
             return run_suite(args, impl)
@@ -215,6 +197,32 @@ def run_oracle(args: argparse.Namespace) -> int:
     # has them already and gets the summary only. Redirected stdout gets the whole report.
     print(report.summary() if same_terminal(sys.stdout, sys.stderr) else report.text())
     return 0 if report.ok else 1
+
+
+def _implementation(args: argparse.Namespace) -> Implementation:
+    """The implementation of ``--planner``, ``--cmd`` or ``--ros-node``, with its equations
+    (``--equations``) and readings (``--reading``); a program is started and reset once."""
+    from ifgm_ref.oracle.equation_checks import load_equations
+    from ifgm_ref.oracle.implementation import Implementation
+    from ifgm_ref.planners.ifgm_readings import parse_readings
+
+    equations = None if args.equations is None else load_equations(args.equations)
+    if args.ros_node is not None:
+        impl = _ros_implementation(args, equations)  # started and reset once, or it raises
+    elif args.cmd is not None:
+        impl = Implementation.from_command(
+            args.cmd,
+            timeout=args.timeout,
+            startup_timeout=args.startup_timeout,
+            promises=args.promises,
+            equations=equations,
+        )
+        impl.answers_reset()  # a program that cannot start is bad input, not 11 errors
+    else:
+        impl = Implementation.from_spec(args.planner, promises=args.promises, equations=equations)
+    if args.reading:
+        impl.declare_readings(parse_readings(args.reading))
+    return impl
 
 
 def _ros_implementation(args: argparse.Namespace, equations: object | None) -> Implementation:

@@ -2,7 +2,8 @@
 
 ``oracle --suite v1 [--tier quick|full]`` runs exactly the suite's cases against the
 implementation ``oracle`` was given, with no drawing: one JSON line per case on stdout (or
-``--results FILE``), as it finishes, then a summary line; each verdict's line on stderr; exit
+``--results FILE``: a counterexample's folder is then relative to the file's), as it
+finishes, then a summary line; each verdict's line on stderr; exit
 status 0 when every case that applies passed (:mod:`ifgm_ref.oracle.suite.run`).
 """
 
@@ -10,6 +11,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
 import sys
 from pathlib import Path
 from typing import TYPE_CHECKING, TextIO
@@ -86,11 +88,15 @@ def run_suite(args: argparse.Namespace, impl: Implementation) -> int:
     head = f"suite {suite.version}, tier {args.tier}: {len(cases)} cases for {impl.label}"
     print(head + (left if skipped else ""), file=sys.stderr)
     out: TextIO = sys.stdout if args.results is None else _opened(args.results)
+    base = Path.cwd() if args.results is None else Path(args.results).resolve().parent
     results: list[CaseResult] = []
 
     def finished(result: CaseResult) -> None:
         results.append(result)
-        print(json.dumps(result.to_json(suite.version)), file=out, flush=True)
+        line = result.to_json(suite.version)
+        if result.counterexample is not None:  # relative to the run file's folder
+            line["counterexample"] = os.path.relpath(result.counterexample.resolve(), base)
+        print(json.dumps(line), file=out, flush=True)
         note = f": {result.reason}" if result.reason else ""
         verdict = f"{result.verdict.upper():<5} {result.case.id} {result.seconds:.1f} s{note}"
         print(verdict, file=sys.stderr)

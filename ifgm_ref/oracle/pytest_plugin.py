@@ -9,6 +9,11 @@ or against a program in any language that speaks the JSON-lines protocol
 
     pytest --pyargs ifgm_ref.oracle --ifgm-cmd "./my_planner --flag"
 
+or, one test id per case id, the frozen cases of a suite version instead of drawn examples
+(:mod:`ifgm_ref.oracle.suite`)::
+
+    pytest --pyargs ifgm_ref.oracle --ifgm-cmd "./my_planner" --ifgm-suite v1 --ifgm-tier quick
+
 The pytest header names the implementation, the profile and the promises (and, in a
 robustness run, ``--ifgm-profile robust`` or ``--ifgm-noise``, the noise levels checked and
 promised; with ``--ifgm-engine mujoco``, the engine); a missing or unimportable
@@ -18,13 +23,14 @@ says how much was checked.
 
 from __future__ import annotations
 
+from collections import Counter
 from pathlib import Path
 from typing import Any
 
 import pytest
 
 from ifgm_ref.errors import IfgmRefError
-from ifgm_ref.oracle.check_types import Level, levels_up_to
+from ifgm_ref.oracle.check_types import Kind, Level, levels_up_to
 from ifgm_ref.oracle.checks import CHECKS
 from ifgm_ref.oracle.equation_checks import load_equations
 from ifgm_ref.oracle.implementation import PROMISES, Implementation, Promises
@@ -45,6 +51,9 @@ from ifgm_ref.oracle.specification import (
     load_specification,
     refuse_options,
 )
+from ifgm_ref.oracle.suite.cases import TIERS, Case
+from ifgm_ref.oracle.suite.run import CaseResult, run_case
+from ifgm_ref.oracle.suite.versions import load_suite
 from ifgm_ref.params import ENGINES
 from ifgm_ref.physics.bodies import BODIES
 from ifgm_ref.planners.ifgm_readings import parse_readings
@@ -109,9 +118,26 @@ def pytest_addoption(parser: pytest.Parser) -> None:
         metavar="DIR",
         help="where counterexamples are written (default oracle-failures)",
     )
+    _add_suite_options(group)
     _add_level_options(group)
     _add_engine_options(group)
     _add_timeout_options(group)
+
+
+def _add_suite_options(group: pytest.OptionGroup) -> None:
+    """``--ifgm-suite`` and ``--ifgm-tier``: frozen cases instead of drawn examples."""
+    group.addoption(
+        "--ifgm-suite",
+        metavar="VERSION",
+        help="run the frozen cases of this suite version, one test id per case id "
+        "(test_case[converges_u/0003]), instead of drawing the simulation checks' examples",
+    )
+    group.addoption(
+        "--ifgm-tier",
+        default="full",
+        choices=TIERS,
+        help="with --ifgm-suite: the quick tier's cases only, or every case (default)",
+    )
 
 
 def _add_level_options(group: pytest.OptionGroup) -> None:
@@ -174,6 +200,7 @@ class OracleSession:
     def __init__(self, config: pytest.Config) -> None:
         self.config = config
         self.results: list[CheckResult] = []
+        self.case_results: list[CaseResult] = []
         self.expected = _expected_failures(config.getoption("ifgm_xfails"))
         self.profile = _profile(config)
         level = config.getoption("ifgm_level") or Level.PAPER
@@ -183,6 +210,12 @@ class OracleSession:
             held = declared(self.spec, self.implementation, self.profile)
             self.implementation, self.profile, level = held[:3]
         self.levels = levels_up_to(level)
+
+    def run_case(self, case: Case) -> CaseResult:
+        """Run one suite case against the implementation under test."""
+        result = run_case(case, self.implementation, Path(self.config.getoption("ifgm_artifacts")))
+        self.case_results.append(result)
+        return result
 
     def run(self, check: str) -> CheckResult:
         """Run ``check`` against the implementation under test."""
@@ -278,6 +311,31 @@ def _suite_requested(items: list[pytest.Item]) -> bool:
     return any(item.path.name == SUITE for item in items)
 
 
+def suite_cases(config: pytest.Config) -> list[Case]:
+    """The cases of ``--ifgm-suite`` in ``--ifgm-tier`` (none without the option)."""
+    version = config.getoption("ifgm_suite")
+    if version is None:
+        return []
+    try:
+        return load_suite(version).tier(config.getoption("ifgm_tier"))
+    except IfgmRefError as err:
+        raise pytest.UsageError(f"ifgm-ref oracle: --ifgm-suite {version}: {err}") from err
+
+
+def pytest_generate_tests(metafunc: pytest.Metafunc) -> None:
+    """One test per case of ``--ifgm-suite`` (``test_case[ID]``); without it, the drawn
+    checks (``test_property[CHECK]``), with it, only those the suite does not hold."""
+    if metafunc.definition.path.name != SUITE:
+        return
+    if "case" in metafunc.fixturenames:
+        cases = suite_cases(metafunc.config)
+        metafunc.parametrize("case", cases, ids=[case.id for case in cases])
+    if "check" in metafunc.fixturenames:
+        suite = metafunc.config.getoption("ifgm_suite") is not None
+        checks = [n for n, c in CHECKS.items() if not (suite and c.kind is Kind.SIMULATION)]
+        metafunc.parametrize("check", checks)
+
+
 _KEY = pytest.StashKey[OracleSession]()
 
 
@@ -338,9 +396,16 @@ def _declared_in(config: pytest.Config) -> Specification | None:
 
 def pytest_terminal_summary(terminalreporter: Any, exitstatus: int, config: pytest.Config) -> None:
     """Say how much was checked."""
-    if _KEY not in config.stash or not config.stash[_KEY].results:
+    if _KEY not in config.stash:
         return
+    cases = config.stash[_KEY].case_results
+    if cases:
+        terminalreporter.write_sep("-", f"ifgm-ref oracle: suite {config.getoption('ifgm_suite')}")
+        counts = Counter(result.verdict for result in cases)
+        terminalreporter.write_line(", ".join(f"{n} {v}" for v, n in counts.items()) + " cases")
     results = config.stash[_KEY].results
+    if not results:
+        return
     terminalreporter.write_sep("-", "ifgm-ref oracle")
     for result in results:
         terminalreporter.write_line(result.line())

@@ -1,5 +1,6 @@
-"""The oracle's conformance suite: one test per property, run against the implementation named
-by ``--ifgm-impl`` or ``--ifgm-cmd`` (see :mod:`ifgm_ref.oracle.pytest_plugin`)::
+"""The oracle's conformance suite: one test per property (drawn examples), or one per case of
+a frozen suite version (``--ifgm-suite``), run against the implementation named by
+``--ifgm-impl`` or ``--ifgm-cmd`` (see :mod:`ifgm_ref.oracle.pytest_plugin`)::
 
     pytest --pyargs ifgm_ref.oracle --ifgm-impl mypkg.module:make_planner
 """
@@ -11,9 +12,9 @@ import pytest
 from ifgm_ref.oracle.checks import CHECKS
 from ifgm_ref.oracle.pytest_plugin import OracleSession
 from ifgm_ref.oracle.runner import Status
+from ifgm_ref.oracle.suite.cases import Case
 
 
-@pytest.mark.parametrize("check", list(CHECKS))
 def test_property(check: str, ifgm_oracle: OracleSession) -> None:
     """The implementation under test has the property ``check`` (its sentence in the id's
     docstring: ``ifgm_ref.oracle.checks.CHECKS[check].sentence``)."""
@@ -34,4 +35,22 @@ def test_property(check: str, ifgm_oracle: OracleSession) -> None:
         pytest.fail(
             f"{check} ({CHECKS[check].sentence}) {result.status}: {result.message}{where}",
             pytrace=False,
+        )
+
+
+def test_case(case: Case, ifgm_oracle: OracleSession) -> None:
+    """The implementation under test passes the suite's case ``case`` (``--ifgm-suite``)."""
+    __tracebackhide__ = True
+    check = CHECKS[case.check]
+    if check.level not in ifgm_oracle.levels:
+        pytest.skip(f"{case.id}: the {check.level} level (--ifgm-level reference)")
+    result = ifgm_oracle.run_case(case)
+    if result.verdict == "skip":
+        pytest.skip(f"{case.id}: {result.reason}")
+    if result.verdict != "pass":
+        where = (
+            "" if result.counterexample is None else f"\ncounterexample: {result.counterexample}"
+        )
+        pytest.fail(
+            f"{case.id} ({check.sentence}) {result.verdict}: {result.reason}{where}", pytrace=False
         )
