@@ -25,6 +25,9 @@ original. For each it reports:
   first failure unshrunk: ``--stop-on-failure --no-shrink``);
 * ``reference``: killed by reference conformance (``--check agrees_with_reference``);
 * ``tests``: killed by the project's tests of the decision code (``--tests``);
+* ``suite_quick`` and ``suite_full`` (only with ``--levels``): killed by the frozen suite's
+  quick or full tier at both levels (``ifgm-ref oracle --suite v1 --level reference``), the
+  measure of how much of the full tier's power the quick tier keeps;
 
 each with the seconds it took. A mutant that cannot even be imported or served is ``broken``:
 killed by anything, and counted apart. The kill rates are over the mutants that change a
@@ -259,8 +262,18 @@ def _oracle(copy: Path, *extra: str) -> list[str]:
             *extra]  # fmt: skip
 
 
-#: The levels, in the order they run.
-LEVELS = ("paper", "reference", "tests")
+def _suite(copy: Path, tier: str) -> list[str]:
+    """The frozen suite's ``tier`` at both levels, the mutant served, stopping at the first
+    failing case."""
+    return [sys.executable, "-m", "ifgm_ref", "oracle", "--suite", SUITE, "--tier", tier,
+            "--level", "reference", "--cmd", _serve(copy), "--stop-on-failure",
+            "--artifacts", str(copy / "suite-failures"), "--results", os.devnull]  # fmt: skip
+
+
+#: The suite version the ``suite_quick`` and ``suite_full`` levels run.
+SUITE = "v1"
+#: The levels, in the order they run (the suite's only when asked: ``--levels``).
+LEVELS = ("paper", "reference", "tests", "suite_quick", "suite_full")
 
 
 @dataclass
@@ -297,6 +310,8 @@ def judge(number: int, site: Site, original: list[str], levels: list[str], tests
             "reference": (_oracle(copy, "--level", "reference", "--check",
                                   "agrees_with_reference"), None),
             # the project's ini puts its root first on the path: the copy goes before it
+            "suite_quick": (_suite(copy, "quick"), None),
+            "suite_full": (_suite(copy, "full"), None),
             "tests": ([sys.executable, "-m", "pytest", "-x", "-q", "-n", "0", "-p",
                        "no:cacheprovider", "-o", f"pythonpath={copy} {ROOT}",
                        *(str(ROOT / t) for t in tests.split())], copy),

@@ -1,4 +1,4 @@
-"""``ifgm-ref suite`` (build, list) and ``ifgm-ref oracle --suite``: the frozen conformance suite.
+"""``ifgm-ref suite`` (build, promote, list) and ``ifgm-ref oracle --suite``: the frozen suite.
 
 ``oracle --suite v1 [--tier quick|full]`` runs exactly the suite's cases against the
 implementation ``oracle`` was given, with no drawing: one JSON line per case on stdout (or
@@ -123,7 +123,7 @@ def _opened(path: str) -> TextIO:
 
 
 def add_suite(sub: Subcommands) -> None:
-    """Add ``suite`` (``build``, ``list``) to the subcommands."""
+    """Add ``suite`` (``build``, ``promote``, ``list``) to the subcommands."""
     suite = sub.add_parser(
         "suite",
         help="build or list versions of the frozen conformance suite (docs/oracle.md)",
@@ -137,7 +137,19 @@ def add_suite(sub: Subcommands) -> None:
     build.add_argument("--examples", type=int, default=50, metavar="N", help="drawn per check")
     build.add_argument("--seed", type=int, default=0, help="the draw's seed (default 0)")
     build.add_argument("--root", type=Path, help="where versions live (default: the package's)")
+    build.add_argument(
+        "--jobs", type=int, default=os.cpu_count() or 1, metavar="N",
+        help="processes for the kill matrix (default: the number of CPUs)",
+    )  # fmt: skip
     build.set_defaults(func=run_suite_build)
+    promote = actions.add_parser(
+        "promote",
+        help="add a drawn profile's counterexample (its folder) to the next version as a case",
+    )
+    promote.add_argument("folder", type=Path, help="the counterexample's folder (report.md)")
+    promote.add_argument("--to", required=True, metavar="VN", help="the (new) version")
+    promote.add_argument("--root", type=Path, help="where versions live (default: the package's)")
+    promote.set_defaults(func=run_suite_promote)
     listing = actions.add_parser("list", help="the versions and their cases per tier")
     listing.set_defaults(func=run_suite_list)
 
@@ -149,15 +161,32 @@ def run_suite_build(args: argparse.Namespace) -> int:
 
     if args.examples < 1:
         raise ParameterError(f"--examples {args.examples}: must be at least 1")
+    if args.jobs < 1:
+        raise ParameterError(f"--jobs {args.jobs}: must be at least 1")
     root = args.root or SUITES
 
     def progress(line: str) -> None:
         print(line, file=sys.stderr, flush=True)
 
     folder = build_suite(
-        args.version, examples=args.examples, seed=args.seed, root=root, progress=progress
+        args.version,
+        examples=args.examples,
+        seed=args.seed,
+        root=root,
+        progress=progress,
+        jobs=args.jobs,
     )
     print(f"wrote suite {args.version} in {folder}")
+    return 0
+
+
+def run_suite_promote(args: argparse.Namespace) -> int:
+    """Add ``args.folder``'s counterexample to suite ``args.to``."""
+    from ifgm_ref.oracle.suite.build import promote
+    from ifgm_ref.oracle.suite.versions import SUITES
+
+    case = promote(args.folder, args.to, root=args.root or SUITES)
+    print(f"added {case.id} to suite {args.to} (tier full)")
     return 0
 
 

@@ -13,6 +13,7 @@ written beside the cases (``kill-matrix.json``).
 from __future__ import annotations
 
 import json
+import shutil
 import time
 from collections.abc import Callable
 from dataclasses import replace
@@ -29,16 +30,17 @@ from ifgm_ref.oracle.checks import CHECKS
 from ifgm_ref.oracle.conformance import HEADING_TOL, POINT_TIE, SPEED_TOL, TIE
 from ifgm_ref.oracle.implementation import Implementation
 from ifgm_ref.oracle.stable_draws import global_constants_only
-from ifgm_ref.oracle.suite.cases import Case, write_cases
+from ifgm_ref.oracle.suite.cases import Case, read_cases, write_cases
 from ifgm_ref.oracle.suite.recorded import recorded
 from ifgm_ref.oracle.suite.tiers import broken_implementations, kill_matrix, quick_cover, with_tiers
-from ifgm_ref.oracle.suite.versions import SUITES, manifest_path
+from ifgm_ref.oracle.suite.versions import SUITES, manifest_path, versions
 from ifgm_ref.oracle.vectors import write_vectors
 from ifgm_ref.params import SimParams
 from ifgm_ref.transport.wire import PROTOCOL_VERSION
 from ifgm_ref.world import World
+from ifgm_ref.worldfile import load_world
 
-__all__ = ["CLASS_FLAGGED", "REFERENCES", "build_suite", "drawn_examples"]
+__all__ = ["CLASS_FLAGGED", "REFERENCES", "build_suite", "drawn_examples", "promote"]
 
 #: The reference planners that judge the cases, in order: a check's cases are drawn for, and
 #: judged by, the first whose promises it applies to.
@@ -48,6 +50,9 @@ REFERENCES = ("ifgm", "iba")
 CLASS_FLAGGED = frozenset(
     {"rigid_motion_invariant", "scale_invariant", "ignores_unseen_obstacles", "deterministic"}
 )
+
+#: The checks whose example holds more than a world (a gap, a scale, a disc, dynamics).
+_NOT_A_WORLD = frozenset({"passes_wide_gaps", "stops_in_time"})
 
 
 def drawn_examples(check: Check, impl: Implementation, count: int, seed: int) -> list[Any]:
@@ -128,9 +133,10 @@ def build_suite(
     root: Path = SUITES,
     checks: list[str] | None = None,
     progress: Callable[[str], None] = lambda line: None,
+    jobs: int = 1,
 ) -> Path:
-    """Write suite ``version`` under ``root`` (refused if it exists: a version is frozen) and
-    return its folder."""
+    """Write suite ``version`` under ``root`` (refused if it exists: a version is frozen),
+    its kill matrix run in ``jobs`` processes, and return its folder."""
     folder = root / version
     if manifest_path(folder).exists():
         raise ImplementationError(f"suite {version} exists in {root}; versions are frozen")
@@ -138,7 +144,7 @@ def build_suite(
     names = checks or [n for n, c in CHECKS.items() if c.kind is Kind.SIMULATION]
     seconds: dict[str, float] = {}
     cases = [c for n in names for c in _check_cases(CHECKS[n], examples, seed, progress, seconds)]
-    matrix = kill_matrix(cases, broken_implementations(), progress)
+    matrix = kill_matrix(cases, broken_implementations(), progress, jobs=jobs)
     quick = quick_cover(cases, matrix, seconds)
     cases = with_tiers(cases, quick)
     for name in names:
@@ -163,4 +169,44 @@ def build_suite(
         "properties": {name: CHECKS[name].sentence for name in names},
     }
     manifest_path(folder).write_text(json.dumps(manifest, indent=2) + "\n")
+    counts = ", ".join(f"{sum(c.check == n for c in cases)} {n}" for n in names)
+    (folder / "CHANGELOG.md").write_text(
+        f"# Suite {version}\n\n- {len(cases)} cases, {len(quick)} of them quick: {counts}\n"
+    )
     return folder
+
+
+def promote(counterexample: Path, version: str, *, root: Path = SUITES) -> Case:
+    """Add the world of a drawn profile's ``counterexample`` folder (``world.json`` and the
+    check named in its ``report.md``) to suite ``version`` as a new full-tier case, judged by
+    the reference. ``version`` is made from the latest version if it does not exist yet (a
+    released version is never changed: promote into the next one)."""
+    report = counterexample / "report.md"
+    if not report.is_file() or not (counterexample / "world.json").is_file():
+        raise ImplementationError(f"{counterexample}: no counterexample (report.md, world.json)")
+    name = report.read_text().split("\n", 1)[0].removeprefix("# ").split(":")[0]
+    check = CHECKS.get(name)
+    if check is None or name in CLASS_FLAGGED or name in _NOT_A_WORLD:
+        raise ImplementationError(f"{name}: only a check whose example is a world is promoted")
+    folder = root / version
+    if not manifest_path(folder).exists():
+        latest = versions(root)
+        if not latest:
+            raise ImplementationError(f"no suite under {root} to start {version} from")
+        shutil.copytree(root / latest[-1], folder)
+        manifest = json.loads(manifest_path(folder).read_text())
+        manifest_path(folder).write_text(json.dumps({**manifest, "suite": version}, indent=2))
+    header, cases = read_cases(folder / f"{name}.jsonl")
+    world = load_world(counterexample / "world.json")
+    impl = next(i for n in REFERENCES if check.applies(i := Implementation.from_spec(n)) is None)
+    verdict, _ = _judged(check, impl, world, SimParams())
+    if verdict != "pass":
+        raise ImplementationError(f"the reference does not pass {name} on it ({verdict})")
+    number = max(int(c.id.split("/")[1]) for c in cases) + 1
+    case = Case(f"{name}/{number:04d}", name, world)
+    if name == "agrees_with_reference":
+        case = replace(case, recorded=recorded(world, replace(SimParams(), max_time=_bound(world))))
+    write_cases(folder / f"{name}.jsonl", {**header, "suite": version}, [*cases, case])
+    with (folder / "CHANGELOG.md").open("a") as log:
+        log.write(f"- {case.id}: added, the counterexample of {counterexample}\n")
+    return case

@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import functools
 from collections.abc import Callable, Mapping
+from concurrent.futures import ProcessPoolExecutor, as_completed
 from dataclasses import replace
 
 from ifgm_ref.oracle.implementation import Implementation, promises_of
@@ -49,18 +50,28 @@ def broken_implementations() -> dict[str, Implementation]:
     return found
 
 
+def _killed(cases: list[Case], impl: Implementation) -> list[str]:
+    """The ids of the cases ``impl`` fails or errs on (in a worker process)."""
+    return [c.id for c in cases if run_case(c, impl).verdict in ("fail", "error")]
+
+
 def kill_matrix(
     cases: list[Case],
     impls: Mapping[str, Implementation],
     progress: Callable[[str], None] = lambda line: None,
+    *,
+    jobs: int = 1,
 ) -> dict[str, list[str]]:
-    """The ids of the cases each implementation fails (or errs on), by implementation."""
-    matrix = {}
-    for name, impl in impls.items():
-        killed = [c.id for c in cases if run_case(c, impl).verdict in ("fail", "error")]
-        matrix[name] = killed
-        progress(f"{name}: killed by {len(killed)} of {len(cases)} cases")
-    return matrix
+    """The ids of the cases each implementation fails (or errs on), by implementation, in
+    ``jobs`` worker processes."""
+    matrix: dict[str, list[str]] = {}
+    with ProcessPoolExecutor(max_workers=jobs) as pool:
+        futures = {pool.submit(_killed, cases, impl): name for name, impl in impls.items()}
+        for future in as_completed(futures):
+            name = futures[future]
+            matrix[name] = future.result()
+            progress(f"{name}: killed by {len(matrix[name])} of {len(cases)} cases")
+    return {name: matrix[name] for name in impls}
 
 
 def quick_cover(
