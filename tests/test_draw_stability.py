@@ -25,7 +25,8 @@ ROOT = Path(__file__).resolve().parent.parent
 UNUSUAL = 123456.789
 
 #: Draw the quick profile's examples of ``converges_open`` through the oracle's own path
-#: (:func:`~ifgm_ref.oracle.runner.run_check`), recording each world instead of simulating it;
+#: (:func:`~ifgm_ref.oracle.runner.run_check`), recording each world instead of simulating it,
+#: and judge the reference on the frozen suite's quick tier (its verdicts, by case id);
 #: the modules named on the command line are imported first, as a user's own would be.
 DRAW = """
 import hashlib, importlib, sys
@@ -42,7 +43,12 @@ worlds = []
 check = replace(CHECKS["converges_open"], test=lambda impl, world, rec: worlds.append(world))
 result = run_check(check, Implementation.from_spec("ifgm"), "quick", artifacts=None)
 digest = hashlib.sha256(repr(worlds).encode()).hexdigest()
-print(result.status, len(worlds), digest, ifgm_ref.__file__)
+from ifgm_ref.oracle.suite.run import run_cases
+from ifgm_ref.oracle.suite.versions import load_suite
+cases = load_suite("v1").tier("quick")
+verdicts = [(r.case.id, r.verdict) for r in run_cases(cases, Implementation.from_spec("ifgm"))]
+suite = hashlib.sha256(repr(verdicts).encode()).hexdigest()
+print(result.status, len(worlds), digest, ifgm_ref.__file__, len(verdicts), suite)
 """
 
 #: A user's planner module full of constants, in the ranges the world classes draw from.
@@ -51,12 +57,15 @@ USER_MODULE = "\n".join(f"C{i} = {0.011 + 0.37 * i!r}" for i in range(200)) + "\
 
 class Drawn(NamedTuple):
     """What one run of :data:`DRAW` printed: the check's status, the worlds drawn, their
-    SHA-256 and the ``ifgm_ref`` package it imported."""
+    SHA-256, the ``ifgm_ref`` package it imported, and the suite cases judged with the
+    SHA-256 of their verdicts."""
 
     status: str
     worlds: int
     digest: str
     package: Path
+    cases: int
+    verdicts: str
 
 
 def draw(cwd: Path, *imported: str, path: Path | None = None) -> Drawn:
@@ -76,8 +85,8 @@ def draw(cwd: Path, *imported: str, path: Path | None = None) -> Drawn:
         check=False,
     )
     assert done.returncode == 0, done.stderr
-    status, worlds, digest, package = done.stdout.split()
-    return Drawn(status, int(worlds), digest, Path(package))
+    status, worlds, digest, package, cases, verdicts = done.stdout.split()
+    return Drawn(status, int(worlds), digest, Path(package), int(cases), verdicts)
 
 
 @pytest.fixture(scope="module")
@@ -162,12 +171,14 @@ def test_a_draw_that_reads_another_pool_is_refused(monkeypatch: pytest.MonkeyPat
 
 
 def test_same_examples_in_every_install(wheel_site: Path, tmp_path: Path) -> None:
+    """An editable install, a wheel and a user module imported first: the same drawn
+    examples, and the same verdicts of the frozen suite, case by case."""
     (tmp_path / "my_planner.py").write_text(USER_MODULE)
     editable = draw(tmp_path)
     wheel = draw(tmp_path, path=wheel_site)
     user_first = draw(tmp_path, "my_planner")
     assert editable.package == user_first.package == Path(ifgm_ref.__file__)
     assert wheel.package == wheel_site / "ifgm_ref" / "__init__.py"
-    assert editable.worlds == 50
+    assert editable.worlds == 50 and editable.cases > 10  # the wheel ships the suite's files
     assert wheel == editable._replace(package=wheel.package)
     assert user_first == editable

@@ -25,13 +25,15 @@ import ifgm_ref.equations as reference
 from ifgm_ref.bags.read import read_log
 from ifgm_ref.cli import main
 from ifgm_ref.convergence import time_bound
-from ifgm_ref.oracle.check_types import Check, Kind
+from ifgm_ref.oracle.check_types import Check, Kind, Level
 from ifgm_ref.oracle.checks import CHECKS, checks_at
 from ifgm_ref.oracle.implementation import Implementation, promises_of
 from ifgm_ref.oracle.mutants import MUTANTS
 from ifgm_ref.oracle.profiles import PROFILES, Profile
 from ifgm_ref.oracle.runner import Status, check_planner, run_check
 from ifgm_ref.oracle.strategies import SOLVABLE_CLASSES, enclosed_worlds, open_worlds
+from ifgm_ref.oracle.suite.run import run_cases
+from ifgm_ref.oracle.suite.versions import load_suite
 from ifgm_ref.oracle.variants import VARIANTS
 from ifgm_ref.params import SimParams
 from ifgm_ref.planners import make_planner
@@ -264,16 +266,28 @@ def test_a_seeded_profile_draws_repeatable_random_examples() -> None:
     assert drawn(None) == drawn(None) != drawn(3)
 
 
+@pytest.mark.parametrize("variant", VARIANTS)
+def test_faithful_variants_pass_the_suite_quick_tier(variant: str) -> None:
+    """A port may wobble its heading by a degree, compute in float32, break exact ties the
+    other way or answer velocity commands (ifgm_ref/oracle/variants.py): it passes every case
+    of the frozen suite's quick tier (the default run's check of them; the drawn quick
+    profile, below, under ``-m slow``): both levels, but the wobble, a degree off the
+    reference's heading, only the paper's."""
+    impl = Implementation.from_spec(f"ifgm_ref.oracle.variants:{VARIANTS[variant].__name__}")
+    cases = load_suite("v1").tier("quick")
+    if variant == "heading_wobble":
+        cases = [c for c in cases if CHECKS[c.check].level is Level.PAPER]
+    results = list(run_cases(cases, impl))
+    others = [(r.case.id, r.verdict, r.reason) for r in results if r.verdict != "pass"]
+    assert {i.split("/")[0] for i, _, _ in others} <= {"reports_unreachable"}, others
+
+
+@pytest.mark.slow
 @pytest.mark.parametrize(
     ("variant", "profile"),
-    # One to two minutes each in process on the quick profile, so `pytest -m slow` runs the
-    # four there; the default run keeps the wobble (the port the oracle issue saw rejected)
-    # on the brief profile. The velocity commands' port is in the default run through serve,
-    # on a smaller profile, in the test after the next.
-    [
-        ("heading_wobble", BRIEF),
-        *(pytest.param(v, QUICK, marks=pytest.mark.slow) for v in VARIANTS),
-    ],
+    # One to two minutes each in process on the quick profile; the wobble (the port the oracle
+    # issue saw rejected) also on the brief profile.
+    [("heading_wobble", BRIEF), *((v, QUICK) for v in VARIANTS)],
 )
 def test_faithful_variants_pass_every_check(variant: str, profile: Profile) -> None:
     """A port may wobble its heading by a degree, compute in float32, break exact ties the
@@ -310,20 +324,18 @@ def test_faithful_variants_pass_the_quick_profile_through_serve(variant: str) ->
 def test_serve_gives_the_in_process_verdicts_for_the_reference(
     spec: str, options: tuple[str, ...]
 ) -> None:
-    """``ifgm-ref serve`` gives the verdicts of the planner in process; with ``--twist`` the
-    reference answers velocity commands, and those of its in-process twin."""
-    small = Profile("small", 8)
-    checks = ["converges_symmetric", "deterministic"]
-    inside = check_planner(spec, profile=small, checks=checks, artifacts=None)
+    """``ifgm-ref serve`` gives the verdicts of the planner in process, case by case on the
+    suite's quick tier at both levels; with ``--twist`` the reference answers velocity
+    commands, and those of its in-process twin."""
+    cases = load_suite("v1").tier("quick")
+    inside = list(run_cases(cases, Implementation.from_spec(spec)))
     impl = Implementation.from_command([*_serve("ifgm"), *options], timeout=30.0)
     try:
-        outside = check_planner(impl, profile=small, checks=checks, artifacts=None)
+        outside = list(run_cases(cases, impl))
     finally:
         impl.close()
-    assert [(r.status, r.examples, r.worlds) for r in outside.results] == [
-        (r.status, r.examples, r.worlds) for r in inside.results
-    ]
-    assert outside.ok
+    assert [(r.case.id, r.verdict) for r in outside] == [(r.case.id, r.verdict) for r in inside]
+    assert {r.verdict for r in outside} == {"pass", "skip"}
 
 
 # -- misbehaving programs ----------------------------------------------------------------------

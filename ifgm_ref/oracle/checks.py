@@ -397,11 +397,17 @@ def agrees_with(
 
 @traces("fig3.dead_end")
 def _dead_end_test(impl: Implementation, world: World, rec: Recorder) -> None:
-    """Every dead end the run reports turns 45 degrees at a time (:mod:`.dead_end`)."""
-    run = episode(impl, world, rec)
+    """Every dead end the run reports turns 45 degrees at a time (:mod:`.dead_end`).
+
+    The turns are read in parts (:func:`~.dead_end.part_errors`) where they cannot show
+    whole: on a robot that brakes before it turns, and for a planner answering velocity
+    commands, whose commanded heading is where one step's turn ends."""
+    recorder = RecordingPlanner(impl.factory())
+    run = episode(impl, world, rec, planner=recorder)
     dt = run.trace[1].t - run.trace[0].t if len(run.trace) > 1 else 0.0
     dead_band = world.robot.max_turn_rate * dt / 2
-    in_parts = rec.physical or not world.robot.stops_at_once  # it brakes before it turns
+    velocity = any(command.turn_rate is not None for _, command in recorder.recording().steps)
+    in_parts = rec.physical or not world.robot.stops_at_once or velocity
     for start, commanded in dead_end_turns(run.trace):
         rec.tally.update(dead_ends=1)
         if why := turn_errors(start, commanded, dead_band, in_parts=in_parts):

@@ -1,3 +1,3 @@
-"""The hostile programs here run as the oracle's child processes, not under pytest: never import them."""
+"""The hostile programs here run as the oracle's child processes, never under pytest."""
 
 collect_ignore_glob = ["*.py"]

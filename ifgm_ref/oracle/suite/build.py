@@ -195,6 +195,10 @@ def promote(counterexample: Path, version: str, *, root: Path = SUITES) -> Case:
             raise ImplementationError(f"no suite under {root} to start {version} from")
         shutil.copytree(root / latest[-1], folder)
         manifest = json.loads(manifest_path(folder).read_text())
+        for property_name in manifest["properties"]:  # every file now says which version
+            path = folder / f"{property_name}.jsonl"
+            header, cases = read_cases(path)
+            write_cases(path, {**header, "suite": version}, cases)
         manifest_path(folder).write_text(json.dumps({**manifest, "suite": version}, indent=2))
     header, cases = read_cases(folder / f"{name}.jsonl")
     world = load_world(counterexample / "world.json")
