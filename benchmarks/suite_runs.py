@@ -15,8 +15,8 @@ its own process, one after another, its run file written to ``OUT/suite/SLUG.jso
   ifgm"``);
 * ``ifgm-serve-twist``: the same answering velocity commands (``serve --twist``);
 * ``c-port``: the C port, ``examples/c``'s ``ifgm_json``, built with ``make BUILD=DIR``
-  into ``--c-build`` (outside the project; ``--no-c`` leaves it out, e.g. without a C
-  compiler); it promises the reference level (``tests/test_c_port.py``);
+  into ``--c-build`` (``examples/c/build``, ignored by git, by default; ``--no-c`` leaves it
+  out, e.g. without a C compiler); it promises the reference level (``tests/test_c_port.py``);
 * ``float32``, ``opposite-ties``: the faithful variants of :mod:`ifgm_ref.oracle.variants`;
 
 and every mutant of :mod:`ifgm_ref.oracle.mutants`, known broken (held to IFGM's promises),
@@ -95,7 +95,8 @@ def targets(c_program: Path | None) -> list[Target]:
         Target("ifgm-serve-twist", ("--cmd", f"{serve} --twist")),
     ]
     if c_program is not None:
-        found.append(Target("c-port", ("--cmd", str(c_program), "--promises", "ifgm")))
+        program = os.path.relpath(c_program, ROOT)  # the page's label: no machine's path
+        found.append(Target("c-port", ("--cmd", program, "--promises", "ifgm")))
     for slug, name in (("float32", "Float32"), ("opposite-ties", "OppositeTies")):
         planner = f"ifgm_ref.oracle.variants:{name}"
         found.append(Target(slug, ("--planner", planner, "--promises", "ifgm")))
@@ -188,8 +189,9 @@ def main() -> None:
         "--out", type=Path, default=ROOT / "docs", help="where suite/ and the page go (docs)"
     )
     parser.add_argument(
-        "--c-build", type=Path, default=Path(tempfile.gettempdir()) / "cport",
-        help="where the C port is built (default: TMPDIR/cport, outside the project)",
+        "--c-build", type=Path, default=C_PORT / "build",
+        help="where the C port is built (default: examples/c/build, as its README builds it; "
+        "ignored by git)",
     )  # fmt: skip
     parser.add_argument("--no-c", action="store_true", help="leave the C port out")
     parser.add_argument("--timeout", type=float, default=10.0, help="per-reply timeout, s")
