@@ -25,6 +25,7 @@ from ifgm_ref.oracle.suite.recorded import rebuilt
 from ifgm_ref.oracle.suite.run import run_case, run_cases
 from ifgm_ref.oracle.suite.tiers import broken_implementations, quick_cover
 from ifgm_ref.oracle.suite.versions import load_suite, versions
+from ifgm_ref.planners import make_planner
 from ifgm_ref.scenarios import resolve_world
 from ifgm_ref.transport.wire import PROTOCOL_VERSION
 from ifgm_ref.worldfile import save_world
@@ -201,3 +202,15 @@ def test_a_counterexample_is_promoted_into_the_next_version(tmp_path: Path) -> N
     ]
     assert len(load_suite("v1", root=tmp_path).cases) == len(V1.cases)
     assert "converges_u/" in (tmp_path / "v2" / "CHANGELOG.md").read_text()
+
+
+def test_v1s_vectors_still_hold_for_the_reference() -> None:
+    """Each version ships the equation vectors and traces it was built with, in the file
+    ``ifgm-ref vectors`` writes: the reference still meets them all."""
+    import ifgm_ref.equations
+    from ifgm_ref.oracle.vectors import check_vectors, replay_traces
+
+    vectors = json.loads((V1.folder / "vectors.json").read_text())
+    assert vectors["traces"] and check_vectors(vectors, ifgm_ref.equations) == []
+    for planner in ("ifgm", "iba"):
+        assert replay_traces(vectors, lambda p=planner: make_planner(p), planner=planner) == []
