@@ -42,7 +42,7 @@ def built_site(factory: pytest.TempPathFactory) -> Path:
     for package in ("sphinx", "myst_nb", "furo"):
         pytest.importorskip(package, reason=f"the docs extra is not installed: {DOCS_SETUP}")
     # The notebooks run in tests/test_notebooks.py: the build renders them without running
-    # them again (docs/conf.py), which saves a third of its two minutes.
+    # them again (docs/conf.py), which saves their run time.
     env = dict(os.environ, PYTHONPATH=str(ROOT), IFGM_DOCS_EXECUTE="off")
 
     strict = shutil.which("dot") is not None
@@ -103,7 +103,15 @@ def broken_link(site: Path, page: str, href: str) -> str | None:
         return None
     url, fragment = urldefrag(href)
     here = site / page
-    file = here if not url else (here.parent / unquote(urlsplit(url).path)).resolve()
+    return _broken(site, here.parent if url else here, url, fragment)
+
+
+@functools.cache
+def _broken(site: Path, base: Path, url: str, fragment: str) -> str | None:
+    """:func:`broken_link` of a link to ``url#fragment`` from the folder ``base`` (or, with
+    no ``url``, of an anchor on the page ``base``), checked once: the pages of a folder share
+    most links (the sidebar's), some 85,000 links in all for a few thousand checks."""
+    file = base if not url else (base / unquote(urlsplit(url).path)).resolve()
     if file.is_dir():
         file = file / "index.html"
     if not file.is_relative_to(site.resolve()) or not file.is_file():

@@ -1,6 +1,6 @@
 """The documentation site builds without a warning and its internal links resolve.
 
-Every run builds the site (``ifgm-ref docs --strict``, about two minutes, on one worker
+Every run builds the site (``ifgm-ref docs --strict``, about one minute, on one worker
 while the others test) and reads every page's links and images with an HTML parser: a link
 to a page, a file or an anchor the site lacks fails, as a page moved or a heading renamed
 would leave it. ``tests/test_site.py`` (``-m browser``) opens the same pages in Chromium.
@@ -8,11 +8,12 @@ would leave it. ``tests/test_site.py`` (``-m browser``) opens the same pages in 
 
 from __future__ import annotations
 
+import importlib.util
 from pathlib import Path
 
 import pytest
 
-from tests.site_build import broken_link, built_site, page_paths, parsed
+from tests.site_build import DOCS_SETUP, ROOT, broken_link, built_site, page_paths, parsed
 
 
 @pytest.fixture(scope="module")
@@ -56,3 +57,39 @@ def test_a_broken_link_is_found(tmp_path: Path) -> None:
         "https://example.org/x": None,
         "missing.png": "no such file in the site",
     }
+
+
+#: A toctree as Sphinx renders it for furo's sidebar: seen from no page, then from page B.
+_TOCTREE = (
+    '<p class="caption" role="heading"><span class="caption-text">Part</span></p>\n<ul>\n'
+    '<li class="toctree-l1"><a class="reference internal" href="x.html">X</a></li>\n'
+    '<li class="toctree-l1"><a class="reference internal" href="a.html">A</a><ul>\n'
+    '<li class="toctree-l2"><a class="reference internal" href="b.html">B</a></li>\n'
+    '<li class="toctree-l2"><a class="reference internal" href="c.html">C</a></li>\n'
+    "</ul>\n</li>\n</ul>\n"
+)
+_ON_B = (
+    _TOCTREE.replace("<ul>\n<li", '<ul class="current">\n<li')
+    .replace(
+        '"toctree-l1"><a class="reference internal" href="a',
+        '"toctree-l1 current"><a class="reference internal" href="a',
+    )
+    .replace(
+        '"toctree-l2"><a class="reference internal" href="b.html"',
+        '"toctree-l2 current"><a class="current reference internal" href="#"',
+    )
+)
+
+
+def test_the_sidebar_marks_the_page_as_furo_does() -> None:
+    """The build makes furo's sidebar once a folder and marks each page in it
+    (``docs/_ext/ifgm_site.py``, ``mark_current``): the same markup as furo's own sidebar
+    of the page's toctree, with the installed furo."""
+    navigation = pytest.importorskip("furo.navigation", reason=DOCS_SETUP)
+    spec = importlib.util.spec_from_file_location("ifgm_site", ROOT / "docs/_ext/ifgm_site.py")
+    assert spec is not None and spec.loader is not None
+    site_ext = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(site_ext)
+    unmarked = navigation.get_navigation_tree(_TOCTREE)
+    assert site_ext.mark_current(unmarked, "b.html") == navigation.get_navigation_tree(_ON_B)
+    assert site_ext.mark_current(unmarked, "nowhere.html") is None

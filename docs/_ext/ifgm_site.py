@@ -5,7 +5,8 @@ At the start of a build (``config-inited``) it writes, into ``docs/_generated/``
 - ``proofs/KEY.md``, one page per proof module of ``proofs/``: the sympy derivation built
   (so every claim is checked again by the build) and rendered as MyST with LaTeX math, each
   claim with a label (:func:`proofs._util.claim_anchor`);
-- ``api/MODULE.md``, one ``automodule`` page per module of ``ifgm_ref``, and an index;
+- ``api/MODULE.md``, one ``automodule`` page per module of ``ifgm_ref`` (but the modules of
+  the ROS shim packages, :data:`API_SHIMS`, listed on their package's page), and an index;
 - ``tests/MODULE.md``, one page per test module of ``tests/``: each test's docstring and
   source, with a label, and an index.
 
@@ -16,6 +17,10 @@ API page, ``ifgm_ref/a/b.py`` to its module, ``proofs.eq4:name`` to the claim,
 ``tests/test_x.py::test_y`` to the test on its module's page. And it replaces
 the Mermaid block of ``docs/flowchart.md`` by a Graphviz drawing of the same graph (an SVG
 made at build time, so no Mermaid JavaScript is fetched), with the Mermaid source below it.
+
+And it keeps the build quick: each page's saved doctree without Sphinx's environment
+(:func:`adopt_nested_nodes`), furo's navigation sidebar made once a folder and the page
+marked in it (:func:`quick_navigation`, :func:`mark_navigation`).
 """
 
 from __future__ import annotations
@@ -23,6 +28,7 @@ from __future__ import annotations
 import ast
 import importlib
 import pkgutil
+import posixpath
 import re
 import shutil
 import textwrap
@@ -47,6 +53,9 @@ PROOFS = {
 }
 #: Modules of ifgm_ref left out of the API reference: entry points and a pytest test module.
 API_SKIP = ("__main__", "ifgm_ref.oracle.test_conformance")
+#: Packages of ifgm_ref on one page each, their modules listed there, not a page a module:
+#: the stand-ins for ROS's packages that a ROS node imports (``ifgm_ref/ros/process.py``).
+API_SHIMS = ("ifgm_ref.ros.shims", "ifgm_ref.ros.shims2")
 GENERATED = "docs/_generated"
 
 
@@ -92,17 +101,58 @@ def _proof_index() -> str:
 
 
 def _api_modules() -> list[str]:
+    """Every module of ``ifgm_ref`` with a page, found in its folders (none imported): not
+    those of :data:`API_SKIP`, nor the modules inside a package of :data:`API_SHIMS`."""
     import ifgm_ref
 
-    names = ["ifgm_ref"]
-    for info in pkgutil.walk_packages(ifgm_ref.__path__, "ifgm_ref."):
-        if not info.name.endswith(API_SKIP[0]) and info.name not in API_SKIP:
-            names.append(info.name)
+    names: list[str] = []
+
+    def walk(package: str, folder: Path) -> None:
+        names.append(package)
+        if package in API_SHIMS:
+            return
+        for info in pkgutil.iter_modules([str(folder)]):
+            name = f"{package}.{info.name}"
+            if info.name == API_SKIP[0] or name in API_SKIP:
+                continue
+            if info.ispkg:
+                walk(name, folder / info.name)
+            else:
+                names.append(name)
+
+    walk("ifgm_ref", Path(ifgm_ref.__file__).parent)
     return sorted(names)
 
 
 def _api_page(name: str) -> str:
-    return f"# `{name}`\n\n```{{eval-rst}}\n.. automodule:: {name}\n```\n"
+    page = f"# `{name}`\n\n```{{eval-rst}}\n.. automodule:: {name}\n```\n"
+    return page + (_shim_modules(name) if name in API_SHIMS else "")
+
+
+def _shim_modules(package: str) -> str:
+    """The modules of the shim package ``package``, each with its docstring's first
+    paragraph, read from the files (nothing imported)."""
+    import ifgm_ref
+
+    folder = Path(ifgm_ref.__file__).parent.joinpath(*package.split(".")[1:])
+    entries = []
+    for path in sorted(folder.rglob("*.py")):
+        parts = path.relative_to(folder).with_suffix("").parts
+        parts = parts[:-1] if parts[-1] == "__init__" else parts
+        if parts:
+            doc = ast.get_docstring(ast.parse(path.read_text(encoding="utf-8"))) or ""
+            first = " ".join(doc.split("\n\n")[0].split())
+            entries.append(f"``{'.'.join(parts)}``\n   {first}")
+    return (
+        "\nIts modules are what a ROS node imports in place of ROS's own packages: the node "
+        "runs with this folder first on its `PYTHONPATH` ([how nodes are run]"
+        "(../../ros-nodes.md#how-nodes-are-run)). They are listed here with their docstrings, "
+        "not given a page each, for they hold next to no code of their own: a message "
+        "module's classes are made when it is imported, from rosbags' message definitions "
+        "(`ifgm_ref/ros/messages.py`), and the others re-export the stand-in documented on "
+        "the pages of `ifgm_ref.ros` or, as their docstrings say, accept what it does not "
+        "act on.\n\n```{eval-rst}\n" + "\n\n".join(entries) + "\n```\n"
+    )
 
 
 def _api_index(names: list[str]) -> str:
@@ -118,7 +168,9 @@ def _api_index(names: list[str]) -> str:
     return (
         "# API reference\n\n"
         "Every module of `ifgm_ref`, from its docstrings (numpydoc; sphinx.ext.autodoc and "
-        "napoleon). The module docstrings open with the paper's reference and map each "
+        "napoleon), but the modules of the stand-in ROS packages a ROS node imports, "
+        "listed on their package's page (`ifgm_ref/ros/shims/`, `ifgm_ref/ros/shims2/`). "
+        "The module docstrings open with the paper's reference and map each "
         "parameter to its symbol.\n\n" + tocs
     )
 
@@ -339,6 +391,161 @@ def rewrite_source(app: Sphinx, docname: str, source: list[str]) -> None:
     source[0] = link_citations(text)
 
 
+# ---- the saved doctrees ------------------------------------------------------------------
+
+
+def adopt_nested_nodes(app: Sphinx, doctree: Any) -> None:
+    """Make the page's own document the document of every node on it (doctree-read).
+
+    MyST parses an ``eval-rst`` block (each API page's ``automodule``) into a document of
+    its own, which shares the page's settings, Sphinx's environment among them, and moves
+    the nodes over without their link to it. Sphinx saves each page's doctree with the
+    environment cut off its own settings, but through those nodes the pickle took the whole
+    environment as it stood: 95 MB of doctrees, growing page by page, read back at writing.
+    """
+    for node in doctree.findall():
+        if node._document not in (None, doctree):
+            node.document = doctree
+
+
+# ---- the navigation sidebar ---------------------------------------------------------------
+
+#: How furo asks for the site's whole toctree, the navigation sidebar of every page.
+FURO_NAVIGATION: dict[str, Any] = {
+    "collapse": False,
+    "titles_only": True,
+    "maxdepth": -1,
+    "includehidden": True,
+}
+#: The sidebar's links and lists, and where a page's own link is (furo's markup).
+_NAV_TAG = re.compile(r"<(/?)(ul|li)\b([^>]*)>")
+_NAV_LINK = '<a class="reference internal" href="{}">'
+_NAV_CHECKBOX = re.compile(r'<input aria-label="[^"]*"(?= class="toctree-checkbox")')
+#: Sphinx's toctree of the whole site seen from a page of each folder, marked for no page.
+_NAV_UNMARKED: dict[str, str] = {}
+
+
+def forget_navigation(app: Sphinx, env: Any) -> list[str]:
+    """Forget the sidebars of the last build once the pages are read (env-updated)."""
+    _NAV_UNMARKED.clear()
+    return []
+
+
+def _unmarked_navigation(app: Sphinx, folder: str) -> str:
+    """Sphinx's toctree of the whole site (as furo asks for it) from a page in ``folder``
+    that is none of the site's: links relative to the folder, no page marked current."""
+    from sphinx.environment.adapters.toctree import global_toctree_for_doc
+
+    if folder not in _NAV_UNMARKED:
+        nowhere = posixpath.join(folder, "<navigation>")
+        builder: Any = app.builder
+        tree = global_toctree_for_doc(
+            app.env, nowhere, builder, tags=builder.tags, **FURO_NAVIGATION
+        )
+        _NAV_UNMARKED[folder] = builder.render_partial(tree)["fragment"]
+    return _NAV_UNMARKED[folder]
+
+
+def mark_current(navigation: str, href: str) -> str | None:
+    """furo's navigation tree ``navigation`` with the page linked as ``href`` marked as
+    furo marks the page it is on: its link ``#`` and current, its item and those around it
+    current (and open), its item the current page. None if that link is not there once,
+    or the markup is not furo's as known.
+
+    >>> unmarked = (
+    ...     '<ul>\\n<li class="toctree-l1 has-children"><a class="reference internal" '
+    ...     'href="a.html">A</a><input aria-label="Toggle A" class="toctree-checkbox" '
+    ...     'id="c1"/><ul>\\n<li class="toctree-l2"><a class="reference internal" '
+    ...     'href="b.html">B</a></li>\\n</ul>\\n</li>\\n</ul>'
+    ... )
+    >>> print(mark_current(unmarked, "b.html").replace("\\n", ""))  # doctest: +NORMALIZE_WHITESPACE
+    <ul class="current"><li class="toctree-l1 current has-children"><a class="reference
+    internal" href="a.html">A</a><input aria-label="Toggle A" checked="" class="toctree-checkbox"
+    id="c1"/><ul class="current"><li class="toctree-l2 current current-page"><a class="current
+    reference internal" href="#">B</a></li></ul></li></ul>
+    """
+    link = _NAV_LINK.format(href)
+    at = navigation.find(link)
+    if at < 0 or navigation.find(link, at + 1) >= 0:
+        return None
+    around: list[re.Match[str]] = []  # the lists and items the link is in, outermost first
+    for tag in _NAV_TAG.finditer(navigation, 0, at):
+        if not tag.group(1):
+            around.append(tag)
+        elif not around or around.pop().group(2) != tag.group(2):
+            return None
+    edits = [(at, at + len(link), '<a class="current reference internal" href="#">')]
+    items = [tag for tag in around if tag.group(2) == "li"]
+    for tag in around:
+        attributes = tag.group(3)
+        if tag.group(2) == "ul":
+            if attributes:
+                return None
+            edits.append((tag.start(), tag.end(), '<ul class="current">'))
+            continue
+        classes = re.fullmatch(r' class="(toctree-l\d+)( has-children)?"', attributes)
+        if not classes:
+            return None
+        page = " current-page" if tag is items[-1] else ""
+        marked = f'<li class="{classes.group(1)} current{classes.group(2) or ""}{page}">'
+        edits.append((tag.start(), tag.end(), marked))
+        if classes.group(2):  # its checkbox, after its link, opens it
+            checkbox = _NAV_CHECKBOX.search(navigation, tag.end())
+            if not checkbox or navigation.find("<ul", tag.end(), checkbox.start()) >= 0:
+                return None
+            edits.append((checkbox.end(), checkbox.end(), ' checked=""'))
+    for start, end, text in sorted(edits, reverse=True):
+        navigation = navigation[:start] + text + navigation[end:]
+    return navigation
+
+
+def quick_navigation(
+    app: Sphinx, pagename: str, templatename: str, context: dict[str, Any], doctree: Any
+) -> None:
+    """Give furo the navigation sidebar of the page's folder, marked for no page
+    (html-page-context, before furo's handler); :func:`mark_navigation` marks the page.
+
+    furo asks every page for the whole site's toctree and makes its sidebar of it: Sphinx
+    copies every page's table of contents (every section, every documented object) for each
+    of the ~300 pages, and furo parses the result again: most of the build's writing time.
+    The tree differs from page to page only by the folder its links are relative to and by
+    the page marked current, so it is made once a folder (furo caches its sidebar by the
+    toctree) and the page marked in it, as furo would have marked it.
+    """
+    toctree = context.get("toctree")
+    if toctree is None or app.builder.name != "html" or app.config.html_theme != "furo":
+        return
+    folder = posixpath.dirname(pagename)
+
+    def toctree_of_the_folder(**kwargs: Any) -> str:
+        if kwargs != FURO_NAVIGATION:
+            return str(toctree(**kwargs))
+        context["ifgm_navigation"] = (toctree, folder)
+        return _unmarked_navigation(app, folder)
+
+    context["toctree"] = toctree_of_the_folder
+
+
+def mark_navigation(
+    app: Sphinx, pagename: str, templatename: str, context: dict[str, Any], doctree: Any
+) -> None:
+    """Mark the page in the sidebar furo made of its folder's unmarked toctree
+    (html-page-context, after furo's handler); where it cannot, furo's own sidebar."""
+    if "ifgm_navigation" not in context:
+        return
+    toctree, folder = context.pop("ifgm_navigation")
+    context["toctree"] = toctree
+    builder: Any = app.builder
+    href = builder.get_relative_uri(posixpath.join(folder, "<navigation>"), pagename)
+    marked = mark_current(context["furo_navigation_tree"], href)
+    if marked is None and any(pagename in docs for docs in app.env.toctree_includes.values()):
+        from furo.navigation import get_navigation_tree  # type: ignore[import-untyped]
+
+        marked = get_navigation_tree(toctree(**FURO_NAVIGATION))
+    if marked is not None:
+        context["furo_navigation_tree"] = marked
+
+
 def setup(app: Sphinx) -> dict[str, Any]:
     """Register the extension."""
     app.setup_extension("sphinx.ext.graphviz")
@@ -346,4 +553,8 @@ def setup(app: Sphinx) -> dict[str, Any]:
     app.connect("config-inited", generate)
     app.connect("config-inited", keep_notebook_outputs_in_the_site)
     app.connect("source-read", rewrite_source)
+    app.connect("doctree-read", adopt_nested_nodes)
+    app.connect("env-updated", forget_navigation)
+    app.connect("html-page-context", quick_navigation, priority=400)
+    app.connect("html-page-context", mark_navigation, priority=600)
     return {"parallel_read_safe": True, "parallel_write_safe": True}
