@@ -27,7 +27,9 @@ original. For each it reports:
 * ``tests``: killed by the project's tests of the decision code (``--tests``);
 * ``suite_quick`` and ``suite_full`` (only with ``--levels``): killed by the frozen suite's
   quick or full tier at both levels (``ifgm-ref oracle --suite v1 --level reference``), the
-  measure of how much of the full tier's power the quick tier keeps;
+  measure of how much of the full tier's power the quick tier keeps; ``suite_cases``: the
+  full tier with every case run, each mutant's verdicts written to
+  ``OUT/suite-runs/NUMBER.jsonl`` (which cases kill it: ``ifgm-ref suite tiers --runs``);
 
 each with the seconds it took. A mutant that cannot even be imported or served is ``broken``:
 killed by anything, and counted apart. The kill rates are over the mutants that change a
@@ -262,18 +264,20 @@ def _oracle(copy: Path, *extra: str) -> list[str]:
             *extra]  # fmt: skip
 
 
-def _suite(copy: Path, tier: str) -> list[str]:
-    """The frozen suite's ``tier`` at both levels, the mutant served, stopping at the first
-    failing case."""
+def _suite(copy: Path, tier: str, results: Path | None = None) -> list[str]:
+    """The frozen suite's ``tier`` at both levels, the mutant served: stopping at the first
+    failing case, or every case run and each verdict written to ``results``."""
+    stop = ["--stop-on-failure"] if results is None else []
     return [sys.executable, "-m", "ifgm_ref", "oracle", "--suite", SUITE, "--tier", tier,
-            "--level", "reference", "--cmd", _serve(copy), "--stop-on-failure",
-            "--artifacts", str(copy / "suite-failures"), "--results", os.devnull]  # fmt: skip
+            "--level", "reference", "--cmd", _serve(copy), *stop,
+            "--artifacts", str(copy / "suite-failures"),
+            "--results", str(results or os.devnull)]  # fmt: skip
 
 
 #: The suite version the ``suite_quick`` and ``suite_full`` levels run.
 SUITE = "v1"
 #: The levels, in the order they run (the suite's only when asked: ``--levels``).
-LEVELS = ("paper", "reference", "tests", "suite_quick", "suite_full")
+LEVELS = ("paper", "reference", "tests", "suite_quick", "suite_full", "suite_cases")
 
 
 @dataclass
@@ -289,7 +293,9 @@ class Outcome:
     seconds: dict[str, float] = field(default_factory=dict)
 
 
-def judge(number: int, site: Site, original: list[str], levels: list[str], tests: str) -> Outcome:
+def judge(
+    number: int, site: Site, original: list[str], levels: list[str], tests: str, out: Path
+) -> Outcome:
     """Build ``site``'s mutant (``number`` of the draw) in a copy of the package and run
     every level on it."""
     started = time.perf_counter()
@@ -312,6 +318,7 @@ def judge(number: int, site: Site, original: list[str], levels: list[str], tests
             # the project's ini puts its root first on the path: the copy goes before it
             "suite_quick": (_suite(copy, "quick"), None),
             "suite_full": (_suite(copy, "full"), None),
+            "suite_cases": (_suite(copy, "full", out / "suite-runs" / f"{number}.jsonl"), None),
             "tests": ([sys.executable, "-m", "pytest", "-x", "-q", "-n", "0", "-p",
                        "no:cacheprovider", "-o", f"pythonpath={copy} {ROOT}",
                        *(str(ROOT / t) for t in tests.split())], copy),
@@ -350,10 +357,10 @@ def main() -> None:
     original = traces(None)
     if original is None:
         raise SystemExit("the unmutated package does not run")
-    args.out.mkdir(parents=True, exist_ok=True)
+    (args.out / "suite-runs").mkdir(parents=True, exist_ok=True)
     outcomes = []
     for k in numbers:
-        outcome = judge(k, drawn[k - 1], original, args.levels.split(","), args.tests)
+        outcome = judge(k, drawn[k - 1], original, args.levels.split(","), args.tests, args.out)
         outcomes.append(outcome)
         print(f"[{k}/{len(drawn)}] {_row(outcome)}", flush=True)
         _write(args.out / "mutants.csv", outcomes)

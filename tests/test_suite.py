@@ -23,7 +23,7 @@ from ifgm_ref.oracle.suite.build import build_suite
 from ifgm_ref.oracle.suite.cases import Case, decode_example, encode_example, read_cases
 from ifgm_ref.oracle.suite.recorded import rebuilt
 from ifgm_ref.oracle.suite.run import run_case, run_cases
-from ifgm_ref.oracle.suite.tiers import broken_implementations, quick_cover
+from ifgm_ref.oracle.suite.tiers import broken_implementations, kills_in_runs, quick_cover
 from ifgm_ref.oracle.suite.versions import load_suite, versions
 from ifgm_ref.planners import make_planner
 from ifgm_ref.scenarios import resolve_world
@@ -214,3 +214,28 @@ def test_v1s_vectors_still_hold_for_the_reference() -> None:
     assert vectors["traces"] and check_vectors(vectors, ifgm_ref.equations) == []
     for planner in ("ifgm", "iba"):
         assert replay_traces(vectors, lambda p=planner: make_planner(p), planner=planner) == []
+
+
+def test_the_quick_tier_is_chosen_again_with_the_kills_of_runs_made_elsewhere(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """A mutant that only a full-tier case kills (a run file, as bench_mutation.py's
+    suite_cases level writes it) gets that case into the quick tier; the run of one nothing
+    killed adds nothing; an unfinished run is refused."""
+    import shutil
+
+    shutil.copytree(V1.folder, tmp_path / "v1")
+    full_only = next(c for c in V1.cases if c.tier == "full")
+    lines = [{"type": "case", "id": full_only.id, "verdict": "fail"}, {"type": "summary"}]
+    (tmp_path / "7.jsonl").write_text("".join(json.dumps(line) + "\n" for line in lines))
+    (tmp_path / "8.jsonl").write_text(json.dumps({"type": "summary"}) + "\n")
+    runs = [str(tmp_path / "7.jsonl"), str(tmp_path / "8.jsonl")]
+    status = main(["suite", "tiers", "--version", "v1", "--root", str(tmp_path), "--runs", *runs])
+    again = load_suite("v1", root=tmp_path)
+    assert status == 0
+    assert full_only.id in {c.id for c in again.tier("quick")}
+    assert len(again.tier("quick")) == len(V1.tier("quick")) + 1
+    assert "1 of them killed by the full tier" in capsys.readouterr().out
+    (tmp_path / "9.jsonl").write_text(json.dumps(lines[0]) + "\n")
+    with pytest.raises(ImplementationError, match="not a finished suite run"):
+        kills_in_runs([tmp_path / "9.jsonl"])

@@ -1,4 +1,4 @@
-"""``ifgm-ref suite`` (build, promote, list) and ``ifgm-ref oracle --suite``: the frozen suite.
+"""``ifgm-ref suite`` (build, promote, tiers, list) and ``oracle --suite``: the frozen suite.
 
 ``oracle --suite v1 [--tier quick|full]`` runs exactly the suite's cases against the
 implementation ``oracle`` was given, with no drawing: one JSON line per case on stdout (or
@@ -123,7 +123,7 @@ def _opened(path: str) -> TextIO:
 
 
 def add_suite(sub: Subcommands) -> None:
-    """Add ``suite`` (``build``, ``promote``, ``list``) to the subcommands."""
+    """Add ``suite`` (``build``, ``promote``, ``tiers``, ``list``) to the subcommands."""
     suite = sub.add_parser(
         "suite",
         help="build or list versions of the frozen conformance suite (docs/oracle.md)",
@@ -150,6 +150,18 @@ def add_suite(sub: Subcommands) -> None:
     promote.add_argument("--to", required=True, metavar="VN", help="the (new) version")
     promote.add_argument("--root", type=Path, help="where versions live (default: the package's)")
     promote.set_defaults(func=run_suite_promote)
+    tiers = actions.add_parser(
+        "tiers",
+        help="choose a version's quick tier again, with the kills of these runs (before release)",
+    )
+    tiers.add_argument("--version", required=True, metavar="VN", help="the version")
+    tiers.add_argument(
+        "--runs", nargs="+", required=True, type=Path, metavar="RUN.jsonl",
+        help="full-tier runs of broken implementations, every case run (bench_mutation.py's "
+        "suite_cases level writes them)",
+    )  # fmt: skip
+    tiers.add_argument("--root", type=Path, help="where versions live (default: the package's)")
+    tiers.set_defaults(func=run_suite_tiers)
     listing = actions.add_parser("list", help="the versions and their cases per tier")
     listing.set_defaults(func=run_suite_list)
 
@@ -187,6 +199,21 @@ def run_suite_promote(args: argparse.Namespace) -> int:
 
     case = promote(args.folder, args.to, root=args.root or SUITES)
     print(f"added {case.id} to suite {args.to} (tier full)")
+    return 0
+
+
+def run_suite_tiers(args: argparse.Namespace) -> int:
+    """Choose suite ``args.version``'s quick tier again with ``args.runs``' kills."""
+    from ifgm_ref.oracle.suite.tiers import kills_in_runs, retier
+    from ifgm_ref.oracle.suite.versions import SUITES, load_suite
+
+    suite = load_suite(args.version, root=args.root or SUITES)
+    extra = kills_in_runs(args.runs)
+    quick = retier(suite.folder, extra)
+    missed = sorted(name for name, ids in extra.items() if ids and not set(ids) & set(quick))
+    print(f"suite {suite.version}: {len(quick)} quick cases; {len(extra)} runs added, "
+          f"{sum(bool(ids) for ids in extra.values())} of them killed by the full tier"
+          + (f"; not by the quick one: {', '.join(missed)}" if missed else ""))  # fmt: skip
     return 0
 
 

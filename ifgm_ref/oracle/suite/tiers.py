@@ -8,19 +8,24 @@ case per property first (the cheapest the reference passes; a property the quick
 exercised would let a port break it unseen), then, while some killed implementation
 survives, the case that kills the most survivors (ties: the cheaper, then the first id).
 Greedy set cover is within a factor ``ln n`` of the smallest cover, and with a dozen broken
-implementations it is small; docs/oracle.md gives the measured sizes and times.
+implementations it is small; docs/oracle.md gives the measured sizes and times. The matrix
+also takes the kills of implementations run elsewhere (:func:`kills_in_runs`, the mutation
+benchmark's mutants): :func:`retier` chooses the quick tier again with them.
 """
 
 from __future__ import annotations
 
 import functools
-from collections.abc import Callable, Mapping
+import json
+from collections.abc import Callable, Iterable, Mapping
 from concurrent.futures import ProcessPoolExecutor, as_completed
 from dataclasses import replace
+from pathlib import Path
 
+from ifgm_ref.errors import ImplementationError
 from ifgm_ref.oracle.implementation import Implementation, promises_of
 from ifgm_ref.oracle.mutants import MUTANTS
-from ifgm_ref.oracle.suite.cases import Case
+from ifgm_ref.oracle.suite.cases import Case, read_cases, write_cases
 from ifgm_ref.oracle.suite.run import run_case
 from ifgm_ref.planners import make_planner
 
@@ -28,7 +33,9 @@ __all__ = [
     "BROKEN_PLANNERS",
     "broken_implementations",
     "kill_matrix",
+    "kills_in_runs",
     "quick_cover",
+    "retier",
     "with_tiers",
 ]
 
@@ -102,3 +109,33 @@ def quick_cover(
 def with_tiers(cases: list[Case], quick: list[str]) -> list[Case]:
     """``cases`` with the ``quick`` ones in the quick tier, the rest in the full one."""
     return [replace(c, tier="quick" if c.id in quick else "full") for c in cases]
+
+
+def kills_in_runs(paths: Iterable[Path]) -> dict[str, list[str]]:
+    """The ids of the cases each run file's implementation failed or erred on, by the file's
+    stem (``ifgm-ref oracle --suite ... --results FILE``, every case run)."""
+    found = {}
+    for path in paths:
+        lines = [json.loads(line) for line in path.read_text().splitlines() if line.strip()]
+        if not lines or lines[-1].get("type") != "summary":
+            raise ImplementationError(f"{path}: not a finished suite run (no summary line)")
+        killed = [line["id"] for line in lines if line.get("verdict") in ("fail", "error")]
+        found[f"run:{path.stem}"] = killed
+    return found
+
+
+def retier(folder: Path, extra: Mapping[str, list[str]]) -> list[str]:
+    """Choose the quick tier of the version in ``folder`` again, from its kill matrix and the
+    ``extra`` implementations' kills (:func:`kills_in_runs`); rewrite its case files' tiers
+    and its ``kill-matrix.json``; return the quick ids. Only before the version is released."""
+    path = folder / "kill-matrix.json"
+    kills = json.loads(path.read_text())
+    matrix = {**kills["killed"], **extra}
+    manifest = json.loads((folder / "manifest.json").read_text())
+    files = {name: read_cases(folder / f"{name}.jsonl") for name in manifest["properties"]}
+    cases = [case for _, found in files.values() for case in found]
+    quick = quick_cover(cases, matrix, kills["reference_seconds"])
+    for name, (header, found) in files.items():
+        write_cases(folder / f"{name}.jsonl", header, with_tiers(found, quick))
+    path.write_text(json.dumps({**kills, "quick": quick, "killed": matrix}, indent=1) + "\n")
+    return quick
