@@ -333,8 +333,10 @@ def test_the_plugin_refuses_a_bad_startup_timeout(pytester: pytest.Pytester) -> 
 def test_the_oracle_leaves_no_hypothesis_folder_where_it_runs(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    """Hypothesis keeps a cache in ``./.hypothesis`` by default; the oracle puts it in the
-    user's cache folder instead."""
+    """Hypothesis keeps a cache in ``./.hypothesis`` by default; the oracle points it at the
+    user's cache folder instead. (Since the oracle draws without local constants,
+    ``ifgm_ref.oracle.stable_draws``, Hypothesis no longer caches the constants it found, so
+    this run may write nothing at all: what is pinned is that nothing lands where it runs.)"""
     monkeypatch.delenv("HYPOTHESIS_STORAGE_DIRECTORY", raising=False)
     monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "cache"))
     work = tmp_path / "work"
@@ -344,7 +346,6 @@ def test_the_oracle_leaves_no_hypothesis_folder_where_it_runs(
     )
     assert done.returncode == 0, done.stderr
     assert list(work.iterdir()) == []
-    assert (tmp_path / "cache" / "ifgm-ref" / "hypothesis").is_dir()
 
 
 def test_no_shrink_reports_the_failing_example_as_found(tmp_path: Path) -> None:
