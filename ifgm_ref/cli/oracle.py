@@ -40,7 +40,10 @@ def add_oracle(sub: Subcommands) -> None:
         "check's line on stderr as it finishes, then the report on stdout: every check's line "
         "and a summary (only the summary when stdout is the terminal that showed the lines). "
         "Exit status 0 when every check passed (or failed as expected), 1 otherwise. "
-        "Counterexamples go to --artifacts.",
+        "Counterexamples go to --artifacts. With --suite VERSION, the frozen cases of that "
+        "suite version run instead of drawn examples, one JSON line per case on stdout (or "
+        "--results), each verdict's line on stderr; exit status 0 when every case that "
+        "applies passed.",
     )
     oracle.add_argument("--planner", metavar="NAME", help="built-in name or module:attribute")
     oracle.add_argument("--cmd", metavar="PROGRAM", help="a JSON-lines protocol program")
@@ -142,7 +145,7 @@ def _add_run_options(oracle: argparse.ArgumentParser) -> None:
         metavar="N",
         help="run the simulation checks in N processes (default: the number of CPUs; a "
         "--cmd program is started anew for each check a process runs, once in all with "
-        "--jobs 1)",
+        "--jobs 1; a --suite run takes its cases in order, in one process)",
     )
 
 
