@@ -191,6 +191,7 @@ ORACLE_LAYERS = (
         "ifgm_ref.oracle.suite.cases",
         "ifgm_ref.oracle.suite.versions",
         "ifgm_ref.oracle.suite.report",
+        "ifgm_ref.oracle.suite.runfile",
     ),
     (
         "ifgm_ref.oracle.episodes",

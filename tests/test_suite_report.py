@@ -13,13 +13,12 @@ import pytest
 from ifgm_ref.cli import main
 from ifgm_ref.errors import ParameterError
 from ifgm_ref.oracle.suite.report import (
-    Verdict,
     case_groups,
-    read_runs,
     render_html,
     render_markdown,
     write_report,
 )
+from ifgm_ref.oracle.suite.runfile import Verdict, read_runs
 
 
 def case(
@@ -83,11 +82,12 @@ def test_cases_are_grouped_by_property_then_tier_quick_first(tmp_path: Path) -> 
     ]
     page = render_markdown(read_runs([run]), tmp_path)
     headings = re.findall(r"^### (.*)$", page, flags=re.MULTILINE)
-    assert headings == [
-        r"converges\_u, quick",
-        r"converges\_u, full",
-        r"converges\_u, nightly",
-        r"collision\_free, quick",
+    assert headings == ["The quick tier", "The full tier", "The nightly tier"]
+    quick = page.split("### The quick tier")[1].split("###")[0]
+    rows = [line.split(" | ")[:2] for line in quick.splitlines() if line.startswith("| ")]
+    assert rows[1:] == [
+        ["| converges\\_u", "converges\\_u/0001"],
+        ["| collision\\_free", "collision\\_free/0001"],
     ]
 
 
@@ -97,18 +97,24 @@ def header_row(page: str, first: str) -> list[str]:
     return [cell.strip() for cell in line.strip("|").split(" | ")]
 
 
+def case_row(page: str, case_id: str) -> list[str]:
+    """The cells of the first case table row of ``case_id`` (its second cell)."""
+    rows = (line.strip("|").split(" | ") for line in page.splitlines() if line.startswith("| "))
+    return [cell.strip() for cell in next(r for r in rows if r[1:2] == [case_id])]
+
+
 def test_columns_follow_the_runs_order_and_shared_names_are_numbered(tmp_path: Path) -> None:
     runs = [
-        write_run(tmp_path / "b.jsonl", "iba", [case("h/1")]),
-        write_run(tmp_path / "a.jsonl", "ifgm", [case("h/1")]),
-        write_run(tmp_path / "c.jsonl", "iba", [case("h/1", "fail", reason="hit")]),
+        write_run(tmp_path / "x" / "iba.jsonl", "iba", [case("h/1")]),
+        write_run(tmp_path / "ifgm.jsonl", "ifgm", [case("h/1")]),
+        write_run(tmp_path / "y" / "iba.jsonl", "iba", [case("h/1", "fail", reason="hit")]),
     ]
     comparison = read_runs(runs)
     assert [run.label for run in comparison.runs] == ["iba", "ifgm", "iba (2)"]
     page = render_markdown(comparison, tmp_path)
-    assert header_row(page, "case") == ["case", "level", "iba", "ifgm", "iba (2)"]
-    assert header_row(page, "h/1")[2:4] == ["pass", "pass"]
-    assert header_row(page, "h/1")[4].startswith("**FAIL")
+    assert header_row(page, "property") == ["property", "case", "level", "iba", "ifgm", "iba (2)"]
+    assert case_row(page, "h/1")[3:5] == ["pass", "pass"]
+    assert case_row(page, "h/1")[5].startswith("**FAIL")
     html = render_html(comparison, tmp_path)
     assert re.findall(r"<th>(iba|ifgm|iba \(2\))</th>", html) == ["iba", "ifgm", "iba (2)"]
 
@@ -127,7 +133,7 @@ def test_each_verdict_has_its_cell_and_its_reason(tmp_path: Path) -> None:
     other = write_run(tmp_path / "b.jsonl", "iba", [case("p/1")])
     comparison = read_runs([ran, other])
     page = render_markdown(comparison, tmp_path)
-    cells = {row: header_row(page, row)[2:] for row in ("p/1", "p/2", "p/3", "p/4")}
+    cells = {row: case_row(page, row)[3:] for row in ("p/1", "p/2", "p/3", "p/4")}
     assert cells == {
         "p/1": ["pass", "pass"],
         "p/2": ["**FAIL**[^1]", "-"],
@@ -188,7 +194,7 @@ def test_failures_link_to_their_plot_relative_to_the_page(tmp_path: Path) -> Non
     assert all((out / link).is_file() for link in links)
     hrefs = re.findall(r'<a href="([^"]*)">FAIL</a>', html_path.read_text())
     assert hrefs == links
-    assert "[run.jsonl](../../runs/run.jsonl)" in page
+    assert "[run](../../runs/run.jsonl)" in page
 
 
 def test_link_paths_are_quoted(tmp_path: Path) -> None:
@@ -209,7 +215,7 @@ def test_text_from_the_runs_is_escaped(tmp_path: Path) -> None:
     html = render_html(comparison, tmp_path, title="<i>title</i>")
     assert "<script" not in html and "<b>" not in html and "<i>" not in html
     assert 'title="&lt;script&gt;alert(&quot;x&quot;)&lt;/script&gt; &amp; | *"' in html
-    assert "<th>&lt;b&gt;impl&lt;/b&gt;</th>" in html
+    assert "<code>&lt;b&gt;impl&lt;/b&gt;</code>" in html
     assert "<title>&lt;i&gt;title&lt;/i&gt;</title>" in html
     assert "http" not in html and "<link" not in html  # standalone: nothing fetched
     page = render_markdown(comparison, tmp_path)
@@ -222,18 +228,18 @@ def test_broken_variants_get_their_own_tables(tmp_path: Path) -> None:
     caught = write_run(tmp_path / "m1.jsonl", "ifgm", [case("p/1", "fail", reason="off")])
     missed = write_run(tmp_path / "m2.jsonl", "no_brake", [case("p/1")])
     comparison = read_runs([good], broken=[caught, missed])
-    assert [run.label for run in comparison.broken] == ["ifgm (2)", "no_brake"]
+    assert [run.label for run in comparison.broken] == ["m1", "m2"]
     page = render_markdown(comparison, tmp_path)
     main_part, broken_part = page.split("## Known broken variants: the suite's teeth")
-    assert "ifgm (2)" not in main_part and "no\\_brake" not in main_part
-    assert header_row(main_part, "case") == ["case", "level", "ifgm"]
-    assert header_row(broken_part, "case") == ["case", "level", "ifgm (2)", "no\\_brake"]
-    assert header_row(broken_part, "implementation")[-1] == "caught"
-    assert header_row(broken_part, "ifgm (2)")[-1] == "yes"
-    assert header_row(broken_part, "no\\_brake")[-1] == "**NO**"
+    assert "m1" not in main_part and "no\\_brake" not in main_part
+    assert header_row(main_part, "property") == ["property", "case", "level", "ifgm"]
+    assert header_row(broken_part, "property") == ["property", "case", "level", "m1", "m2"]
+    assert header_row(broken_part, "run")[-1] == "caught"
+    assert header_row(broken_part, "[m1](m1.jsonl)")[-1] == "yes"
+    assert header_row(broken_part, "[m2](m2.jsonl)")[-1] == "**NO**"
     html = render_html(comparison, tmp_path)
     assert html.count("<h2>Known broken variants: the suite&#x27;s teeth</h2>") == 1
-    assert html.index("<th>no_brake</th>") > html.index("Known broken variants")
+    assert html.index("<th>m2</th>") > html.index("Known broken variants")
 
 
 def test_without_broken_runs_there_is_no_broken_table(tmp_path: Path) -> None:
@@ -246,11 +252,12 @@ def test_the_runs_table_has_each_summary(tmp_path: Path) -> None:
     cases = [case("p/1"), case("p/2", "fail"), case("p/3", "skip"), case("p/4", "error")]
     run = write_run(tmp_path / "a.jsonl", "ifgm", cases)
     page = render_markdown(read_runs([run]), tmp_path)
-    assert header_row(page, "implementation") == [
-        "implementation", "run file", "tier", "cases", "pass", "fail", "skip", "error", "ok",
+    assert header_row(page, "run") == [
+        "run", "implementation", "tier", "cases", "pass", "fail", "skip", "error", "ok",
         "seconds",
     ]  # fmt: skip
-    assert header_row(page, "ifgm")[2:] == ["full", "4", "1", "1", "1", "1", "**NOT OK**", "1.50"]
+    row = header_row(page, "[a](a.jsonl)")
+    assert row[1:] == ["`ifgm`", "full", "4", "1", "1", "1", "1", "**NOT OK**", "1.50"]
 
 
 def write_lines(path: Path, lines: list[Any]) -> Path:

@@ -51,7 +51,8 @@ def add_report(sub: Subcommands) -> None:
 
 def run_report(args: argparse.Namespace) -> int:
     """Write the page comparing ``args.runs`` (and ``args.broken``); say where on stderr."""
-    from ifgm_ref.oracle.suite.report import read_runs, write_report
+    from ifgm_ref.oracle.suite.report import write_report
+    from ifgm_ref.oracle.suite.runfile import read_runs
 
     comparison = read_runs(args.runs, args.broken)
     output_folder("--out", args.out, is_folder=True)
