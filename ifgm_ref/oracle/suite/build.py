@@ -32,7 +32,7 @@ from ifgm_ref.oracle.implementation import Implementation
 from ifgm_ref.oracle.stable_draws import global_constants_only
 from ifgm_ref.oracle.suite.cases import Case, read_cases, write_cases
 from ifgm_ref.oracle.suite.recorded import recorded
-from ifgm_ref.oracle.suite.tiers import broken_implementations, kill_matrix, quick_cover, with_tiers
+from ifgm_ref.oracle.suite.tiers import broken_implementations, kill_matrix, quick_tier, with_tiers
 from ifgm_ref.oracle.suite.versions import SUITES, manifest_path, versions
 from ifgm_ref.oracle.vectors import write_vectors
 from ifgm_ref.params import SimParams
@@ -145,12 +145,13 @@ def build_suite(
     seconds: dict[str, float] = {}
     cases = [c for n in names for c in _check_cases(CHECKS[n], examples, seed, progress, seconds)]
     matrix = kill_matrix(cases, broken_implementations(), progress, jobs=jobs)
-    quick = quick_cover(cases, matrix, seconds)
+    quick, times, held_out = quick_tier(cases, matrix, seconds)
     cases = with_tiers(cases, quick)
     for name in names:
         header = {"suite": version, "protocol": PROTOCOL_VERSION, "property": name}
         write_cases(folder / f"{name}.jsonl", header, [c for c in cases if c.check == name])
-    kills = {"quick": quick, "killed": matrix, "reference_seconds": seconds}
+    kills = {"quick": quick, "times": times, "held_out": held_out, "killed": matrix}
+    kills["reference_seconds"] = seconds
     (folder / "kill-matrix.json").write_text(json.dumps(kills, indent=1) + "\n")
     write_vectors(folder / "vectors.json")
     manifest = {

@@ -7,6 +7,9 @@ smallest set found greedily that still kills every implementation the full tier 
 case per property first (the cheapest the reference passes; a property the quick tier never
 exercised would let a port break it unseen), then, while some killed implementation
 survives, the case that kills the most survivors (ties: the cheaper, then the first id).
+Killing each known one once does not kill an unseen one as well: each must be killed
+``times`` times, the fewest for which, leaving each known implementation out of the choice
+in turn, the tier still kills :data:`HELD_OUT_TARGET` of them (:func:`quick_tier`).
 Greedy set cover is within a factor ``ln n`` of the smallest cover, and with a dozen broken
 implementations it is small; docs/oracle.md gives the measured sizes and times. The matrix
 also takes the kills of implementations run elsewhere (:func:`kills_in_runs`, the mutation
@@ -32,13 +35,21 @@ from ifgm_ref.planners import make_planner
 __all__ = [
     "BROKEN_PLANNERS",
     "broken_implementations",
+    "held_out_kills",
     "kill_matrix",
     "kills_in_runs",
     "quick_cover",
+    "quick_tier",
     "retier",
     "with_tiers",
 ]
 
+#: The share of broken implementations an unseen one stands for: the quick tier must kill
+#: this share of the known ones when each is left out of its choice in turn (issue 43's
+#: target for unseen mutants: 95 % of the full tier's kills).
+HELD_OUT_TARGET = 0.95
+#: The most times a cover kills each implementation.
+MOST_TIMES = 5
 #: Built-in planners that break IFGM's promises (they never claimed them): held to them,
 #: they are broken implementations the suite must reject.
 BROKEN_PLANNERS = ("fgm", "apf", "bug2", "straight")
@@ -82,28 +93,62 @@ def kill_matrix(
 
 
 def quick_cover(
-    cases: list[Case], matrix: Mapping[str, list[str]], seconds: Mapping[str, float]
+    cases: list[Case],
+    matrix: Mapping[str, list[str]],
+    seconds: Mapping[str, float],
+    times: int = 1,
 ) -> list[str]:
     """The quick tier's case ids (module docstring): one per property, then a greedy cover
-    of ``matrix``; ``seconds`` is each case's cost (the reference's time on it).
+    of ``matrix`` in which each implementation is killed ``times`` times (or by every case
+    that kills it, if fewer); ``seconds`` is each case's cost (the reference's time on it).
 
     >>> cases = [Case(f"p/{k}", "p", None) for k in range(3)] + [Case("q/1", "q", None)]
-    >>> quick_cover(cases, {"a": ["p/1", "p/2"], "b": ["p/2"]},
-    ...             {"p/0": 1.0, "p/1": 1.0, "p/2": 2.0, "q/1": 1.0})
+    >>> seconds = {"p/0": 1.0, "p/1": 1.0, "p/2": 2.0, "q/1": 1.0}
+    >>> quick_cover(cases, {"a": ["p/1", "p/2"], "b": ["p/2"]}, seconds)
     ['p/0', 'q/1', 'p/2']
+    >>> quick_cover(cases, {"a": ["p/1", "p/2"], "b": ["p/2"]}, seconds, times=2)
+    ['p/0', 'q/1', 'p/2', 'p/1']
     """
     chosen: list[str] = []
     for check in dict.fromkeys(c.check for c in cases):
         own = [c.id for c in cases if c.check == check]
         chosen.append(min(own, key=lambda i: (seconds[i], own.index(i))))
     order = [c.id for c in cases]
-    alive = {name for name, killed in matrix.items() if killed and not set(killed) & set(chosen)}
-    while alive:
+    wanted = {name: min(times, len(killed)) for name, killed in matrix.items() if killed}
+
+    def short(name: str) -> bool:
+        return len(set(matrix[name]) & set(chosen)) < wanted[name]
+
+    while alive := [name for name in wanted if short(name)]:
         gains = {i: sum(i in matrix[name] for name in alive) for i in order if i not in chosen}
-        best = max(gains, key=lambda i: (gains[i], -seconds[i], -order.index(i)))
-        chosen.append(best)
-        alive = {name for name in alive if best not in matrix[name]}
+        chosen.append(max(gains, key=lambda i: (gains[i], -seconds[i], -order.index(i))))
     return chosen
+
+
+def held_out_kills(
+    cases: list[Case], matrix: Mapping[str, list[str]], seconds: Mapping[str, float], times: int
+) -> tuple[int, int]:
+    """Leave one out: of the implementations ``matrix`` kills, how many the cover chosen
+    without each one (:func:`quick_cover`, ``times``) still kills, and how many there are."""
+    killed = [name for name, ids in matrix.items() if ids]
+    caught = 0
+    for name in killed:
+        others = {other: ids for other, ids in matrix.items() if other != name}
+        caught += bool(set(matrix[name]) & set(quick_cover(cases, others, seconds, times)))
+    return caught, len(killed)
+
+
+def quick_tier(
+    cases: list[Case], matrix: Mapping[str, list[str]], seconds: Mapping[str, float]
+) -> tuple[list[str], int, tuple[int, int]]:
+    """The quick tier: :func:`quick_cover` with the fewest ``times`` (1 to
+    :data:`MOST_TIMES`) whose leave-one-out kills (:func:`held_out_kills`) reach
+    :data:`HELD_OUT_TARGET` of the implementations; the ids, ``times`` and those kills."""
+    for times in range(1, MOST_TIMES + 1):
+        caught, killed = held_out_kills(cases, matrix, seconds, times)
+        if caught >= HELD_OUT_TARGET * killed or times == MOST_TIMES:
+            return quick_cover(cases, matrix, seconds, times), times, (caught, killed)
+    raise AssertionError("unreachable")  # pragma: no cover
 
 
 def with_tiers(cases: list[Case], quick: list[str]) -> list[Case]:
@@ -134,8 +179,9 @@ def retier(folder: Path, extra: Mapping[str, list[str]]) -> list[str]:
     manifest = json.loads((folder / "manifest.json").read_text())
     files = {name: read_cases(folder / f"{name}.jsonl") for name in manifest["properties"]}
     cases = [case for _, found in files.values() for case in found]
-    quick = quick_cover(cases, matrix, kills["reference_seconds"])
+    quick, times, held_out = quick_tier(cases, matrix, kills["reference_seconds"])
     for name, (header, found) in files.items():
         write_cases(folder / f"{name}.jsonl", header, with_tiers(found, quick))
-    path.write_text(json.dumps({**kills, "quick": quick, "killed": matrix}, indent=1) + "\n")
+    chosen = {"quick": quick, "times": times, "held_out": held_out, "killed": matrix}
+    path.write_text(json.dumps({**kills, **chosen}, indent=1) + "\n")
     return quick
