@@ -59,7 +59,7 @@ CAUGHT_BY = {
     "brakes_late": "stops_in_time",
     "gap_sign_flipped": "passes_wide_gaps",
     "gap_world_frame": "passes_wide_gaps",
-    "ignores_d_obs": "converges_open",
+    "ignores_d_obs": "converges_mixed",
     "never_leaves": "converges_symmetric",
     "no_dead_end_rule": "converges_u",
     "point_robot": "collision_free",

@@ -36,13 +36,12 @@ def add_oracle(sub: Subcommands) -> None:
         description="Run the oracle's property checks against a built-in or Python planner "
         "(--planner) or a program speaking the JSON-lines protocol (--cmd), noise-free or under "
         "noise (--profile robust, --noise), on the kinematic robot or one with mass (--engine "
-        "mujoco). Prints each "
-        "check's line on stderr as it finishes, then the report on stdout: every check's line "
-        "and a summary (only the summary when stdout is the terminal that showed the lines). "
-        "Exit status 0 when every check passed (or failed as expected), 1 otherwise. "
-        "Counterexamples go to --artifacts. With --suite VERSION, the frozen cases of that "
-        "suite version run instead of drawn examples, one JSON line per case on stdout (or "
-        "--results), each verdict's line on stderr; exit status 0 when every case that "
+        "mujoco). Prints each check's line on stderr as it finishes, then the report on stdout: "
+        "every check's line and a summary (only the summary when stdout is the terminal that "
+        "showed the lines). Exit status 0 when every check passed (or failed as expected), 1 "
+        "otherwise. Counterexamples go to --artifacts. With --suite VERSION, the frozen cases "
+        "of that suite version run instead of drawn examples, one JSON line per case on stdout "
+        "(or --results), each verdict's line on stderr; exit status 0 when every case that "
         "applies passed.",
     )
     oracle.add_argument("--planner", metavar="NAME", help="built-in name or module:attribute")
