@@ -7,6 +7,7 @@ that replay it on the same engine, body, time step and goal tolerance (``ifgm-re
 
 from __future__ import annotations
 
+import re
 from pathlib import Path
 from typing import Any
 
@@ -15,7 +16,16 @@ from ifgm_ref.oracle.implementation import Implementation
 from ifgm_ref.params import DT, GOAL_TOLERANCE, SimParams
 from ifgm_ref.worldfile import save_world
 
-__all__ = ["write_evidence"]
+__all__ = ["slug", "write_evidence"]
+
+
+def slug(text: str) -> str:
+    """``text`` as a folder name of a counterexample (an implementation's label).
+
+    >>> slug("cmd: ./my planner --fast")
+    'cmd_._my_planner_--fast'
+    """
+    return re.sub(r"[^A-Za-z0-9_.-]+", "_", text).strip("_")[:60] or "implementation"
 
 
 def write_evidence(

@@ -16,7 +16,6 @@ with mass of ``mujoco`` (``docs/oracle.md``, "On the physical robot").
 from __future__ import annotations
 
 import functools
-import re
 import sys
 import time
 import traceback
@@ -42,7 +41,7 @@ from ifgm_ref.oracle.check_types import (
     Recorder,
 )
 from ifgm_ref.oracle.checks import CHECKS, checks_at
-from ifgm_ref.oracle.counterexample import write_evidence
+from ifgm_ref.oracle.counterexample import slug, write_evidence
 from ifgm_ref.oracle.implementation import Implementation, Promises, promises_of
 from ifgm_ref.oracle.profiles import (
     Profile,
@@ -188,10 +187,6 @@ def _counted(n: int, one: str, many: str | None = None) -> str:
     return f"{n} {one if n == 1 else many or one + 's'}"
 
 
-def _slug(text: str) -> str:
-    return re.sub(r"[^A-Za-z0-9_.-]+", "_", text).strip("_")[:60] or "implementation"
-
-
 def run_check(
     check: Check,
     impl: Implementation,
@@ -242,7 +237,7 @@ def run_check(
         told = message = f"nondeterministic: a failing example passed when replayed ({message})"
     folder = None
     if artifacts is not None and recorder.evidence is not None:
-        folder = Path(artifacts) / _slug(impl.label) / check.name
+        folder = Path(artifacts) / slug(impl.label) / check.name
         write_evidence(folder, recorder.evidence, check, impl, told, sim=recorder.sim)
     if expected_failure is not None:
         message = f"{message} (expected: {expected_failure})"

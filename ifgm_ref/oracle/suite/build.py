@@ -98,10 +98,7 @@ def _judged(check: Check, impl: Implementation, example: Any, sim: SimParams) ->
 def _check_cases(
     check: Check, count: int, seed: int, progress: Callable[[str], None], seconds: dict[str, float]
 ) -> list[Case]:
-    impls = [Implementation.from_spec(name) for name in REFERENCES]
-    impl = next((i for i in impls if check.applies(i) is None), None)
-    if impl is None:
-        raise ImplementationError(f"no reference planner promises {check.name}")
+    impl = _reference_for(check)
     sim = SimParams()
     cases: list[Case] = []
     for example in drawn_examples(check, impl, count, seed):
@@ -114,15 +111,20 @@ def _check_cases(
         flags = (f"class:{world.name}",) if check.name in CLASS_FLAGGED else ()
         case = Case(f"{check.name}/{len(cases) + 1:04d}", check.name, example, flags=flags, sim=sim)
         if check.name == "agrees_with_reference":
-            case = replace(case, recorded=recorded(world, replace(sim, max_time=_bound(world))))
+            case = replace(case, recorded=recorded(world, Recorder(sim=sim).sim_for(world)))
         cases.append(case)
         seconds[case.id] = spent
     progress(f"{check.name}: {len(cases)} cases")
     return cases
 
 
-def _bound(world: World) -> float:
-    return Recorder().sim_for(world).max_time
+def _reference_for(check: Check) -> Implementation:
+    """The first of :data:`REFERENCES` whose promises ``check`` applies to."""
+    for name in REFERENCES:
+        impl = Implementation.from_spec(name)
+        if check.applies(impl) is None:
+            return impl
+    raise ImplementationError(f"no reference planner promises {check.name}")
 
 
 def build_suite(
@@ -203,14 +205,13 @@ def promote(counterexample: Path, version: str, *, root: Path = SUITES) -> Case:
         manifest_path(folder).write_text(json.dumps({**manifest, "suite": version}, indent=2))
     header, cases = read_cases(folder / f"{name}.jsonl")
     world = load_world(counterexample / "world.json")
-    impl = next(i for n in REFERENCES if check.applies(i := Implementation.from_spec(n)) is None)
-    verdict, _ = _judged(check, impl, world, SimParams())
+    verdict, _ = _judged(check, _reference_for(check), world, SimParams())
     if verdict != "pass":
         raise ImplementationError(f"the reference does not pass {name} on it ({verdict})")
     number = max(int(c.id.split("/")[1]) for c in cases) + 1
     case = Case(f"{name}/{number:04d}", name, world)
     if name == "agrees_with_reference":
-        case = replace(case, recorded=recorded(world, replace(SimParams(), max_time=_bound(world))))
+        case = replace(case, recorded=recorded(world, Recorder().sim_for(world)))
     write_cases(folder / f"{name}.jsonl", {**header, "suite": version}, [*cases, case])
     with (folder / "CHANGELOG.md").open("a") as log:
         log.write(f"- {case.id}: added, the counterexample of {counterexample}\n")

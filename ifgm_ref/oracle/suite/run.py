@@ -18,7 +18,6 @@ A reference-level case compares with the reference's recorded answers
 
 from __future__ import annotations
 
-import re
 import time
 from collections.abc import Callable, Iterable, Iterator
 from dataclasses import dataclass
@@ -28,8 +27,9 @@ from typing import Any
 from ifgm_ref.errors import ImplementationError
 from ifgm_ref.oracle.check_types import CheckFailed, Recorder
 from ifgm_ref.oracle.checks import CHECKS, agrees_with
-from ifgm_ref.oracle.counterexample import write_evidence
+from ifgm_ref.oracle.counterexample import slug, write_evidence
 from ifgm_ref.oracle.implementation import Implementation
+from ifgm_ref.oracle.runner import crash
 from ifgm_ref.oracle.suite.cases import Case
 from ifgm_ref.oracle.suite.recorded import rebuilt
 from ifgm_ref.planners.ifgm_readings import Readings
@@ -79,10 +79,6 @@ def _flag_reason(case: Case, impl: Implementation) -> str | None:
     return None
 
 
-def _slug(text: str) -> str:
-    return re.sub(r"[^A-Za-z0-9_.-]+", "_", text).strip("_")[:60] or "implementation"
-
-
 def run_case(case: Case, impl: Implementation, artifacts: Path | None = None) -> CaseResult:
     """Run ``case`` against ``impl``; a failure's counterexample goes under ``artifacts``
     (``IMPLEMENTATION/ID``), none if it is ``None``."""
@@ -103,15 +99,13 @@ def run_case(case: Case, impl: Implementation, artifacts: Path | None = None) ->
         message = str(err)
         folder = None
         if artifacts is not None and recorder.evidence is not None:
-            folder = artifacts / _slug(impl.label) / case.id.replace("/", "__")
+            folder = artifacts / slug(impl.label) / case.id.replace("/", "__")
             write_evidence(folder, recorder.evidence, check, impl, message, sim=case.sim)
         seconds = time.perf_counter() - started
         return CaseResult(case, "fail", message.split("\n")[0], folder, seconds)
     except ImplementationError as err:
         return CaseResult(case, "error", str(err), None, time.perf_counter() - started)
     except Exception as err:  # the oracle's own machinery broke: still a verdict
-        from ifgm_ref.oracle.runner import crash
-
         why = f"the check itself crashed (a bug in the oracle, not a verdict): {crash(err)}"
         return CaseResult(case, "error", why, None, time.perf_counter() - started)
     seconds = time.perf_counter() - started
