@@ -14,9 +14,7 @@ from collections import Counter
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field, replace
 from enum import StrEnum
-from typing import Any
-
-from hypothesis import strategies as st
+from typing import TYPE_CHECKING, Any
 
 from ifgm_ref.convergence import time_bound
 from ifgm_ref.errors import IfgmRefError, ImplementationError
@@ -24,7 +22,11 @@ from ifgm_ref.oracle.implementation import Implementation
 from ifgm_ref.params import SensorParams, SimParams
 from ifgm_ref.simulator import Run
 from ifgm_ref.world import World
-from ifgm_ref.worldgen.draws import Draw
+
+if TYPE_CHECKING:
+    from hypothesis import strategies as st
+
+    from ifgm_ref.worldgen.draws import Draw
 
 __all__ = [
     "Check",
