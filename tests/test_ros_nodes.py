@@ -24,8 +24,11 @@ from rosbags.typesys import Stores, get_typestore
 from ifgm_ref.bags import messages as bags
 from ifgm_ref.errors import ImplementationError
 from ifgm_ref.laserscan import LaserScan
+from ifgm_ref.oracle.check_types import Level
+from ifgm_ref.oracle.checks import CHECKS
 from ifgm_ref.oracle.implementation import Implementation, promises_of
-from ifgm_ref.oracle.runner import check_planner
+from ifgm_ref.oracle.suite.run import run_cases
+from ifgm_ref.oracle.suite.versions import load_suite
 from ifgm_ref.planners.ifgm import IFGMPlanner
 from ifgm_ref.pose import Point, Pose
 from ifgm_ref.protocol import Command, EpisodeParams, Observation
@@ -345,18 +348,22 @@ def test_bug2_turns_the_short_way_only_with_the_heading_error_wrapped(
     assert turning and math.copysign(1.0, turning[0]) == sign
 
 
-def test_ifgm_node_passes_the_oracle_brief() -> None:
-    """Some checks of the brief profile (CI's time); the whole quick profile: the slow test."""
+def test_ifgm_node_passes_the_suite_quick_tier() -> None:
+    """Every paper-level case of the frozen suite's quick tier (one or two of each property,
+    about 6 s; the drawn quick profile: the slow test). A node that only publishes Twist
+    reports no branch, so the dead-end check meets nothing to check: not exercised."""
     impl = Implementation(
         RosFactory([node(EXAMPLE)], scale=FT), "ros: ifgm_node", promises_of("ifgm")
     )
+    cases = [c for c in load_suite("v1").tier("quick") if CHECKS[c.check].level is Level.PAPER]
     try:
-        report = check_planner(
-            impl, profile="brief", checks=["converges_u", "rigid_motion_invariant"], artifacts=None
-        )
+        results = list(run_cases(cases, impl))
     finally:
         impl.close()
-    assert report.ok, report.text()
+    others = {r.case.check: (r.verdict, r.reason) for r in results if r.verdict != "pass"}
+    assert set(others) == {"reports_unreachable", "dead_end_turns"}, others
+    assert {verdict for verdict, _ in others.values()} == {"skip"}
+    assert others["dead_end_turns"][1].startswith("not exercised")
 
 
 @pytest.mark.slow
