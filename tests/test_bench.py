@@ -7,8 +7,6 @@ import dataclasses
 import itertools
 import math
 import statistics
-import subprocess
-import sys
 from pathlib import Path
 
 import numpy as np
@@ -35,6 +33,7 @@ from ifgm_ref.shapes import rectangle
 from ifgm_ref.world import Polygon, World
 from ifgm_ref.worldgen.classes import random_world
 from tests.planner_doubles import CRASHES
+from tests.test_cli import run_cli
 
 #: Chord error of the inflated curves at the default 8 chords per quarter, per ft of radius.
 CHORD = 1.0 - math.cos(math.pi / 32)
@@ -313,16 +312,9 @@ def test_report_files_round_trip(tmp_path: Path, inline_rows: list[Row]) -> None
     assert {p.stem for p in (tmp_path / "worlds").glob("*.json")} == failed
 
 
-def run_cli(*args: str) -> subprocess.CompletedProcess[str]:
-    return subprocess.run(
-        [sys.executable, "-m", "ifgm_ref", "bench", *args],
-        capture_output=True, text=True, timeout=300, check=False,
-    )  # fmt: skip
-
-
 def test_bench_command_writes_the_table(tmp_path: Path) -> None:
     out = tmp_path / "out"
-    done = run_cli("--planners", "ifgm,apf", "--classes", "u", "--per-class", "2",
+    done = run_cli("bench", "--planners", "ifgm,apf", "--classes", "u", "--per-class", "2",
                    "--jobs", "1", "--out", str(out))  # fmt: skip
     assert done.returncode == 0, done.stderr
     rows = read_rows(out / "results.csv")
@@ -352,7 +344,7 @@ def test_rows_are_kept_as_they_arrive(tmp_path: Path) -> None:
 def test_bench_command_on_a_folder_of_worlds(tmp_path: Path) -> None:
     worlds = Path(__file__).parent / "worlds"
     out = tmp_path / "out"
-    done = run_cli("--planners", "iba", "--world-dir", str(worlds), "--max-time", "5",
+    done = run_cli("bench", "--planners", "iba", "--world-dir", str(worlds), "--max-time", "5",
                    "--out", str(out), "--jobs", "2")  # fmt: skip
     assert done.returncode == 0, done.stderr
     rows = read_rows(out / "results.csv")
@@ -372,7 +364,7 @@ def test_bench_command_on_a_folder_of_worlds(tmp_path: Path) -> None:
     ],
 )
 def test_bench_command_refuses_bad_input(args: list[str], message: str, tmp_path: Path) -> None:
-    done = run_cli(*args, "--per-class" if "--per-class" not in args else "--seed", "1",
+    done = run_cli("bench", *args, "--per-class" if "--per-class" not in args else "--seed", "1",
                    "--out", str(tmp_path))  # fmt: skip
     assert done.returncode == 2
     assert message in done.stderr

@@ -1,7 +1,14 @@
-"""The command line end to end, in a subprocess: world file in, JSON out, clean errors."""
+"""The command line end to end: world file in, JSON out, clean errors.
+
+Most tests run the command in the test's process (:func:`run_cli`: a child process costs about
+a second of imports, and the command line is tested some 130 times); those that need what
+only a process has (the entry point, its exit status, a closed pipe) start one
+(:func:`run_process`)."""
 
 from __future__ import annotations
 
+import contextlib
+import io
 import json
 import os
 import re
@@ -11,7 +18,7 @@ from pathlib import Path
 
 import pytest
 
-from ifgm_ref.cli import EXIT_BROKEN_PIPE
+from ifgm_ref.cli import EXIT_BROKEN_PIPE, main
 from ifgm_ref.planners.ifgm import IFGMPlanner
 from ifgm_ref.scenarios import BUILTIN_WORLDS
 from ifgm_ref.simulator import Result, simulate
@@ -34,6 +41,25 @@ WORLD = {
 
 
 def run_cli(*args: str, cwd: Path | None = None) -> subprocess.CompletedProcess[str]:
+    """``ifgm-ref ARGS`` run in this process (:func:`ifgm_ref.cli.main`, from ``cwd``), its
+    exit status and what it printed on stdout and stderr. What a process adds (the entry
+    point, a closed pipe, signals) is tested with a real one (:func:`run_process`)."""
+    out, err = io.StringIO(), io.StringIO()
+    here = Path.cwd()
+    try:
+        os.chdir(cwd or here)
+        with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
+            try:
+                status = main(list(args))
+            except SystemExit as stop:  # argparse's usage errors and --help
+                status = stop.code if isinstance(stop.code, int) else int(stop.code is not None)
+    finally:
+        os.chdir(here)
+    return subprocess.CompletedProcess(["ifgm-ref", *args], status, out.getvalue(), err.getvalue())
+
+
+def run_process(*args: str, cwd: Path | None = None) -> subprocess.CompletedProcess[str]:
+    """``python -m ifgm_ref ARGS`` in a child process."""
     return subprocess.run(
         [sys.executable, "-m", "ifgm_ref", *args],
         capture_output=True,
@@ -48,7 +74,7 @@ def test_simulate_world_file_prints_one_json_result(tmp_path: Path) -> None:
     path = tmp_path / "world.json"
     path.write_text(json.dumps(WORLD))
     trace, plot = tmp_path / "trace.csv", tmp_path / "run.png"
-    done = run_cli(
+    done = run_process(
         "simulate",
         str(path),
         "--planner",
@@ -194,7 +220,7 @@ def test_a_factory_that_makes_no_planner_is_a_one_line_error() -> None:
 
 
 def test_an_argument_error_is_one_line() -> None:
-    done = run_cli("simulate")
+    done = run_process("simulate")
     assert done.returncode == 2
     assert done.stderr.splitlines() == [
         "ifgm-ref: error: the following arguments are required: WORLD "

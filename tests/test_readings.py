@@ -5,7 +5,6 @@ the reference cannot run it."""
 
 from __future__ import annotations
 
-import subprocess
 import sys
 from pathlib import Path
 
@@ -27,6 +26,7 @@ from ifgm_ref.planners.ifgm_readings import (
 from ifgm_ref.scenarios import resolve_world
 from ifgm_ref.world import World
 from ifgm_ref.worldgen.classes import random_world
+from tests.test_cli import run_cli
 
 #: For each reading other than ours, a world (built-in, or class-seed drawn) where it changes
 #: the reference's run away from a tie. Most built-in worlds meet symmetric obstacles
@@ -126,16 +126,11 @@ def test_an_unknown_name_is_a_mistake_said_at_once() -> None:
 def test_the_command_line_takes_readings_and_refuses_them_where_they_cannot_apply(
     tmp_path: Path,
 ) -> None:
-    def ifgm_ref(*args: str) -> subprocess.CompletedProcess[str]:
-        return subprocess.run(
-            [sys.executable, "-m", "ifgm_ref", *args], capture_output=True, text=True, timeout=120
-        )
-
-    done = ifgm_ref("serve", "--planner", "fgm", "--reading", "gap_points=means")
+    done = run_cli("serve", "--planner", "fgm", "--reading", "gap_points=means")
     assert done.returncode == 2 and "--reading runs with --planner ifgm only" in done.stderr
-    done = ifgm_ref("oracle", "--planner", "ifgm", "--reading", "gap_point=means")
+    done = run_cli("oracle", "--planner", "ifgm", "--reading", "gap_point=means")
     assert done.returncode == 2 and "no open reading named gap_point" in done.stderr
-    done = ifgm_ref(
+    done = run_cli(
         "oracle", "--planner", "ifgm", "--level", "reference", "--check",
         "agrees_with_reference", "--reading", "leaving_rule=shortest", "--artifacts", str(tmp_path),
     )  # fmt: skip

@@ -13,7 +13,6 @@ from __future__ import annotations
 import dataclasses
 import importlib.util
 import json
-import subprocess
 import sys
 import time
 from collections.abc import Callable
@@ -44,6 +43,7 @@ from ifgm_ref.stats import wilson_interval
 from ifgm_ref.worldfile import load_world, save_world
 from ifgm_ref.worldgen.classes import random_world
 from tests.planner_doubles import CRASHES
+from tests.test_cli import run_cli
 
 SCRIPT = Path(__file__).resolve().parent.parent / "benchmarks" / "bench_soak.py"
 CLASSES = list(SOAK_CLASSES)
@@ -155,8 +155,8 @@ def test_a_failure_replays_from_its_world_file(rows: list[SoakRow], tmp_path: Pa
     ]
     assert command.startswith("ifgm-ref simulate ")
     args = [*command.split()[2:], "--json"]
-    done = subprocess.run([sys.executable, "-m", "ifgm_ref", "simulate", *args],
-                          capture_output=True, text=True, check=True, timeout=120)  # fmt: skip
+    done = run_cli("simulate", *args)
+    assert done.returncode == 0, done.stderr
     result = json.loads(done.stdout)
     assert (result["stop_reason"], result["time_s"], result["path_length"], result["steps"]) == (
         row.stop_reason, row.time_s, row.path_length, row.steps,

@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import shutil
 import subprocess
-import sys
 from pathlib import Path
 
 import pytest
@@ -12,6 +11,7 @@ import pytest
 from ifgm_ref.errors import ParameterError
 from ifgm_ref.paper import ELEMENTS, traces
 from ifgm_ref.traceability import build_matrix, marked_c_sources, marked_tests, render_markdown
+from tests.test_cli import run_cli
 
 ROOT = Path(__file__).resolve().parent.parent
 MATRIX = ROOT / "docs" / "trace-matrix.md"
@@ -119,10 +119,7 @@ def test_not_a_project_folder(tmp_path: Path) -> None:
 
 def test_trace_matrix_command(tmp_path: Path) -> None:
     def run(*args: str) -> subprocess.CompletedProcess[str]:
-        return subprocess.run(
-            [sys.executable, "-m", "ifgm_ref", "trace-matrix", "--root", str(ROOT), *args],
-            capture_output=True, text=True, timeout=120, check=False,
-        )  # fmt: skip
+        return run_cli("trace-matrix", "--root", str(ROOT), *args)
 
     assert run("--check").returncode == 0
     stale = tmp_path / "stale.md"

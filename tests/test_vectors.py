@@ -13,8 +13,6 @@ import copy
 import functools
 import json
 import math
-import subprocess
-import sys
 import types
 from collections.abc import Callable
 from pathlib import Path
@@ -46,6 +44,7 @@ from ifgm_ref.planners import IBAPlanner, IFGMPlanner
 from ifgm_ref.pose import Pose
 from ifgm_ref.protocol import Command, Observation
 from ifgm_ref.transport.wire import observe_message, parse_observe
+from tests.test_cli import run_cli
 
 #: Errata rows (docs/errata.md) that touch equations (1)-(4) and FGM's gap centre angle.
 EQUATION_ERRATA = frozenset({1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 13})
@@ -542,13 +541,7 @@ def test_replay_for_a_planner_without_traces_says_so() -> None:
 
 def test_cli_writes_the_vectors_and_a_one_line_summary(tmp_path: Path) -> None:
     out = tmp_path / "vectors.json"
-    done = subprocess.run(
-        [sys.executable, "-m", "ifgm_ref", "vectors", "--out", str(out)],
-        capture_output=True,
-        text=True,
-        timeout=120,
-        check=False,
-    )
+    done = run_cli("vectors", "--out", str(out))
     assert done.returncode == 0, done.stderr
     assert done.stdout == ""
     lines = done.stderr.splitlines()
@@ -562,12 +555,6 @@ def test_cli_writes_the_vectors_and_a_one_line_summary(tmp_path: Path) -> None:
 
 
 def test_cli_vectors_requires_out() -> None:
-    done = subprocess.run(
-        [sys.executable, "-m", "ifgm_ref", "vectors"],
-        capture_output=True,
-        text=True,
-        timeout=60,
-        check=False,
-    )
+    done = run_cli("vectors")
     assert done.returncode == 2
     assert "--out" in done.stderr
