@@ -431,10 +431,10 @@ def test_former_false_loop_closures_now_reach_the_goal(world: str, planner: str)
 
 
 def test_plugin_needs_an_implementation(pytester: pytest.Pytester) -> None:
-    result = pytester.runpytest_subprocess("--pyargs", "ifgm_ref.oracle", "-p", "no:cacheprovider")
+    result = pytester.runpytest_inprocess("--pyargs", "ifgm_ref.oracle", "-p", "no:cacheprovider")
     assert result.ret == pytest.ExitCode.USAGE_ERROR
     result.stderr.fnmatch_lines(["*needs exactly one implementation*"])
-    result = pytester.runpytest_subprocess(
+    result = pytester.runpytest_inprocess(
         "--pyargs", "ifgm_ref.oracle", "--ifgm-impl", "no_such_pkg_xyz:make"
     )
     assert result.ret == pytest.ExitCode.USAGE_ERROR
@@ -442,7 +442,7 @@ def test_plugin_needs_an_implementation(pytester: pytest.Pytester) -> None:
 
 
 def test_plugin_runs_one_test_per_property(pytester: pytest.Pytester) -> None:
-    result = pytester.runpytest_subprocess(
+    result = pytester.runpytest_inprocess(
         "--pyargs",
         "ifgm_ref.oracle",
         "--ifgm-impl",
@@ -513,12 +513,12 @@ def test_plugin_reads_expected_failures(
     pytester.path.joinpath("xfails.txt").write_text("eq1_gap_midpoint  # returns p1\n")
     args = ["--pyargs", "ifgm_ref.oracle", "--ifgm-impl", "ifgm", "-p", "no:cacheprovider"]
     args += ["--ifgm-equations", "broken_eqs", "-k", "eq1", "--ifgm-artifacts", "out"]
-    result = pytester.runpytest_subprocess(*args, "--ifgm-xfails", "xfails.txt")
+    result = pytester.runpytest_inprocess(*args, "--ifgm-xfails", "xfails.txt")
     result.assert_outcomes(xfailed=1)
-    result = pytester.runpytest_subprocess(*args)
+    result = pytester.runpytest_inprocess(*args)
     result.assert_outcomes(failed=1)
     result.stdout.fnmatch_lines(["*eq1_gap_midpoint(p1=*, but should be*"])
     pytester.path.joinpath("xfails.txt").write_text("eq9_typo\n")
-    result = pytester.runpytest_subprocess(*args, "--ifgm-xfails", "xfails.txt")
+    result = pytester.runpytest_inprocess(*args, "--ifgm-xfails", "xfails.txt")
     assert result.ret == pytest.ExitCode.USAGE_ERROR
     result.stderr.fnmatch_lines(["*xfails.txt:1: no check named 'eq9_typo'*"])

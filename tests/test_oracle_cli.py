@@ -208,7 +208,7 @@ def test_the_old_profile_name_default_still_works() -> None:
 
 
 def test_the_plugin_takes_the_old_profile_name(pytester: pytest.Pytester) -> None:
-    result = pytester.runpytest_subprocess(
+    result = pytester.runpytest_inprocess(
         "--pyargs", "ifgm_ref.oracle", "--ifgm-impl", "ifgm", "--ifgm-profile", "default",
         "--ifgm-equations", "ifgm_ref.equations", "-k", "eq1_gap", "-p", "no:cacheprovider",
     )  # fmt: skip
@@ -322,7 +322,7 @@ def test_a_bad_timeout_is_a_one_line_error(
 
 
 def test_the_plugin_refuses_a_bad_startup_timeout(pytester: pytest.Pytester) -> None:
-    result = pytester.runpytest_subprocess(
+    result = pytester.runpytest_inprocess(
         "--pyargs", "ifgm_ref.oracle", "--ifgm-cmd", "nothing-runs",
         "--ifgm-startup-timeout", "0", "-p", "no:cacheprovider",
     )  # fmt: skip

@@ -324,14 +324,14 @@ def test_oracle_command_noise_option(tmp_path: Path) -> None:
 
 def test_plugin_header_names_the_noise_levels(pytester: pytest.Pytester) -> None:
     """The pytest header says which levels a robust run checks and which are promised."""
-    result = pytester.runpytest_subprocess(
+    result = pytester.runpytest_inprocess(
         "--pyargs", "ifgm_ref.oracle", "--ifgm-impl", "ifgm", "--ifgm-profile", "robust",
         "--ifgm-equations", "ifgm_ref.equations", "-k", "eq1_gap", "-p", "no:cacheprovider",
     )  # fmt: skip
     tags = REFERENCE_NOISE.tags()
     result.stdout.fnmatch_lines([f"ifgm-ref oracle: noise {tags} checked, {tags} promised"])
     result.assert_outcomes(passed=1)
-    bad = pytester.runpytest_subprocess(
+    bad = pytester.runpytest_inprocess(
         "--pyargs", "ifgm_ref.oracle", "--ifgm-impl", "ifgm", "--ifgm-noise", "typo=1",
         "-p", "no:cacheprovider",
     )  # fmt: skip

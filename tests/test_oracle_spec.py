@@ -327,11 +327,11 @@ def test_the_plugin_takes_a_spec_and_says_what_it_holds_to(pytester: pytest.Pyte
     spec.write_text('unit = "m"\ngoal_tolerance = 0.3\n')
     common = ["--pyargs", "ifgm_ref.oracle", "--ifgm-impl", "stops_short:StopsShort"]
     common += ["--ifgm-profile", "brief", "-k", "converges_open", "-p", "no:cacheprovider"]
-    held = pytester.runpytest_subprocess(*common, "--ifgm-spec", str(spec))
+    held = pytester.runpytest_inprocess(*common, "--ifgm-spec", str(spec))
     held.stdout.fnmatch_lines([f"ifgm-ref oracle: held to {spec} (lengths in m;*"])
     held.stdout.fnmatch_lines(["ifgm-ref oracle:   goal tolerance 0.9843 ft (0.3 m), dt 0.1 s"])
     held.assert_outcomes(passed=1)
-    both = pytester.runpytest_subprocess(*common, "--ifgm-spec", str(spec), "--ifgm-level", "paper")
+    both = pytester.runpytest_inprocess(*common, "--ifgm-spec", str(spec), "--ifgm-level", "paper")
     assert both.ret == pytest.ExitCode.USAGE_ERROR
     both.stderr.fnmatch_lines(["*--ifgm-level paper given with the specification*"])
 
