@@ -10,6 +10,7 @@ protocol is caught here and needs a new version (docs/oracle.md, "The conformanc
 from __future__ import annotations
 
 import json
+from dataclasses import replace
 from pathlib import Path
 
 import pytest
@@ -22,7 +23,7 @@ from ifgm_ref.oracle.implementation import Implementation
 from ifgm_ref.oracle.suite.build import build_suite
 from ifgm_ref.oracle.suite.cases import Case, decode_example, encode_example, read_cases
 from ifgm_ref.oracle.suite.recorded import rebuilt
-from ifgm_ref.oracle.suite.run import run_case, run_cases
+from ifgm_ref.oracle.suite.run import reference_of, run_case, run_cases
 from ifgm_ref.oracle.suite.tiers import broken_implementations, kills_in_runs, quick_cover
 from ifgm_ref.oracle.suite.versions import load_suite, versions
 from ifgm_ref.planners import make_planner
@@ -95,6 +96,20 @@ def test_a_replay_that_ends_otherwise_is_refused() -> None:
     broken = {**case.recorded, "end": "collision"}
     with pytest.raises(ImplementationError, match="but was recorded as"):
         rebuilt(case.example, case.sim, broken)
+
+
+def test_a_rebuilt_episode_is_kept_for_the_same_case_loaded_again() -> None:
+    """:func:`reference_of` rebuilds a case's episode once per process: the same case read
+    again from its file finds it; a case that differs in anything its line holds does not;
+    a case of the paper level has none."""
+    case = next(c for c in V1.cases if c.recorded is not None)
+    again = next(c for c in load_suite("v1").cases if c.id == case.id)
+    assert again is not case and reference_of(again) is reference_of(case)
+    renamed = replace(case, id=f"{case.id}-again")
+    assert reference_of(renamed) is not reference_of(case)
+    paper = next(c for c in V1.cases if c.recorded is None)
+    with pytest.raises(ValueError, match="not a reference-level case"):
+        reference_of(paper)
 
 
 def test_examples_survive_the_file() -> None:

@@ -13,11 +13,15 @@ profiles run it, and gets one of four verdicts:
   run at all.
 
 A reference-level case compares with the reference's recorded answers
-(:mod:`.recorded`): no reference planner runs.
+(:mod:`.recorded`): no reference planner runs. Its episode is rebuilt once per process and
+kept (:func:`reference_of`): a process that checks several implementations on the same cases
+(the comparison page, the tests) drives the simulator with the recorded commands once.
 """
 
 from __future__ import annotations
 
+import functools
+import json
 import time
 from collections.abc import Callable, Iterable, Iterator
 from dataclasses import dataclass
@@ -27,6 +31,7 @@ from typing import Any
 from ifgm_ref.errors import ImplementationError
 from ifgm_ref.oracle.check_types import CheckFailed, Recorder
 from ifgm_ref.oracle.checks import CHECKS, agrees_with
+from ifgm_ref.oracle.conformance import ReferenceEpisode
 from ifgm_ref.oracle.counterexample import slug, write_evidence
 from ifgm_ref.oracle.implementation import Implementation
 from ifgm_ref.oracle.runner import crash
@@ -34,7 +39,7 @@ from ifgm_ref.oracle.suite.cases import Case
 from ifgm_ref.oracle.suite.recorded import rebuilt
 from ifgm_ref.planners.ifgm_readings import Readings
 
-__all__ = ["VERDICTS", "CaseResult", "run_case", "run_cases", "summary"]
+__all__ = ["VERDICTS", "CaseResult", "reference_of", "run_case", "run_cases", "summary"]
 
 #: The verdicts of a case, as the run file writes them.
 VERDICTS = ("pass", "fail", "skip", "error")
@@ -79,6 +84,41 @@ def _flag_reason(case: Case, impl: Implementation) -> str | None:
     return None
 
 
+def reference_of(case: Case) -> ReferenceEpisode:
+    """The reference's episode of the reference-level ``case``, rebuilt from its recorded
+    answers (:func:`~.recorded.rebuilt`) at its first call in this process and kept for the
+    next: by the case's content, not its object, so that a suite loaded again finds it."""
+    return _rebuilt(_Content(case))
+
+
+class _Content:
+    """A case, equal to another with the same JSON line (:meth:`Case.to_json`)."""
+
+    def __init__(self, case: Case) -> None:
+        self.case = case
+        self.key = json.dumps(case.to_json(), sort_keys=True)
+
+    def __hash__(self) -> int:
+        return hash(self.key)
+
+    def __eq__(self, other: object) -> bool:
+        return isinstance(other, _Content) and other.key == self.key
+
+
+#: How many rebuilt episodes a process keeps: a suite's reference level (v1: 39 in its quick
+#: tier, about 46 MB in all), with room for a second.
+_KEPT = 128
+
+
+@functools.lru_cache(maxsize=_KEPT)
+def _rebuilt(content: _Content) -> ReferenceEpisode:
+    case = content.case
+    if case.recorded is None:
+        raise ValueError(f"{case.id} is not a reference-level case: it records no answers")
+    sim = Recorder(sim=case.sim).sim_for(case.example)
+    return rebuilt(case.example, sim, case.recorded)
+
+
 def run_case(case: Case, impl: Implementation, artifacts: Path | None = None) -> CaseResult:
     """Run ``case`` against ``impl``; a failure's counterexample goes under ``artifacts``
     (``IMPLEMENTATION/ID``), none if it is ``None``."""
@@ -90,9 +130,7 @@ def run_case(case: Case, impl: Implementation, artifacts: Path | None = None) ->
     started = time.perf_counter()
     try:
         if case.recorded is not None:
-            world = case.example
-            reference = rebuilt(world, recorder.sim_for(world), case.recorded)
-            agrees_with(impl, world, reference, recorder)
+            agrees_with(impl, case.example, reference_of(case), recorder)
         else:
             check.test(impl, case.example, recorder)
     except CheckFailed as err:
