@@ -33,6 +33,7 @@ from ifgm_ref.recording import Recording, RecordingPlanner, replay
 from ifgm_ref.scenarios import resolve_world
 from ifgm_ref.simulator import Run, simulate
 from ifgm_ref.world import World
+from tests.test_cli import run_cli
 
 mcap_writer = pytest.importorskip("mcap_ros2.writer")
 
@@ -115,6 +116,63 @@ def test_the_replay_cli_reports_agreement_and_divergence(tmp_path: Path, capsys:
     assert main(["replay", str(tmp_path / "bad.mcap")]) == 1
     text = capsys.readouterr().out
     assert "first divergence at step" in text and "logged:" in text and "reference:" in text
+
+
+def test_motion_and_branch_differences_are_counted_apart(tmp_path: Path, capsys: Any) -> None:
+    """IFGM's run replayed into FGM (issue 45): at step 0 the two drive alike and only the
+    branch labels differ, which counts in branch and not in motion; each tolerance counts the
+    steps beyond it; the summary, the JSON verdict and the CSV say which rule each broke."""
+    path, steps = tmp_path / "ifgm.mcap", tmp_path / "steps.csv"
+    record(resolve_world("u_trap"), make_planner("ifgm"), path, SimParams(max_time=20.0))
+    log = read_log(path)
+    report = replay_log(log, make_planner("fgm"), setting_of(log))
+    first, motion = report.first_divergence, report.first_motion_divergence
+    assert first is not None and first.k == 0 and first.logged == first.reference
+    assert (first.broke, first.motion_agrees, first.branch_agrees) == (("branch",), True, False)
+    assert motion is not None and motion.k > 0 and {"heading", "speed"} & set(motion.broke)
+    assert report.compared == report.branch_compared == report.disagreeing == 200
+    dt, top = report.setting.params.dt, report.setting.params.robot.speed
+    logged = [(s.logged or (math.nan, math.nan), s.reference) for s in report.steps]
+    heading = sum(abs(a[1] - b[1]) * dt > 0.1 for a, b in logged)
+    speed = sum(abs(min(a[0], top) - b[0]) > 0.1 * top for a, b in logged)
+    assert (report.breaking("heading"), report.breaking("speed")) == (heading, speed)
+    assert 0 < report.motion_disagreeing < report.branch_disagreeing == report.disagreeing
+
+    assert main(["replay", str(path), "--planner", "fgm", "--steps", str(steps)]) == 1
+    text = capsys.readouterr().out.splitlines()
+    assert text[0].endswith(f"200 differ: {report.motion_disagreeing} in motion, 200 in branch"), (
+        text[0]
+    )
+    assert text[1:4] == [
+        f"  heading: {heading} steps off by more than 0.1 rad after a step (--heading-tolerance)",
+        f"  speed:   {speed} steps off by more than 0.1 of the robot's speed (--speed-tolerance)",
+        "  branch:  200 steps name another branch, of the 200 where both name one (the branch "
+        "rule)",
+    ]
+    assert text[4].startswith("first divergence at step 0 ")
+    assert text[4].endswith(": branch move_to_goal against no_obstacle")
+    assert text[7].startswith(f"first divergence in motion at step {motion.k} ")
+    rows = steps.read_text().splitlines()
+    assert rows[0].endswith(",agrees,differs,motion_agrees,branch_agrees")
+    assert rows[1].endswith(",False,branch move_to_goal against no_obstacle,True,False")
+
+    assert main(["replay", str(path), "--planner", "fgm", "--json"]) == 1
+    verdict = json.loads(capsys.readouterr().out)
+    assert verdict["disagreeing"] == verdict["branch_disagreeing"] == 200
+    assert verdict["motion_disagreeing"] == report.motion_disagreeing
+    assert (verdict["heading_disagreeing"], verdict["speed_disagreeing"]) == (heading, speed)
+    assert verdict["first_divergence"]["step"] == 0
+    assert verdict["first_motion_divergence"]["step"] == motion.k
+
+
+def test_replay_help_states_every_rule() -> None:
+    """``replay --help`` names both tolerances and states the branch rule."""
+    from ifgm_ref.bags.replay import BRANCH_RULE
+
+    shown = " ".join(run_cli("replay", "--help").stdout.split())
+    assert "--heading-tolerance and the speeds within --speed-tolerance" in shown
+    assert f"the branch rule: {BRANCH_RULE}" in shown
+    assert "1 when one differs (in motion or in branch)" in shown
 
 
 # -- a log from another writer -------------------------------------------------------------------

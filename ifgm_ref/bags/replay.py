@@ -21,13 +21,16 @@ and speed become the speed and turn rate the robot executes over one step
 speed stays negative, and differs). A step agrees when the headings the two turns lead to
 after one step ``dt`` differ by at most :data:`~ifgm_ref.oracle.invariance.HEADING_TOL`
 (0.1 rad), the speeds by at most :data:`~ifgm_ref.oracle.invariance.SPEED_TOL` (0.1) of the
-robot's, and, where both name one, the branches are the same: the oracle's tolerances for
-"the same answer", which a float32 port meets and a broken rule does not. A log is such a
-port: its ranges are float32, and the reference, handed them, now and then follows the
-neighbouring ray or edge point that the rounding makes the nearer (measured: 0.00054 rad
-the most, IFGM's own run in ``u_trap``). The first step that differs is the *first
-divergence*; the replay goes on to the end and counts the others, which may follow from the
-first (the reference's own state has then taken another way).
+robot's, and, where both name one, the branches are the same (:data:`BRANCH_RULE`): the
+oracle's tolerances for "the same answer", which a float32 port meets and a broken rule does
+not. A log is such a port: its ranges are float32, and the reference, handed them, now and
+then follows the neighbouring ray or edge point that the rounding makes the nearer
+(measured: 0.00054 rad the most, IFGM's own run in ``u_trap``). A step may break any of the
+three rules: :class:`ReplayReport` counts the steps that differ in motion (heading or speed
+beyond its tolerance) apart from those whose branches differ, and each rule's. The first
+step that differs is the *first divergence*; the replay goes on to the end and counts the
+others, which may follow from the first (the reference's own state has then taken another
+way).
 """
 
 from __future__ import annotations
@@ -54,6 +57,11 @@ from ifgm_ref.protocol import EpisodeParams, Observation, Planner
 from ifgm_ref.transport.wire import parse_reset
 
 __all__ = [
+    "BRANCH",
+    "BRANCH_RULE",
+    "HEADING",
+    "MOTION",
+    "SPEED",
     "ReplayReport",
     "ReplayStep",
     "Setting",
@@ -65,6 +73,16 @@ __all__ = [
 
 #: How far a foreign scan's field of view may be off centre, rad (float32 angles round).
 CENTRE_TOLERANCE = 1e-4
+
+#: The rules a step may break: the heading's and the speed's tolerance, and the branch rule.
+HEADING, SPEED, BRANCH = "heading", "speed", "branch"
+#: The rules of motion: a step breaking one differs in what the robot does.
+MOTION = (HEADING, SPEED)
+#: The branch rule, as ``--help`` states it (:func:`~ifgm_ref.flowchart.same_branch`).
+BRANCH_RULE = (
+    "where the log and the reference both name a branch, it is the same one (a logged "
+    "dead_end_turn also matches dead_end_escape and dead_end_handover)"
+)
 
 
 @dataclass(frozen=True)
@@ -93,7 +111,8 @@ class Tolerance:
 class ReplayStep:
     """One replayed step: its index, time (s) and pose (``unit``); the logged and the
     reference's ``(speed, turn rate)`` within the robot's limits and branches; whether they
-    agree (``None`` when nothing was logged for the step) and, if not, what differs."""
+    agree (``None`` when nothing was logged for the step) and, if not, what differs and the
+    rules it ``broke`` (of :data:`HEADING`, :data:`SPEED`, :data:`BRANCH`, in that order)."""
 
     k: int
     t: float
@@ -104,6 +123,20 @@ class ReplayStep:
     reference_branch: str | None
     agrees: bool | None
     differs: str = ""
+    broke: tuple[str, ...] = ()
+
+    @property
+    def motion_agrees(self) -> bool | None:
+        """Whether heading and speed agree (``None`` when nothing was logged)."""
+        return None if self.agrees is None else not set(MOTION) & set(self.broke)
+
+    @property
+    def branch_agrees(self) -> bool | None:
+        """Whether the branches agree (``None`` when not compared: nothing logged, or one of
+        the two steps names no branch)."""
+        if self.agrees is None or not (self.logged_branch and self.reference_branch):
+            return None
+        return BRANCH not in self.broke
 
 
 @dataclass(frozen=True)
@@ -124,39 +157,87 @@ class ReplayReport:
 
     @property
     def disagreeing(self) -> int:
-        """The steps whose logged command differs from the reference's."""
+        """The steps whose logged command differs from the reference's, in motion or branch."""
         return sum(s.agrees is False for s in self.steps)
+
+    @property
+    def motion_disagreeing(self) -> int:
+        """The steps whose heading or speed differs beyond its tolerance."""
+        return sum(s.motion_agrees is False for s in self.steps)
+
+    @property
+    def branch_compared(self) -> int:
+        """The steps with a logged command where the log and the reference both name a branch."""
+        return sum(s.branch_agrees is not None for s in self.steps)
+
+    @property
+    def branch_disagreeing(self) -> int:
+        """The steps whose branches differ (:data:`BRANCH_RULE`)."""
+        return self.breaking(BRANCH)
+
+    def breaking(self, rule: str) -> int:
+        """The steps that break ``rule`` (:data:`HEADING`, :data:`SPEED` or :data:`BRANCH`)."""
+        return sum(rule in s.broke for s in self.steps)
 
     @property
     def first_divergence(self) -> ReplayStep | None:
         """The first step that differs, or ``None`` when every compared step agrees."""
         return next((s for s in self.steps if s.agrees is False), None)
 
+    @property
+    def first_motion_divergence(self) -> ReplayStep | None:
+        """The first step whose heading or speed differs, or ``None`` when none does."""
+        return next((s for s in self.steps if s.motion_agrees is False), None)
+
     def text(self) -> str:
-        """A few lines: the verdict and the first divergence, lengths in the log's unit."""
-        unit = self.setting.unit
+        """A few lines: the verdict, the steps that differ in motion and in branch with the
+        tolerance or rule each broke, and the first divergence (and the first in motion, when
+        that is a later step), lengths in the log's unit."""
+        heading, speed = self.tolerance.heading, self.tolerance.speed
         lines = [
             f"{self.planner} replayed on {self.path}: {len(self.steps)} steps, "
-            f"{self.compared} with a logged command, {self.disagreeing} differ "
-            f"(tolerance {self.tolerance.heading:g} rad of heading after a step, "
-            f"{self.tolerance.speed:g} of the robot's speed)"
+            f"{self.compared} with a logged command, {self.disagreeing} differ"
         ]
-        first = self.first_divergence
-        if first is None:
+        if self.first_divergence is None:
+            lines[0] += (
+                f" (heading after a step within {heading:g} rad, speed within {speed:g} of the "
+                "robot's, the same branch where both name one)"
+            )
             lines.append("every logged command agrees with the reference")
             return "\n".join(lines)
-        x, y, theta = first.pose
+        lines[0] += f": {self.motion_disagreeing} in motion, {self.branch_disagreeing} in branch"
         lines += [
-            f"first divergence at step {first.k} (t={first.t:.3f} s), pose ({x:.3f} {unit}, "
-            f"{y:.3f} {unit}, {math.degrees(theta):.1f} deg): {first.differs}",
-            f"  logged:    {_show(first.logged, unit)}, branch {first.logged_branch or '-'}",
-            f"  reference: {_show(first.reference, unit)}, branch {first.reference_branch or '-'}",
+            f"  heading: {self.breaking(HEADING)} steps off by more than {heading:g} rad after "
+            "a step (--heading-tolerance)",
+            f"  speed:   {self.breaking(SPEED)} steps off by more than {speed:g} of the robot's "
+            "speed (--speed-tolerance)",
+            f"  branch:  {self.branch_disagreeing} steps name another branch, of the "
+            f"{self.branch_compared} where both name one (the branch rule)",
         ]
+        lines += self._divergence("first divergence", self.first_divergence)
+        motion = self.first_motion_divergence
+        if motion is not None and motion is not self.first_divergence:
+            lines += self._divergence("first divergence in motion", motion)
         return "\n".join(lines)
 
+    def _divergence(self, title: str, step: ReplayStep) -> list[str]:
+        """The lines of a divergence: where, what differs, the two commands and branches."""
+        unit = self.setting.unit
+        x, y, theta = step.pose
+        return [
+            f"{title} at step {step.k} (t={step.t:.3f} s), pose ({x:.3f} {unit}, "
+            f"{y:.3f} {unit}, {math.degrees(theta):.1f} deg): {step.differs}",
+            f"  logged:    {_show(step.logged, unit)}, branch {step.logged_branch or '-'}",
+            f"  reference: {_show(step.reference, unit)}, branch {step.reference_branch or '-'}",
+        ]
+
     def to_json_dict(self) -> dict[str, Any]:
-        """The verdict as a JSON-ready mapping (the first divergence ``None`` when none)."""
-        first = self.first_divergence
+        """The verdict as a JSON-ready mapping (a first divergence ``None`` when none):
+        ``disagreeing`` counts the steps that differ in anything, ``motion_disagreeing`` those
+        off in heading or speed, ``heading_disagreeing`` and ``speed_disagreeing`` each
+        tolerance's breaches, ``branch_disagreeing`` the branch rule's among the
+        ``branch_compared`` steps."""
+        first, motion = self.first_divergence, self.first_motion_divergence
         return {
             "bag": self.path,
             "planner": self.planner,
@@ -167,6 +248,13 @@ class ReplayReport:
             "heading_tolerance": self.tolerance.heading,
             "speed_tolerance": self.tolerance.speed,
             "first_divergence": None if first is None else _row(first),
+            "motion_disagreeing": self.motion_disagreeing,
+            "heading_disagreeing": self.breaking(HEADING),
+            "speed_disagreeing": self.breaking(SPEED),
+            "branch_compared": self.branch_compared,
+            "branch_disagreeing": self.branch_disagreeing,
+            "branch_rule": BRANCH_RULE,
+            "first_motion_divergence": None if motion is None else _row(motion),
         }
 
     def steps_csv(self) -> str:
@@ -195,6 +283,8 @@ def _row(step: ReplayStep) -> dict[str, Any]:
         "reference_branch": step.reference_branch,
         "agrees": step.agrees,
         "differs": step.differs,
+        "motion_agrees": step.motion_agrees,
+        "branch_agrees": step.branch_agrees,
     }
 
 
@@ -315,7 +405,7 @@ def _replay_step(
         limit = robot.max_turn_rate
         logged = (min(linear / scale, robot.speed), min(max(angular, -limit), limit))
     branches = (step.branch, command.branch)
-    differs = "" if logged is None else difference(logged, reference, branches, params, tolerance)
+    found = {} if logged is None else _differences(logged, reference, branches, params, tolerance)
     replayed = ReplayStep(
         k=k,
         t=step.t,
@@ -324,8 +414,9 @@ def _replay_step(
         logged_branch=step.branch or None,
         reference=reference,
         reference_branch=command.branch,
-        agrees=None if logged is None else not differs,
-        differs=differs,
+        agrees=None if logged is None else not found,
+        differs="; ".join(found.values()),
+        broke=tuple(found),
     )
     return replayed, scan
 
@@ -367,10 +458,22 @@ as executed); branch a against b'
     >>> difference((6.0, 0.5), (1.3, 0.5), ("a", "a"), params, Tolerance())
     ''
     """
-    found: list[str] = []
+    return "; ".join(_differences(logged, reference, branches, params, tolerance).values())
+
+
+def _differences(
+    logged: tuple[float, float],
+    reference: tuple[float, float],
+    branches: tuple[str | None, str | None],
+    params: EpisodeParams,
+    tolerance: Tolerance,
+) -> dict[str, str]:
+    """:func:`difference`'s findings by the rule each breaks (:data:`HEADING`,
+    :data:`SPEED`, :data:`BRANCH`, in that order); empty when the steps agree."""
+    found: dict[str, str] = {}
     heading = abs(logged[1] - reference[1]) * params.dt
     if heading > tolerance.heading:
-        found.append(
+        found[HEADING] = (
             f"heading after a step off by {heading:.3g} rad (more than {tolerance.heading:g})"
         )
     asked, limit = logged[0], tolerance.speed * params.robot.speed
@@ -378,8 +481,8 @@ as executed); branch a against b'
     speed = abs(executed - reference[0])
     if speed > limit:
         clipped = f", asked {asked:.3g}" if executed < asked else ""
-        found.append(f"speed off by {speed:.3g} (more than {limit:.3g}; as executed{clipped})")
+        found[SPEED] = f"speed off by {speed:.3g} (more than {limit:.3g}; as executed{clipped})"
     logged_branch, reference_branch = branches
     if logged_branch and reference_branch and not same_branch(logged_branch, reference_branch):
-        found.append(f"branch {logged_branch} against {reference_branch}")
-    return "; ".join(found)
+        found[BRANCH] = f"branch {logged_branch} against {reference_branch}"
+    return found

@@ -13,20 +13,26 @@ from ifgm_ref.errors import ParameterError
 if TYPE_CHECKING:
     from ifgm_ref.cli.common import Subcommands
 
-#: Exit status when a logged command differs from the reference's.
+#: Exit status when a logged command differs from the reference's, in motion or branch.
 EXIT_DIVERGED = 1
 
 
 def add_replay(sub: Subcommands) -> None:
     """Add ``replay`` to the subcommands."""
+    from ifgm_ref.bags.replay import BRANCH_RULE
+
     replay = sub.add_parser(
         "replay",
         help="feed a robot's log (ROS bag) to the reference and compare its commands",
         description="Read a robot's log (a ROS 1 .bag, a ROS 2 .mcap or rosbag2 folder: "
         "LaserScan, Odometry and Twist), hand the reference planner each scan with the pose "
         "at its time, open loop, and compare its command with the logged one, step by step "
-        "(docs/bags.md). Exit status 0 when every logged command agrees, 1 at a divergence, "
-        "2 on a bad log or option.",
+        "(docs/bags.md). A step agrees in motion when the headings the two commands lead to "
+        "after a step are within --heading-tolerance and the speeds within --speed-tolerance, "
+        f"and in branch by the branch rule: {BRANCH_RULE}. The summary counts the steps that "
+        "differ in motion and in branch apart, and each tolerance's. Exit status 0 when every "
+        "logged command agrees, 1 when one differs (in motion or in branch), 2 on a bad log "
+        "or option.",
     )
     replay.add_argument("bag", metavar="BAG", help="the log: FILE.bag, FILE.mcap or a folder")
     replay.add_argument(
