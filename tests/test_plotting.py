@@ -18,6 +18,8 @@ from ifgm_ref.noise import NoiseLevels
 from ifgm_ref.planners.fgm import FGMPlanner
 from ifgm_ref.planners.ifgm import IFGMPlanner
 from ifgm_ref.plotting import (
+    BELIEVED_LABEL,
+    END_LABEL,
     MAX_FRAMES,
     RARE_MARKER,
     RARE_SHARE,
@@ -129,7 +131,7 @@ def test_paper_panels_keep_plain_labels_in_order_of_appearance() -> None:
     draw_path(ax, run.trace, world.robot.radius, colour_by="branch")
     labels = ax.get_legend_handles_labels()[1]
     seen = list(dict.fromkeys(str(s.branch).replace("_", " ") for s in run.trace[:-1]))
-    assert labels == [*seen, "behaviour switch"]
+    assert labels == [*seen, "behaviour switch", END_LABEL]
     plt.close(fig)
 
 
@@ -161,15 +163,15 @@ def test_animation_counts_its_frames_on_stderr(
 
 
 def test_run_plot_draws_the_believed_path_only_where_odometry_moved_it() -> None:
-    """With odometry noise the plot adds a dashed "believed" path (``docs/noise.md``);
-    without, none."""
+    """With odometry noise the plot adds a dashed "believed path (odometry)"
+    (``docs/noise.md``); without, none."""
     world = resolve_world("post")
     for levels, drawn in (("odometry=0.02", True), ("none", False)):
         noisy = NoiseLevels.parse(levels).apply(world, 1)
         run = simulate(noisy, IFGMPlanner())
         fig = plot_run(noisy, run.trace, run.result)
         labels = [line.get_label() for line in fig.axes[0].get_lines()]
-        assert ("believed" in labels) is drawn, labels
+        assert (BELIEVED_LABEL in labels) is drawn, labels
         plt.close(fig)
 
 
