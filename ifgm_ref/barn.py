@@ -26,6 +26,7 @@ import re
 import shutil
 import tarfile
 import tempfile
+from collections.abc import Collection
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -66,6 +67,11 @@ DEFAULT_SENSOR = "jackal_lidar"
 CYLINDER_RADIUS = 0.075
 
 _WORLD = re.compile(r"world_(\d+)\.world")
+
+#: BARN's world indices: ``world_N.world`` for N = 0-299.
+INDICES = range(300)
+#: The indices of the bundled worlds (:data:`BUNDLED`): the 200 with ``N % 3 != 0``.
+BUNDLED_INDICES = frozenset(n for n in INDICES if n % 3)
 
 
 def barn_sensor(name: str = DEFAULT_SENSOR) -> SensorParams:
@@ -182,6 +188,40 @@ def _world_folder(folder: Path) -> Path:
     )
 
 
+class MissingWorlds(WorldError):
+    """BARN worlds asked for that are not where they were looked for; ``names`` are they, as
+    ``barn:N`` (the text after ``barn:`` when it is no index)."""
+
+    def __init__(self, message: str, names: tuple[str, ...]) -> None:
+        super().__init__(message)
+        self.names = names
+
+
+def missing_worlds(
+    names: Collection[str], where: str, *, option: str = "", prefix: str = ""
+) -> MissingWorlds:
+    """The error for the BARN worlds ``names`` (``barn:N``) that are not in ``where`` (a
+    folder, or the bundled set): one message whatever N, stating BARN's range, what ships
+    with ifgm-ref and how to get the others (with ``option``, the command line's way to give
+    a folder, if any), after ``prefix`` (e.g. the option that asked for them).
+
+    >>> str(missing_worlds(["barn:300"], "the bundled set", option="--barn-dir DIR"))
+    "barn:300 is not in the bundled set: BARN's worlds are barn:N for N = 0-299, of which \
+ifgm-ref bundles the 200 with N % 3 != 0; for the others give a folder of all 300 (a clone of \
+BARN's repository) with --barn-dir DIR"
+    """
+    listed = ", ".join(names)
+    verb = "is" if len(names) == 1 else "are"
+    lead = f"{prefix}: " if prefix else ""
+    by = f" with {option}" if option else ""
+    return MissingWorlds(
+        f"{lead}{listed} {verb} not in {where}: BARN's worlds are barn:N for N = 0-299, of "
+        "which ifgm-ref bundles the 200 with N % 3 != 0; for the others give a folder of all "
+        f"300 (a clone of BARN's repository){by}",
+        tuple(names),
+    )
+
+
 def find_barn_worlds(
     folder: str | os.PathLike[str], indices: set[int] | None = None
 ) -> list[BarnFiles]:
@@ -191,8 +231,8 @@ def find_barn_worlds(
     :func:`bundled_barn_folder` gives) or a clone of BARN's repository (all 300 worlds), where
     the worlds are in ``jackal_helper/worlds/BARN/`` and the paths in
     ``jackal_helper/worlds/BARN/path_files/``.
-    ``indices`` keeps only those worlds (every one must be there). A world without its path
-    file is an error.
+    ``indices`` keeps only those worlds: one not there is :class:`MissingWorlds`
+    (:func:`missing_worlds`, naming the folder). A world without its path file is an error.
     """
     where = _world_folder(Path(folder))
     found: dict[int, Path] = {}
@@ -203,7 +243,7 @@ def find_barn_worlds(
     if indices is not None:
         missing = sorted(indices - set(found))
         if missing:
-            raise WorldError(f"no BARN world(s) {', '.join(map(str, missing))} in {where}")
+            raise missing_worlds([f"barn:{n}" for n in missing], str(where))
         found = {k: v for k, v in found.items() if k in indices}
     out = []
     for index in sorted(found):
@@ -226,7 +266,7 @@ def parse_selection(text: str) -> set[int]:
     for part in (p.strip() for p in text.split(",")):
         match = re.fullmatch(r"(\d+)(?:-(\d+))?", part)
         if not match:
-            raise ParameterError(f"bad world selection {part!r} in {text!r}; e.g. 0-49,60")
+            raise ParameterError(f"bad world selection {part!r}; e.g. 0-49,60")
         low = int(match.group(1))
         high = int(match.group(2) or low)
         if high < low:
@@ -244,8 +284,9 @@ def load_barn_world(
     )
 
 
-#: ``simulate``'s name for BARN's world N: ``barn:N``.
-_BARN_NAME = re.compile(r"barn:(\d+)")
+#: ``simulate``'s name for BARN's world N: ``barn:N`` (any other text after ``barn:`` names
+#: no world: :func:`gazebo_task` says so).
+_BARN_NAME = re.compile(r"barn:(.*)")
 
 
 @dataclass(frozen=True)
@@ -274,21 +315,24 @@ def gazebo_task(
     Both get BARN's robot, the sensor preset ``sensor``, and BARN's time step, 100 s and 1 m
     success radius (:data:`SIM`), as ``bench --barn`` runs them; start and goal are BARN's
     unless given. A file named ``world_N.world`` with ``path_N.npy`` beside it (or in
-    ``path_files/``) is BARN's world N and gets its reference length.
+    ``path_files/``) is BARN's world N and gets its reference length. A ``barn:N`` that is not
+    in ``folder`` or the bundled set, whatever N (``barn:300``, ``barn:3``, ``barn:x``), is
+    :class:`MissingWorlds` (:func:`missing_worlds`: ``simulate --barn-dir DIR`` gives
+    ``folder``).
     """
-    match = _BARN_NAME.fullmatch(spec)
     path = Path(spec)
+    match = None if path.is_file() else _BARN_NAME.fullmatch(spec)
     if match is None and path.suffix.lower() not in (".world", ".sdf"):
         return None
     files: BarnFiles | None
     if match is not None:
-        index = int(match.group(1))
-        if folder is None and index % 3 == 0:
-            raise WorldError(
-                f"{spec}: the bundled BARN worlds are those with N % 3 != 0; for the other 100 "
-                "give the folder of all 300 (a clone of BARN's repository)"
-            )
-        (files,) = find_barn_worlds(folder or bundled_barn_folder(), {index})
+        where = "the bundled set" if folder is None else str(folder)
+        if not match.group(1).isdecimal():
+            raise missing_worlds([spec], where, option="--barn-dir DIR")
+        try:
+            (files,) = find_barn_worlds(folder or bundled_barn_folder(), {int(match.group(1))})
+        except MissingWorlds:
+            raise missing_worlds([spec], where, option="--barn-dir DIR") from None
     elif not path.is_file():
         raise WorldError(f"{spec}: no such Gazebo world file")
     else:

@@ -59,6 +59,7 @@ from ifgm_ref.errors import ParameterError
 from ifgm_ref.params import RobotParams, SensorParams
 from ifgm_ref.pose import Pose, wrap_angle
 from ifgm_ref.protocol import Command
+from ifgm_ref.validate import NON_NEGATIVE, violation
 from ifgm_ref.world import World
 
 #: Salts of the independent generators drawn from one seed.
@@ -163,6 +164,27 @@ class Actuation:
 
 #: The noise kinds of :class:`NoiseLevels`, as ``--noise KIND=LEVEL`` names them.
 KINDS = ("range", "range_const", "dropout", "spurious", "odometry", "actuation", "latency")
+#: The kinds whose level is a probability.
+PROBABILITIES = ("dropout", "spurious")
+
+
+def _level(kind: str, text: str) -> float | int:
+    """The level ``text`` of ``kind``; :class:`ValueError` saying what it must be if it is
+    none: a number, and then an integer >= 0 (``latency``), a probability in [0, 1]
+    (:data:`PROBABILITIES`) or a finite number >= 0 (the others)."""
+    try:
+        level = float(text)
+    except ValueError:
+        raise ValueError("a number") from None
+    if kind == "latency":
+        if not level.is_integer() or level < 0:
+            raise ValueError("an integer >= 0")
+        return int(level)
+    if kind in PROBABILITIES and not 0 <= level <= 1:
+        raise ValueError("a probability in [0, 1]")
+    if violation(level, NON_NEGATIVE):
+        raise ValueError(f"a finite number {NON_NEGATIVE}")
+    return level
 
 
 @dataclass(frozen=True)
@@ -197,8 +219,11 @@ class NoiseLevels:
     latency: int = 0
 
     @classmethod
-    def parse(cls, text: str) -> NoiseLevels:
-        """Levels from ``"KIND=LEVEL,..."`` (``KINDS``); ``""`` or ``"none"`` is no noise.
+    def parse(cls, text: str, option: str = "--noise") -> NoiseLevels:
+        """Levels from ``"KIND=LEVEL,..."`` (``KINDS``); ``""`` or ``"none"`` is no noise. A
+        level out of its kind's domain is refused here, naming the item as written after
+        ``option`` (the command line's option that gave ``text``), not the parameter blocks'
+        fields it sets (``range`` sets ``noise_rel``).
 
         >>> NoiseLevels.parse("range=0.02,dropout=0.05,odometry=0.01").tags()
         'range=0.02,dropout=0.05,odometry=0.01'
@@ -206,6 +231,10 @@ class NoiseLevels:
         Traceback (most recent call last):
         ...
         ifgm_ref.errors.ParameterError: --noise range=x: the level must be a number
+        >>> NoiseLevels.parse("range=-1")
+        Traceback (most recent call last):
+        ...
+        ifgm_ref.errors.ParameterError: --noise range=-1: the level must be a finite number >= 0
         """
         levels: dict[str, float | int] = {}
         for item in filter(None, (part.strip() for part in text.split(","))):
@@ -214,12 +243,12 @@ class NoiseLevels:
             kind, sep, value = item.partition("=")
             if not sep or kind not in KINDS:
                 raise ParameterError(
-                    f"--noise {item}: expected KIND=LEVEL with KIND one of {', '.join(KINDS)}"
+                    f"{option} {item}: expected KIND=LEVEL with KIND one of {', '.join(KINDS)}"
                 )
             try:
-                levels[kind] = int(value) if kind == "latency" else float(value)
-            except ValueError:
-                raise ParameterError(f"--noise {item}: the level must be a number") from None
+                levels[kind] = _level(kind, value)
+            except ValueError as why:
+                raise ParameterError(f"{option} {item}: the level must be {why}") from None
         return cls(**levels)  # type: ignore[arg-type]
 
     @property

@@ -11,6 +11,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from ifgm_ref.barn import BUNDLED_INDICES, MissingWorlds
 from ifgm_ref.bench import barn
 from ifgm_ref.bench.tasks import WorldSpec, barn_specs, run_world
 from ifgm_ref.cli import main
@@ -99,8 +100,8 @@ def test_layout_errors(tmp_path: Path) -> None:
     shutil.copy(BARN / "world_1.world", tmp_path)
     with pytest.raises(WorldError, match=r"no path file path_1\.npy"):
         barn.find_barn_worlds(tmp_path)
-    with pytest.raises(WorldError, match="no BARN world"):
-        barn.find_barn_worlds(BARN, {3})
+    with pytest.raises(MissingWorlds, match=f"^barn:3, barn:7 are not in {BARN}: BARN's worlds"):
+        barn.find_barn_worlds(BARN, {1, 3, 7})
 
 
 def test_parse_selection() -> None:
@@ -166,7 +167,7 @@ def test_the_bundled_worlds_are_unpacked_once_into_the_cache(
     assert folder.parent == tmp_path / "ifgm-ref"
     found = barn.find_barn_worlds(folder)
     assert len(found) == 200 and all(f.index % 3 != 0 for f in found)
-    assert {f.index for f in found} == {n for n in range(300) if n % 3}
+    assert {f.index for f in found} == {n for n in range(300) if n % 3} == BUNDLED_INDICES
     stamp = (folder / "world_1.world").stat().st_mtime_ns
     assert barn.bundled_barn_folder() == folder  # reused, not unpacked again
     assert (folder / "world_1.world").stat().st_mtime_ns == stamp
@@ -216,8 +217,7 @@ def test_simulate_runs_a_barn_world_as_the_bench_does(
 @pytest.mark.parametrize(
     ("args", "message"),
     [
-        (["barn:3"], "barn:3: the bundled BARN worlds are those with N % 3 != 0"),
-        (["barn:7", "--barn-dir", str(BARN)], "no BARN world(s) 7 in"),
+        (["barn:7", "--barn-dir", str(BARN)], f"barn:7 is not in {BARN}: BARN's worlds are"),
         (["post", "--sensor", "paper_ir"], "--sensor applies to Gazebo worlds"),
         (["post", "--start", "0,0,0"], "--start applies to Gazebo worlds"),
         ([str(BARN / "world_1.world"), "--barn-dir", str(BARN)], "--barn-dir applies to barn:N"),
@@ -228,6 +228,40 @@ def test_simulate_refuses_what_a_barn_world_cannot_take(args: list[str], message
     done = run_cli("simulate", *args, "--planner", "straight")
     assert done.returncode == 2 and done.stdout == ""
     assert len(done.stderr.splitlines()) == 1 and message in done.stderr, done.stderr
+
+
+#: What ``simulate barn:N`` says of any N that is not bundled, in or out of BARN's range.
+NOT_BUNDLED = (
+    "ifgm-ref: error: {} is not in the bundled set: BARN's worlds are barn:N for N = 0-299, of "
+    "which ifgm-ref bundles the 200 with N % 3 != 0; for the others give a folder of all 300 "
+    "(a clone of BARN's repository) with --barn-dir DIR\n"
+)
+
+
+@pytest.mark.parametrize("spec", ["barn:3", "barn:300", "barn:9998", "barn:9999", "barn:-1",
+                                  "barn:x"])  # fmt: skip
+def test_a_barn_world_not_there_is_one_message_with_the_range(spec: str) -> None:
+    """Issue 45: whether N is out of 0-299, a multiple of 3 or no number, one message states
+    BARN's range, what is bundled and how to get the rest (no cache path)."""
+    done = run_cli("simulate", spec, "--planner", "straight")
+    assert (done.returncode, done.stdout, done.stderr) == (2, "", NOT_BUNDLED.format(spec))
+
+
+def test_worlds_lists_the_bundled_barn_worlds_in_one_line() -> None:
+    """``ifgm-ref worlds`` ends with the bundled BARN worlds, in one line, and each world that
+    line promises loads (a sample of them: the first, the last, one in between)."""
+    done = run_cli("worlds")
+    assert done.returncode == 0
+    last = done.stdout.splitlines()[-1]
+    assert last.split(maxsplit=1) == [
+        "barn:N",
+        "BARN's world N, for N in 0-299 with N % 3 != 0 (200 worlds, metres); the others need "
+        "--barn-dir DIR",
+    ]
+    assert len(BUNDLED_INDICES) == 200
+    for index in (min(BUNDLED_INDICES), 100, max(BUNDLED_INDICES)):
+        task = barn.gazebo_task(f"barn:{index}")
+        assert task is not None and task.world.name == f"barn-{index:03d}"
 
 
 def test_a_gazebo_world_takes_its_start_and_goal_from_options() -> None:

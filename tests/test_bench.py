@@ -358,7 +358,10 @@ def test_bench_command_on_a_folder_of_worlds(tmp_path: Path) -> None:
         (["--classes", "u,donut"], "unknown world class 'donut'"),
         (["--planners", "ifgm,nope"], "'nope' is neither a built-in planner"),
         (["--per-class", "0"], "--per-class must be at least 1"),
-        (["--jobs", "0"], "jobs must be at least 1"),
+        (["--jobs", "0"], "ifgm-ref: error: --jobs 0: must be at least 1\n"),
+        (["--barn", "--barn-worlds", "3,999"], "--barn-worlds 3,999: barn:3, barn:999 are not"),
+        (["--barn", "--barn-worlds", "x"], "--barn-worlds x: bad world selection 'x'; e.g. 0-49"),
+        (["--seed", "-1"], "argument --seed: must be an integer >= 0, got '-1'"),
         (["--world-dir", "/nonexistent-dir"], "no world files"),
         (["--builtin", "--classes", "u"], "not allowed with argument"),
     ],
@@ -369,6 +372,27 @@ def test_bench_command_refuses_bad_input(args: list[str], message: str, tmp_path
     assert done.returncode == 2
     assert message in done.stderr
     assert "Traceback" not in done.stderr
+    assert "\nbench: " not in f"\n{done.stderr}", "refused before the run is announced"
+
+
+@pytest.mark.parametrize(
+    ("args", "announced"),
+    [
+        (["--jobs", "1", "--barn-worlds", "1"],
+         "bench: 1 planner x 1 world (1 BARN world from ifgm-ref's bundled set, sensor "
+         "jackal_lidar) on 1 process\n"),
+        (["--jobs", "2", "--barn-worlds", "1,2", "--planners", "straight,ifgm"],
+         "bench: 2 planners x 2 worlds (2 BARN worlds from ifgm-ref's bundled set, sensor "
+         "jackal_lidar) on 2 processes\n"),
+    ],
+)  # fmt: skip
+def test_bench_announces_its_run_in_proper_plurals(
+    args: list[str], announced: str, tmp_path: Path
+) -> None:
+    done = run_cli("bench", "--barn", "--planners", "straight", "--max-time", "0.1", *args,
+                   "--out", str(tmp_path))  # fmt: skip
+    assert done.returncode == 0, done.stderr
+    assert done.stderr.startswith(announced), done.stderr
 
 
 def test_path_ratio_title_lies_within_the_figure(

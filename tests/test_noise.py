@@ -196,16 +196,34 @@ def test_noise_free_levels_change_nothing() -> None:
 @pytest.mark.parametrize(
     ("text", "message"),
     [
-        ("range", "expected KIND=LEVEL"),
-        ("gravity=1", "expected KIND=LEVEL"),
-        ("dropout=lots", "the level must be a number"),
-        ("latency=0.5", "the level must be a number"),
+        ("range", "--noise range: expected KIND=LEVEL"),
+        ("gravity=1", "--noise gravity=1: expected KIND=LEVEL"),
+        ("dropout=lots", "--noise dropout=lots: the level must be a number"),
+        ("latency=0.5", "--noise latency=0.5: the level must be an integer >= 0"),
+        ("latency=-1", "--noise latency=-1: the level must be an integer >= 0"),
+        ("range=-1", "--noise range=-1: the level must be a finite number >= 0"),
+        ("range=nan", "--noise range=nan: the level must be a finite number >= 0"),
+        ("range_const=-0.5", "--noise range_const=-0.5: the level must be a finite number >= 0"),
+        ("odometry=-1", "--noise odometry=-1: the level must be a finite number >= 0"),
+        ("actuation=inf", "--noise actuation=inf: the level must be a finite number >= 0"),
+        ("dropout=1.5", "--noise dropout=1.5: the level must be a probability in [0, 1]"),
+        ("range=0.1,spurious=-0.1", "--noise spurious=-0.1: the level must be a probability in"),
     ],
 )
 def test_bad_levels_are_refused(text: str, message: str) -> None:
-    """``--noise`` names the item it cannot read."""
-    with pytest.raises(ParameterError, match=message):
+    """``--noise`` names the item it cannot read, as written: the kind the user typed, never
+    the parameter blocks' field it sets (``range`` sets ``noise_rel``)."""
+    with pytest.raises(ParameterError) as refused:
         NoiseLevels.parse(text)
+    assert str(refused.value).startswith(message), refused.value
+    for field in ("noise_rel", "noise_std", "odometry_drift", "actuation_noise"):
+        assert field not in str(refused.value)
+
+
+def test_a_level_is_named_after_the_option_that_gave_it() -> None:
+    with pytest.raises(ParameterError, match=r"^--noise-sweep range=-1: the level must be a fin"):
+        NoiseLevels.parse("range=-1", option="--noise-sweep")
+    assert NoiseLevels.parse("latency=2.0").latency == 2
 
 
 @pytest.mark.parametrize(

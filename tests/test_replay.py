@@ -347,6 +347,30 @@ def test_a_broken_log_is_one_line_with_exit_2(
     assert BROKEN[fault] in error[0]
 
 
+@pytest.mark.parametrize(
+    ("robot", "message"),
+    [
+        ("0,1,1", "--robot 0,1,1: R (the radius) must be a finite number > 0, got 0.0"),
+        ("0.22,1,-1.5", "--robot 0.22,1,-1.5: W (the turn rate) must be a finite number > 0"),
+    ],
+)
+def test_a_bad_robot_is_named_as_the_option_gave_it(
+    tmp_path: Path,
+    barn_log: tuple[World, list[dict[str, Any]]],
+    robot: str,
+    message: str,
+    capsys: Any,
+) -> None:
+    """``--robot R,V,W``: the message names the option and the number, not a field."""
+    world, steps = barn_log
+    path = tmp_path / "robot.mcap"
+    write_foreign(path, steps[:5], goal=world.goal)
+    assert main(["replay", str(path), "--robot", robot]) == 2
+    error = capsys.readouterr().err
+    assert error.startswith(f"ifgm-ref: error: {message}") and error.count("\n") == 1, error
+    assert "`" not in error
+
+
 def test_a_foreign_log_needs_a_goal(
     tmp_path: Path, barn_log: tuple[World, list[dict[str, Any]]]
 ) -> None:

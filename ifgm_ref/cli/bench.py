@@ -98,7 +98,9 @@ def _add_run_options(bench: argparse.ArgumentParser) -> None:
         metavar="N",
         help=f"worlds per class (default {DEFAULT_PER_CLASS}; 13 with --noise-sweep)",
     )
-    bench.add_argument("--seed", type=int, default=0, help="seed of the generated worlds (0)")
+    bench.add_argument(
+        "--seed", type=non_negative_int, default=0, help="seed of the generated worlds (0)"
+    )
     bench.add_argument(
         "--jobs",
         type=int,
@@ -169,10 +171,9 @@ def run_bench(args: argparse.Namespace) -> int:
     sim = _check_args(args)
     conditions = _conditions(args)
     specs, source = _specs(args)
-    where = f"Dask scheduler {args.scheduler}" if args.scheduler else f"{args.jobs} process(es)"
-    points = f" x {len(conditions)} noise levels" if args.noise_sweep is not None else ""
-    planners = f"{len(args.planners)} planner{'s' if len(args.planners) != 1 else ''}"
-    worlds = f"{len(specs)} world{'s' if len(specs) != 1 else ''}"
+    where = f"Dask scheduler {args.scheduler}" if args.scheduler else _processes(args.jobs)
+    points = f" x {_count(len(conditions), 'noise level')}" if args.noise_sweep is not None else ""
+    planners, worlds = _count(len(args.planners), "planner"), _count(len(specs), "world")
     engine = f", {sim.engine} engine" if sim.engine != "kinematic" else ""
     print(f"bench: {planners} x {worlds}{points} ({source}) on {where}{engine}", file=sys.stderr)
     if args.record is not None:
@@ -212,12 +213,32 @@ def run_bench(args: argparse.Namespace) -> int:
     return 0
 
 
+def _count(n: int, thing: str) -> str:
+    """``n`` and ``thing``, plural unless ``n`` is 1.
+
+    >>> _count(1, "BARN world"), _count(2, "BARN world"), _count(0, "planner")
+    ('1 BARN world', '2 BARN worlds', '0 planners')
+    """
+    return f"{n} {thing}{'' if n == 1 else 's'}"
+
+
+def _processes(jobs: int) -> str:
+    """Where ``--jobs`` runs the episodes.
+
+    >>> _processes(1), _processes(4)
+    ('1 process', '4 processes')
+    """
+    return f"{jobs} process{'' if jobs == 1 else 'es'}"
+
+
 def _check_args(args: argparse.Namespace) -> SimParams:
     """Refuse what cannot run, before anything runs: one error, not one per episode. The
     simulation parameters of ``--engine`` and ``--body``, the rest of them the defaults."""
     from ifgm_ref.bench.optimal import require_pathfinder
     from ifgm_ref.transport.loading import load_planner
 
+    if args.jobs < 1:
+        raise ParameterError(f"--jobs {args.jobs}: must be at least 1")
     if args.barn is None:
         require_pathfinder()  # BARN worlds skip the shortest path (ifgm_ref/bench/tasks.py)
         for option in ("barn_worlds", "sensor"):
@@ -236,14 +257,27 @@ def _specs(args: argparse.Namespace) -> tuple[list[WorldSpec], str]:
     from ifgm_ref.bench.tasks import barn_specs, builtin_specs, folder_specs, generated_specs
 
     if args.barn is not None:
-        from ifgm_ref.barn import DEFAULT_SENSOR, bundled_barn_folder, parse_selection
+        from ifgm_ref.barn import (
+            DEFAULT_SENSOR,
+            MissingWorlds,
+            bundled_barn_folder,
+            missing_worlds,
+            parse_selection,
+        )
 
         sensor = args.sensor or DEFAULT_SENSOR
-        chosen = None if args.barn_worlds is None else parse_selection(args.barn_worlds)
-        folder = args.barn or bundled_barn_folder()
-        specs = barn_specs(folder, sensor, chosen)
+        prefix = f"--barn-worlds {args.barn_worlds}"
+        try:
+            chosen = None if args.barn_worlds is None else parse_selection(args.barn_worlds)
+        except ParameterError as err:
+            raise ParameterError(f"{prefix}: {err}") from None
+        try:
+            specs = barn_specs(args.barn or bundled_barn_folder(), sensor, chosen)
+        except MissingWorlds as err:
+            where = args.barn or "the bundled set"
+            raise missing_worlds(err.names, where, option="--barn DIR", prefix=prefix) from None
         where = args.barn or "ifgm-ref's bundled set"
-        return specs, f"{len(specs)} BARN worlds from {where}, sensor {sensor}"
+        return specs, f"{_count(len(specs), 'BARN world')} from {where}, sensor {sensor}"
     if args.builtin:
         return builtin_specs(), "the built-in worlds"
     if args.world_dir is not None:

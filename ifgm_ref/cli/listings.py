@@ -1,4 +1,4 @@
-"""``ifgm-ref worlds`` and ``ifgm-ref planners``: what is built in."""
+"""``ifgm-ref worlds`` and ``ifgm-ref planners``: what is built in (and bundled)."""
 
 from __future__ import annotations
 
@@ -18,7 +18,12 @@ if TYPE_CHECKING:
 
 def add_worlds(sub: Subcommands) -> None:
     """Add ``worlds`` to the subcommands."""
-    worlds = sub.add_parser("worlds", help="list the built-in worlds")
+    worlds = sub.add_parser(
+        "worlds",
+        help="list the built-in worlds and the bundled BARN worlds",
+        description="List the built-in worlds, one a line, then in one line the BARN worlds "
+        "that ship with ifgm-ref (barn:N; docs/benchmark.md).",
+    )
     worlds.add_argument(
         "--export",
         metavar="DIR",
@@ -29,7 +34,8 @@ def add_worlds(sub: Subcommands) -> None:
 
 
 def run_worlds(args: argparse.Namespace) -> int:
-    """List the built-in worlds, or write them as world files (``--export``)."""
+    """List the built-in worlds and, in one line, the bundled BARN worlds (:func:`barn_line`);
+    or write the built-in worlds as world files (``--export``)."""
     if args.export:
         out = Path(args.export)
         out.mkdir(parents=True, exist_ok=True)
@@ -40,7 +46,23 @@ def run_worlds(args: argparse.Namespace) -> int:
     width = max(map(len, BUILTIN_WORLDS))
     for name, entry in BUILTIN_WORLDS.items():
         print(f"{name:<{width}}  {entry.description}")
+    print(f"{'barn:N':<{width}}  {barn_line()}")
     return 0
+
+
+def barn_line() -> str:
+    """The bundled BARN worlds, described in one line.
+
+    >>> barn_line()
+    "BARN's world N, for N in 0-299 with N % 3 != 0 (200 worlds, metres); the others need \
+--barn-dir DIR"
+    """
+    from ifgm_ref.barn import BUNDLED_INDICES, INDICES
+
+    return (
+        f"BARN's world N, for N in {INDICES[0]}-{INDICES[-1]} with N % 3 != 0 "
+        f"({len(BUNDLED_INDICES)} worlds, metres); the others need --barn-dir DIR"
+    )
 
 
 def add_planners(sub: Subcommands) -> None:

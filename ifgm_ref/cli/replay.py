@@ -9,9 +9,11 @@ from typing import TYPE_CHECKING
 
 from ifgm_ref.cli.common import numbers, output_folder, positive_float
 from ifgm_ref.errors import ParameterError
+from ifgm_ref.validate import POSITIVE, violation
 
 if TYPE_CHECKING:
     from ifgm_ref.cli.common import Subcommands
+    from ifgm_ref.params import RobotParams
 
 #: Exit status when a logged command differs from the reference's, in motion or branch.
 EXIT_DIVERGED = 1
@@ -106,7 +108,6 @@ def run_replay(args: argparse.Namespace) -> int:
     from ifgm_ref.bags.read import Topics, read_log
     from ifgm_ref.bags.replay import Tolerance, replay_log, setting_of
     from ifgm_ref.cli.simulate import PLOT_SUFFIXES, planner_params
-    from ifgm_ref.params import RobotParams
     from ifgm_ref.pose import Point
     from ifgm_ref.transport.loading import load_planner
 
@@ -121,7 +122,7 @@ def run_replay(args: argparse.Namespace) -> int:
     setting = setting_of(
         log,
         goal=None if args.goal is None else Point(*args.goal),
-        robot=None if args.robot is None else RobotParams(*args.robot),
+        robot=None if args.robot is None else _robot(args.robot),
         dt=args.dt,
         params=params,
     )
@@ -138,3 +139,26 @@ def run_replay(args: argparse.Namespace) -> int:
         save_figure(plot_replay(report), args.plot)
     print(json.dumps(report.to_json_dict()) if args.json else report.text())
     return 0 if report.first_divergence is None else EXIT_DIVERGED
+
+
+def _robot(values: tuple[float, ...]) -> RobotParams:
+    """The robot of ``--robot R,V,W``; a :class:`ParameterError` naming the option and the
+    number out of its domain, as the user wrote them.
+
+    >>> _robot((0.22, 1.0, 3.0)).radius
+    0.22
+    >>> _robot((0.22, 0.0, 3.0))
+    Traceback (most recent call last):
+    ...
+    ifgm_ref.errors.ParameterError: --robot 0.22,0,3: V (the speed) must be a finite number > 0, \
+got 0.0
+    """
+    from ifgm_ref.params import RobotParams
+
+    names = ("R (the radius)", "V (the speed)", "W (the turn rate)")
+    for value, name in zip(values, names, strict=True):
+        why = violation(value, POSITIVE)
+        if why:
+            raise ParameterError(f"--robot {','.join(f'{v:g}' for v in values)}: {name} {why}")
+    radius, speed, turn_rate = values
+    return RobotParams(radius=radius, speed=speed, max_turn_rate=turn_rate)
