@@ -146,7 +146,7 @@ def test_motion_and_branch_differences_are_counted_apart(tmp_path: Path, capsys:
     assert text[1:4] == [
         f"  heading: {heading} steps off by more than 0.1 rad after a step (--heading-tolerance)",
         f"  speed:   {speed} steps off by more than 0.1 of the robot's speed (--speed-tolerance)",
-        "  branch:  200 steps name another branch, of the 200 where both name one (the branch "
+        "  branch:  200 steps with another branch, of the 200 where both name one (the branch "
         "rule)",
     ]
     assert text[4].startswith("first divergence at step 0 ")

@@ -194,9 +194,10 @@ class ReplayReport:
         tolerance or rule each broke, and the first divergence (and the first in motion, when
         that is a later step), lengths in the log's unit."""
         heading, speed = self.tolerance.heading, self.tolerance.speed
+        verb = "differs" if self.disagreeing == 1 else "differ"
         lines = [
-            f"{self.planner} replayed on {self.path}: {len(self.steps)} steps, "
-            f"{self.compared} with a logged command, {self.disagreeing} differ"
+            f"{self.planner} replayed on {self.path}: {_steps(len(self.steps))}, "
+            f"{self.compared} with a logged command, {self.disagreeing} {verb}"
         ]
         if self.first_divergence is None:
             lines[0] += (
@@ -207,11 +208,11 @@ class ReplayReport:
             return "\n".join(lines)
         lines[0] += f": {self.motion_disagreeing} in motion, {self.branch_disagreeing} in branch"
         lines += [
-            f"  heading: {self.breaking(HEADING)} steps off by more than {heading:g} rad after "
-            "a step (--heading-tolerance)",
-            f"  speed:   {self.breaking(SPEED)} steps off by more than {speed:g} of the robot's "
-            "speed (--speed-tolerance)",
-            f"  branch:  {self.branch_disagreeing} steps name another branch, of the "
+            f"  heading: {_steps(self.breaking(HEADING))} off by more than {heading:g} rad "
+            "after a step (--heading-tolerance)",
+            f"  speed:   {_steps(self.breaking(SPEED))} off by more than {speed:g} of the "
+            "robot's speed (--speed-tolerance)",
+            f"  branch:  {_steps(self.branch_disagreeing)} with another branch, of the "
             f"{self.branch_compared} where both name one (the branch rule)",
         ]
         lines += self._divergence("first divergence", self.first_divergence)
@@ -286,6 +287,15 @@ def _row(step: ReplayStep) -> dict[str, Any]:
         "motion_agrees": step.motion_agrees,
         "branch_agrees": step.branch_agrees,
     }
+
+
+def _steps(n: int) -> str:
+    """``n`` steps, in words.
+
+    >>> _steps(1), _steps(0)
+    ('1 step', '0 steps')
+    """
+    return f"{n} step{'' if n == 1 else 's'}"
 
 
 def _show(command: tuple[float, float] | None, unit: str) -> str:
