@@ -483,6 +483,27 @@ def test_plugin_runs_one_test_per_property(pytester: pytest.Pytester) -> None:
     result.assert_outcomes(passed=3, skipped=2)
 
 
+@pytest.mark.parametrize(
+    ("impl", "equations", "outcome"),
+    [
+        ("fgm", "ifgm_ref.equations", "passed"),
+        ("ifgm_ref.planners.fgm:FGMPlanner", None, "skipped"),
+    ],
+)
+def test_plugin_checks_a_built_in_planner_with_the_reference_equations(
+    pytester: pytest.Pytester, impl: str, equations: str | None, outcome: str
+) -> None:
+    """Issue 45: as ``ifgm-ref oracle --planner``, a built-in planner's equations are the
+    reference's without ``--ifgm-equations``; a ``module:attribute`` gets none, and the header
+    says which."""
+    result = pytester.runpytest_inprocess(
+        "--pyargs", "ifgm_ref.oracle", "--ifgm-impl", impl, "-k", "eq1_gap", "-p",
+        "no:cacheprovider",
+    )  # fmt: skip
+    result.stdout.fnmatch_lines([f"ifgm-ref oracle: profile quick*, equations {equations}, *"])
+    result.assert_outcomes(**{outcome: 1})
+
+
 def test_oracle_command_reports_and_exits(tmp_path: Path) -> None:
     run = subprocess.run(
         [

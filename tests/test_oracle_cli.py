@@ -20,6 +20,7 @@ from ifgm_ref.oracle.checks import CHECKS
 from ifgm_ref.oracle.equation_checks import NO_EQUATIONS, NO_EQUATIONS_PROGRAM
 from ifgm_ref.oracle.implementation import Implementation
 from ifgm_ref.oracle.runner import (
+    ABOVE_LEVEL,
     Status,
     check_planner,
     crash,
@@ -41,6 +42,8 @@ def test_equations_option_runs_the_equation_checks() -> None:
 
 
 def test_equations_may_be_a_module_attribute(tmp_path: Path) -> None:
+    """Given, they are checked instead of the reference's, which a built-in planner gets by
+    default (:func:`test_a_built_in_planner_gets_the_reference_equations_by_default`)."""
     (tmp_path / "my_port_eqs.py").write_text(
         "from types import SimpleNamespace\n\n"
         "EQUATIONS = SimpleNamespace(eq1_gap_midpoint=lambda p1, p2: (p1[0], p1[1]))\n"
@@ -69,8 +72,20 @@ def test_equations_that_cannot_be_loaded_are_a_one_line_error(spec: str, message
     assert done.stdout == ""
 
 
+@pytest.mark.parametrize("planner", ["ifgm", "fgm"])
+def test_a_built_in_planner_gets_the_reference_equations_by_default(planner: str) -> None:
+    """Issue 45: a built-in planner's equations are the reference's, checked without
+    ``--equations`` rather than reported not applicable seven times."""
+    done = run_cli("oracle", "--planner", planner, *EQ1)
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.startswith("PASSED              eq1_gap_midpoint           50 examples")
+    assert NO_EQUATIONS not in done.stdout + done.stderr
+
+
 def test_without_equations_the_message_says_how_to_give_them() -> None:
-    done = run_cli("oracle", "--planner", "ifgm", *EQ1)
+    """A planner given as ``module:attribute``, even a built-in one's class, gets no
+    equations by default: its module need not hold them."""
+    done = run_cli("oracle", "--planner", "ifgm_ref.planners.ifgm:IFGMPlanner", *EQ1)
     assert done.returncode == 0
     assert "--equations MODULE (ifgm-ref oracle)" in NO_EQUATIONS
     assert done.stdout.splitlines()[:2] == [
@@ -127,6 +142,49 @@ def test_a_terminal_shows_each_check_once_and_the_summary() -> None:
     assert captured.stdout.count("PASSED") == 2
     assert captured.stderr.count("PASSED") == 2  # the progress
     assert captured.stdout.splitlines()[-1] == screen.splitlines()[-1]
+
+
+def test_stdout_and_stderr_into_one_pipe_show_each_check_once() -> None:
+    """Issue 45: ``ifgm-ref oracle ... 2>&1 | tail`` printed every check's line twice (the
+    progress on stderr, the report on stdout): where both go to one place, stdout gets the
+    summary only, as on a terminal."""
+    args = [*EQ1, "--check", "eq2_gap_angle", "--check", "reports_unreachable", "--jobs", "1"]
+    done = subprocess.run(
+        [sys.executable, "-m", "ifgm_ref", "oracle", "--planner", "ifgm", *args],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.STDOUT,
+        text=True,
+        timeout=120,
+        check=False,
+    )
+    assert done.returncode == 0, done.stdout
+    for check in ("eq1_gap_midpoint", "eq2_gap_angle", "reports_unreachable"):
+        assert done.stdout.count(check) == 1, done.stdout
+    assert done.stdout.count("it does not promise to report it") == 1, done.stdout
+    assert done.stdout.splitlines()[-1].startswith("ifgm (profile quick): 2 properties checked")
+
+
+# -- the same checks as the pytest plugin -----------------------------------------------------
+
+
+def test_the_command_line_lists_the_checks_the_plugin_runs(pytester: pytest.Pytester) -> None:
+    """Issue 45: at the paper level the plugin has a test for ``agrees_with_reference`` (skipped)
+    that ``ifgm-ref oracle`` left out; now it reports every check the plugin has a test for,
+    those of the reference level not applicable, saying how to run them."""
+    done = run_cli("oracle", "--planner", "straight", "--profile", "brief", "--jobs", "1")
+    assert done.returncode == 0, done.stderr
+    lines = done.stdout.splitlines()
+    listed = [line.split()[-7] for line in lines if line[:1].isupper() and " examples, " in line]
+    assert listed == list(CHECKS)
+    above = lines.index(next(line for line in lines if " agrees_with_reference " in line))
+    assert lines[above].startswith("NOT APPLICABLE")
+    assert lines[above + 1] == "    " + ABOVE_LEVEL.format(level="reference")
+    collected = pytester.runpytest_inprocess(
+        "--pyargs", "ifgm_ref.oracle", "--ifgm-impl", "straight", "--collect-only", "-q",
+        "-k", "test_property", "-p", "no:cacheprovider",
+    )  # fmt: skip
+    ids = [line.split("[", 1)[1].rstrip("]") for line in collected.outlines if "[" in line]
+    assert ids == listed
 
 
 # -- a check that crashes is an error, and the report comes back -------------------------------

@@ -37,8 +37,9 @@ def add_oracle(sub: Subcommands) -> None:
         "(--planner) or a program speaking the JSON-lines protocol (--cmd), noise-free or under "
         "noise (--profile robust, --noise), on the kinematic robot or one with mass (--engine "
         "mujoco). Prints each check's line on stderr as it finishes, then the report on stdout: "
-        "every check's line and a summary (only the summary when stdout is the terminal that "
-        "showed the lines). Exit status 0 when every check passed (or failed as expected), 1 "
+        "every check's line and a summary (only the summary when stdout goes where stderr goes, "
+        "a terminal, a pipe or a file, which has the lines already). Exit status 0 when every "
+        "check passed (or failed as expected), 1 "
         "otherwise. Counterexamples go to --artifacts. With --suite VERSION, the frozen cases "
         "of that suite version run instead of drawn examples, one JSON line per case on stdout "
         "(or --results), each verdict's line on stderr; exit status 0 when every case that "
@@ -69,8 +70,9 @@ def add_oracle(sub: Subcommands) -> None:
         "--equations",
         metavar="MODULE",
         help="check the eqs. (1)-(4) of this module (or module:attribute), which exposes "
-        "eq1_gap_midpoint ... as ifgm_ref.equations does (a --cmd program's own equations are "
-        "checked with the vectors of `ifgm-ref vectors` instead)",
+        "eq1_gap_midpoint ... as ifgm_ref.equations does (default: ifgm_ref.equations for a "
+        "built-in --planner, none for any other; a --cmd program's own equations are checked "
+        "with the vectors of `ifgm-ref vectors` instead)",
     )
     oracle.add_argument(
         "--promises",
@@ -195,20 +197,26 @@ def run_oracle(args: argparse.Namespace) -> int:
         )
     finally:
         impl.close()
-    # Each check's line went to stderr as it finished; a terminal that shows stderr as stdout
-    # has them already and gets the summary only. Redirected stdout gets the whole report.
-    print(report.summary() if same_terminal(sys.stdout, sys.stderr) else report.text())
+    # Each check's line went to stderr as it finished; where stdout goes too (a terminal, or
+    # `2>&1` into a pipe or a file) has them already and gets the summary only. Stdout that
+    # goes elsewhere gets the whole report.
+    print(report.summary() if same_destination(sys.stdout, sys.stderr) else report.text())
     return 0 if report.ok else 1
 
 
 def _implementation(args: argparse.Namespace) -> Implementation:
     """The implementation of ``--planner``, ``--cmd`` or ``--ros-node``, with its equations
-    (``--equations``) and readings (``--reading``); a program is started and reset once."""
+    (``--equations``; for a built-in ``--planner``, the reference's by default:
+    :func:`~ifgm_ref.oracle.implementation.default_equations`) and readings (``--reading``); a
+    program is started and reset once."""
     from ifgm_ref.oracle.equation_checks import load_equations
-    from ifgm_ref.oracle.implementation import Implementation
+    from ifgm_ref.oracle.implementation import Implementation, default_equations
     from ifgm_ref.planners.ifgm_readings import parse_readings
 
-    equations = None if args.equations is None else load_equations(args.equations)
+    given = args.equations
+    if given is None and args.planner is not None:
+        given = default_equations(args.planner)
+    equations = None if given is None else load_equations(given)
     if args.ros_node is not None:
         impl = _ros_implementation(args, equations)  # started and reset once, or it raises
     elif args.cmd is not None:
@@ -257,18 +265,20 @@ def keep_hypothesis_out_of_the_working_folder() -> None:
         os.environ["HYPOTHESIS_STORAGE_DIRECTORY"] = str(user_cache() / "hypothesis")
 
 
-def same_terminal(out: TextIO, err: TextIO) -> bool:
-    """Whether ``out`` and ``err`` are the same terminal (what one sees, the other shows).
+def same_destination(out: TextIO, err: TextIO) -> bool:
+    """Whether ``out`` and ``err`` write to the same place: one stream, or one terminal, pipe or
+    file (``2>&1``), so that what one showed, the other would show again.
 
     >>> import io
-    >>> same_terminal(io.StringIO(), io.StringIO())
+    >>> same_destination(io.StringIO(), io.StringIO())
     False
+    >>> one = io.StringIO()
+    >>> same_destination(one, one)
+    True
     """
+    if out is err:
+        return True
     try:
-        return (
-            out.isatty()
-            and err.isatty()
-            and os.path.samestat(os.fstat(out.fileno()), os.fstat(err.fileno()))
-        )
-    except (AttributeError, OSError, ValueError):  # a stream without a file: not a terminal
+        return os.path.samestat(os.fstat(out.fileno()), os.fstat(err.fileno()))
+    except (AttributeError, OSError, ValueError):  # a stream without a file: not the other one
         return False

@@ -17,6 +17,7 @@ from dataclasses import dataclass, field, replace
 
 from ifgm_ref.errors import ImplementationError, ParameterError
 from ifgm_ref.noise import NoiseLevels
+from ifgm_ref.planners import PLANNERS
 from ifgm_ref.planners.ifgm_readings import known_names
 from ifgm_ref.pose import Point, Pose
 from ifgm_ref.protocol import EpisodeParams, Planner
@@ -133,6 +134,23 @@ PROMISES: dict[str, Promises] = {
     "apf": Promises(converges_in=frozenset({"open"}), passes_wide_gaps=False, stops_in_time=True),
     "straight": Promises(converges_in=frozenset(), collision_free=False, passes_wide_gaps=False),
 }
+
+
+#: The equations a built-in planner is checked with when none are given: the reference's.
+REFERENCE_EQUATIONS = "ifgm_ref.equations"
+
+
+def default_equations(spec: str) -> str | None:
+    """The equations checked for the Python planner ``spec`` when none are given (``ifgm-ref
+    oracle --planner`` without ``--equations``, the pytest plugin's ``--ifgm-impl`` without
+    ``--ifgm-equations``): :data:`REFERENCE_EQUATIONS` for a built-in planner (a name of
+    :data:`ifgm_ref.planners.PLANNERS`), whose equations are the reference's; ``None`` for
+    anything else, whose equation checks are then not applicable, saying how to give them.
+
+    >>> default_equations("fgm"), default_equations("mypkg.module:make_planner")
+    ('ifgm_ref.equations', None)
+    """
+    return REFERENCE_EQUATIONS if spec in PLANNERS else None
 
 
 def promises_of(name: str) -> Promises:

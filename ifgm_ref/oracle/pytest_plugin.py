@@ -14,6 +14,12 @@ or, one test id per case id, the frozen cases of a suite version instead of draw
 
     pytest --pyargs ifgm_ref.oracle --ifgm-cmd "./my_planner" --ifgm-suite v1 --ifgm-tier quick
 
+pytest is not in the base install: the ``oracle`` extra brings it (``python3 -m pip install -e
+".[oracle]"``), and ``python3 -m pytest`` runs the pytest of the Python that has ``ifgm_ref``
+(a bare ``pytest`` may be another Python's, which does not know the ``--ifgm-*`` options). A
+built-in planner given by name is checked with the reference's equations unless
+``--ifgm-equations`` names others, as ``ifgm-ref oracle --planner`` is.
+
 The pytest header names the implementation, the profile and the promises (and, in a
 robustness run, ``--ifgm-profile robust`` or ``--ifgm-noise``, the noise levels checked and
 promised; with ``--ifgm-engine mujoco``, the engine); a missing or unimportable
@@ -33,7 +39,12 @@ from ifgm_ref.errors import IfgmRefError
 from ifgm_ref.oracle.check_types import Kind, Level, levels_up_to
 from ifgm_ref.oracle.checks import CHECKS
 from ifgm_ref.oracle.equation_checks import load_equations
-from ifgm_ref.oracle.implementation import PROMISES, Implementation, Promises
+from ifgm_ref.oracle.implementation import (
+    PROMISES,
+    Implementation,
+    Promises,
+    default_equations,
+)
 from ifgm_ref.oracle.profiles import (
     PROFILE_ALIASES,
     PROFILES,
@@ -105,7 +116,8 @@ def pytest_addoption(parser: pytest.Parser) -> None:
         "--ifgm-equations",
         metavar="MODULE",
         help="a module (or module:attribute) exposing eq1_gap_midpoint ... eq4_final_heading "
-        "to check eqs. (1)-(4)",
+        "to check eqs. (1)-(4) (default: ifgm_ref.equations for a built-in --ifgm-impl, none "
+        "for any other)",
     )
     group.addoption(
         "--ifgm-xfails",
@@ -259,8 +271,9 @@ def _implementation(config: pytest.Config) -> Implementation:
     promises = config.getoption("ifgm_promises")
     equations: object | None = None
     try:
-        if config.getoption("ifgm_equations"):
-            equations = load_equations(config.getoption("ifgm_equations"))
+        given = _equations(config)
+        if given is not None:
+            equations = load_equations(given)
         if spec is not None:
             impl = Implementation.from_spec(spec, promises=promises, equations=equations)
         else:
@@ -275,6 +288,17 @@ def _implementation(config: pytest.Config) -> Implementation:
         return impl
     except IfgmRefError as err:
         raise pytest.UsageError(f"ifgm-ref oracle: cannot load the implementation: {err}") from err
+
+
+def _equations(config: pytest.Config) -> str | None:
+    """The equations to check: ``--ifgm-equations``, or for a built-in ``--ifgm-impl`` the
+    reference's (:func:`~ifgm_ref.oracle.implementation.default_equations`), as
+    ``ifgm-ref oracle`` does; ``None``: none."""
+    given: str | None = config.getoption("ifgm_equations")
+    spec = config.getoption("ifgm_impl")
+    if not given and spec is not None:
+        return default_equations(spec)
+    return given or None
 
 
 def _specification(config: pytest.Config) -> Specification | None:
@@ -372,7 +396,7 @@ def pytest_report_header(config: pytest.Config) -> list[str]:
     lines = [
         f"ifgm-ref oracle: implementation {spec or 'cmd: ' + cmd}",
         f"ifgm-ref oracle: profile {profile.name} ({profile.max_examples} examples per check), "
-        f"promises {promises or 'default'}, equations {config.getoption('ifgm_equations')}, "
+        f"promises {promises or 'default'}, equations {_equations(config)}, "
         f"artifacts {config.getoption('ifgm_artifacts')}",
     ]
     checked, noise = noise_tags(profile, promised)

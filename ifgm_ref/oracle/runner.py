@@ -39,8 +39,9 @@ from ifgm_ref.oracle.check_types import (
     Kind,
     Level,
     Recorder,
+    levels_up_to,
 )
-from ifgm_ref.oracle.checks import CHECKS, checks_at
+from ifgm_ref.oracle.checks import CHECKS
 from ifgm_ref.oracle.counterexample import slug, write_evidence
 from ifgm_ref.oracle.implementation import Implementation, Promises, promises_of
 from ifgm_ref.oracle.profiles import (
@@ -68,6 +69,14 @@ class Status(StrEnum):
     UNEXPECTED_PASS = "unexpectedly passed"
     NOT_APPLICABLE = "not applicable"
     ERROR = "error"
+
+
+#: Why a check of a level above the run's does not apply: how to run at its level, on the
+#: command line, under pytest and in Python (``{level}``: the check's level).
+ABOVE_LEVEL = (
+    "the {level} level: --level {level} (ifgm-ref oracle), --ifgm-level {level} (pytest), "
+    'level="{level}" (check_planner)'
+)
 
 
 @dataclass(frozen=True)
@@ -195,11 +204,18 @@ def run_check(
     artifacts: str | Path | None = "oracle-failures",
     expected_failure: str | None = None,
     progress: Callable[[int], None] | None = None,
+    level: Level | str | None = None,
 ) -> CheckResult:
-    """Run one check against ``impl``; see :func:`check_planner`."""
+    """Run one check against ``impl``; see :func:`check_planner`.
+
+    A check of a level above ``level`` (:func:`~.check_types.levels_up_to`) is not applicable
+    and does not run (:data:`ABOVE_LEVEL`); ``level=None`` runs a check of any level.
+    """
     profile = profile_named(profile) if isinstance(profile, str) else profile
     levels = profile.levels(impl.promises) if check.kind is Kind.SIMULATION else None
-    reason = check.applies(impl) or _noise_reason(check, profile, levels)
+    reason = (
+        _level_reason(check, level) or check.applies(impl) or _noise_reason(check, profile, levels)
+    )
     if reason is not None:
         return CheckResult(check.name, Status.NOT_APPLICABLE, message=reason)
     recorder = Recorder(sim=profile.sim(), robot=profile.robot, sensor=profile.sensor)
@@ -243,6 +259,20 @@ def run_check(
         message = f"{message} (expected: {expected_failure})"
         return _result(*common, Status.EXPECTED_FAILURE, message, folder)
     return _result(*common, Status.FAILED, message, folder)
+
+
+def _level_reason(check: Check, level: Level | str | None) -> str | None:
+    """Why ``check`` does not apply in a run at ``level``: it belongs to a level above it
+    (``None`` when it applies, and when ``level`` is ``None``).
+
+    >>> _level_reason(CHECKS["agrees_with_reference"], "paper")[:36]
+    'the reference level: --level referen'
+    >>> _level_reason(CHECKS["agrees_with_reference"], "reference") is None
+    True
+    """
+    if level is None or check.level in levels_up_to(level):
+        return None
+    return ABOVE_LEVEL.format(level=check.level)
 
 
 def _noise_reason(check: Check, profile: Profile, levels: NoiseLevels | None) -> str | None:
@@ -455,7 +485,9 @@ def check_planner(
     noise : NoiseLevels or str, optional
         Check under these noise levels (``"range=0.02"``, :mod:`~.robust`), not those promised.
     level : {"paper", "reference"}, default "paper"
-        The paper's properties, or also ``agrees_with_reference`` (:func:`~.checks.checks_at`).
+        The paper's properties, or also ``agrees_with_reference`` (:func:`~.checks.checks_at`);
+        a check of a level above it is reported not applicable, saying how to run it
+        (:data:`ABOVE_LEVEL`), so that every run lists every check, as the pytest plugin does.
     spec : Specification or path, optional
         Its declared specification (TOML: promises, level, robot, sensor, dt, goal tolerance).
 
@@ -467,7 +499,9 @@ def check_planner(
     impl, profile, level, held_to = _declared(planner, promises, equations, profile, level, spec)
     expected = dict(expected_failed_checks or {})
     names, profile = _arguments(checks, expected, with_noise(profile, noise), jobs, level)
-    done = _run_checks(names, impl, profile, artifacts, expected, jobs, progress, stop_on_failure)
+    done = _run_checks(
+        names, impl, profile, artifacts, expected, jobs, progress, stop_on_failure, level
+    )
     report = replace(_report(impl, profile, done), held_to=held_to)
     _act_on(report, on_fail)
     return report
@@ -504,7 +538,8 @@ def _arguments(
 ) -> tuple[list[str], Profile]:
     """Validate :func:`check_planner`'s arguments; return the names of the checks to run and
     the profile."""
-    names = checks_at(level) if checks is None else list(checks)
+    levels_up_to(level)  # an unknown level is refused
+    names = list(CHECKS) if checks is None else list(checks)
     unknown = [n for n in [*names, *expected] if n not in CHECKS]
     if unknown:
         raise ImplementationError(f"unknown check(s) {unknown}; known: {', '.join(CHECKS)}")
@@ -522,17 +557,21 @@ def _run_checks(
     jobs: int,
     progress: bool,
     stop_on_failure: bool,
+    level: Level | str,
 ) -> tuple[CheckResult, ...]:
-    """Run the checks ``names`` on ``impl``: the simulation checks in ``jobs`` worker processes
-    when ``jobs > 1``, the others (all, when ``jobs == 1``) here, in order, while the workers
-    run; return the results in the order of ``names`` (see :func:`check_planner`)."""
+    """Run the checks ``names`` on ``impl`` at ``level``: the simulation checks of that level in
+    ``jobs`` worker processes when ``jobs > 1``, the others (all, when ``jobs == 1``) here, in
+    order, while the workers run; return the results in the order of ``names`` (see
+    :func:`check_planner`)."""
 
     def finished(result: CheckResult) -> CheckResult:
         if progress:
             print(result.line(), file=sys.stderr, flush=True)
         return result
 
-    pooled = [n for n in names if CHECKS[n].kind is Kind.SIMULATION] if jobs > 1 else []
+    levels = levels_up_to(level)
+    pooled = [n for n in names if CHECKS[n].kind is Kind.SIMULATION and CHECKS[n].level in levels]
+    pooled = pooled if jobs > 1 else []
     done: dict[str, CheckResult] = {}
 
     def run_here() -> bool:
@@ -546,6 +585,7 @@ def _run_checks(
                 profile,
                 artifacts=artifacts,
                 expected_failure=expected.get(name),
+                level=level,
             )
             done[name] = finished(result)
             if stop_on_failure and not result.ok:
@@ -576,6 +616,7 @@ def _act_on(report: Report, on_fail: str | None) -> None:
 
 
 __all__ = [
+    "ABOVE_LEVEL",
     "CheckResult",
     "Report",
     "Status",
