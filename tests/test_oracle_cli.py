@@ -187,6 +187,19 @@ def test_the_command_line_lists_the_checks_the_plugin_runs(pytester: pytest.Pyte
     assert ids == listed
 
 
+def test_the_suites_results_file_may_name_a_new_folder(tmp_path: Path) -> None:
+    """``--results out/run.jsonl`` (README) in a fresh checkout: the folder is made before the
+    run, as every command's outputs' are, not an error once the cases are chosen."""
+    results = tmp_path / "out" / "run.jsonl"
+    done = run_cli(
+        "oracle", "--suite", "v1", "--tier", "quick", "--planner", "straight", "--promises",
+        "ifgm", "--stop-on-failure", "--artifacts", str(tmp_path / "found"), "--results",
+        str(results),
+    )  # fmt: skip
+    assert done.returncode == 1, done.stderr  # straight fails IFGM's first case, and stops
+    assert '"verdict": "fail"' in results.read_text()
+
+
 # -- a check that crashes is an error, and the report comes back -------------------------------
 
 

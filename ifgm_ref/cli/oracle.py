@@ -13,6 +13,7 @@ from ifgm_ref.cli.common import (
     add_engine_options,
     add_robot_options,
     add_timeout_options,
+    output_folder,
     robot_of,
     with_engine,
 )
@@ -167,6 +168,8 @@ def run_oracle(args: argparse.Namespace) -> int:
         expected[name] = reason or "expected"
     if args.suite is not None:
         refuse_drawing_options(args)
+        if args.results is not None:  # its folder made before the run, as every output's
+            output_folder("--results", args.results)
     elif args.results is not None or args.tier != "full":
         raise ParameterError("--tier and --results apply only with --suite")
     spec = declared_by(args)  # before any program starts: a bad file is one line
