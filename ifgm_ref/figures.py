@@ -31,6 +31,7 @@ import matplotlib.pyplot as plt
 import shapely
 from matplotlib.figure import Figure
 
+from ifgm_ref.outputs import LEDGER, written
 from ifgm_ref.paper import traces
 from ifgm_ref.params import PAPER_FREE_DISTANCE_FT, PAPER_FREE_TIME_S
 from ifgm_ref.planners import make_planner
@@ -491,26 +492,33 @@ def write_all(out: str | Path = "paper_figs", *, progress: bool | None = None) -
 
     The files depend on the figures only, not on the numpy version or the run: no software
     name in the PNGs, no date in the SVGs, and the SVGs' ids numbered (:func:`stable_svg_ids`).
+    Each file is written whole or not at all (:func:`ifgm_ref.outputs.written`), and the
+    fourteen are planned in :data:`ifgm_ref.outputs.LEDGER` first: a run stopped half-way
+    says which are missing.
     """
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
-    written: list[Path] = []
+    tables = [out / "reproduction.md", out / "reproduction.csv"]
+    LEDGER.plan(*(out / f"{stem}.{kind}" for stem in FIGURES for kind in ("png", "svg")), *tables)
+    written_now: list[Path] = []
     with progress_bar(total=len(FIGURES), desc="figures", unit="fig", progress=progress) as bar:
         for stem, build in FIGURES.items():
+            LEDGER.doing(f"drawing {stem}")
             fig = build()
             png, svg = out / f"{stem}.png", out / f"{stem}.svg"
-            fig.savefig(png, dpi=110, metadata={"Software": None})
+            with written(png) as partial:
+                fig.savefig(partial, dpi=110, metadata={"Software": None})
             svg_text = io.StringIO()
             fig.savefig(svg_text, format="svg", dpi=110, metadata={"Date": None})
-            svg.write_text(stable_svg_ids(svg_text.getvalue()), encoding="utf-8")
-            written += [png, svg]
+            with written(svg) as partial:
+                partial.write_text(stable_svg_ids(svg_text.getvalue()), encoding="utf-8")
+            written_now += [png, svg]
             plt.close(fig)
             bar.update()
+    LEDGER.doing("computing the reproduction table")
     rows = reproduction_rows()
-    for name, text in (
-        ("reproduction.md", table_markdown(rows)),
-        ("reproduction.csv", table_csv(rows)),
-    ):
-        (out / name).write_text(text)
-        written.append(out / name)
-    return written
+    for path, text in zip(tables, (table_markdown(rows), table_csv(rows)), strict=True):
+        with written(path) as partial:
+            partial.write_text(text)
+        written_now.append(path)
+    return written_now

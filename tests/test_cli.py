@@ -138,7 +138,7 @@ def test_worlds_lists_and_exports_every_builtin(tmp_path: Path) -> None:
     listed = run_cli("worlds")
     assert listed.returncode == 0
     names = [line.split()[0] for line in listed.stdout.splitlines()]
-    assert names == list(BUILTIN_WORLDS)
+    assert names == [*BUILTIN_WORLDS, "barn:N"]  # and one line for BARN's worlds
     exported = run_cli("worlds", "--export", str(tmp_path / "out"))
     assert exported.returncode == 0, exported.stderr
     for name, entry in BUILTIN_WORLDS.items():

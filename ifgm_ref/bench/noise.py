@@ -32,10 +32,11 @@ from pathlib import Path
 
 import numpy as np
 
-from ifgm_ref.bench.report import save_failed_worlds, write_csv
+from ifgm_ref.bench.report import save_failed_worlds, save_plot, write_csv
 from ifgm_ref.bench.tasks import Condition, Row, WorldSpec
 from ifgm_ref.errors import ParameterError
 from ifgm_ref.noise import NoiseLevels
+from ifgm_ref.outputs import written
 from ifgm_ref.pose import Point, Pose
 from ifgm_ref.simulator import StopReason
 from ifgm_ref.stats import wilson_interval
@@ -94,7 +95,10 @@ def parse_sweep(text: str) -> dict[str, tuple[float, ...]]:
             raise ParameterError(f"--noise-sweep {item!r}: expected KIND=LEVEL:LEVEL:...")
         if kind in grid:
             raise ParameterError(f"--noise-sweep: {kind} is given twice")
-        levels = [getattr(NoiseLevels.parse(f"{kind}={v}"), kind) for v in values.split(":")]
+        levels = [
+            getattr(NoiseLevels.parse(f"{kind}={v}", option="--noise-sweep"), kind)
+            for v in values.split(":")
+        ]
         if not all(level > 0 for level in levels) or len(set(levels)) < len(levels):
             raise ParameterError(
                 f"--noise-sweep {item}: the levels must be distinct and > 0 (0, no noise, is "
@@ -313,7 +317,7 @@ def plot_sweep(points: Sequence[SweepPoint], kind: str, path: Path) -> None:
     fig.suptitle(f"Under {kind} noise: {mine[0].episodes} episodes a point")
     fig.legend(*axes[0].get_legend_handles_labels(), loc="outside lower center",
                ncols=len(planners), fontsize="small")  # fmt: skip
-    fig.savefig(path, dpi=110, metadata={"Software": None})
+    save_plot(fig, path)
     plt.close(fig)
 
 
@@ -332,7 +336,8 @@ def write_sweep_report(
     files = [out / "results.csv", out / "sweep.csv", out / "sweep.md"]
     write_csv(files[0], Row.columns(), rows)
     write_csv(files[1], SweepPoint.columns(), points)
-    files[2].write_text(sweep_markdown(points, header))
+    with written(files[2]) as partial:
+        partial.write_text(sweep_markdown(points, header))
     for kind in dict.fromkeys(p.kind for p in points):
         files.append(out / f"sweep_{kind}.png")
         plot_sweep(points, kind, files[-1])

@@ -26,8 +26,10 @@ from dataclasses import astuple, dataclass, fields
 from pathlib import Path
 
 import numpy as np
+from matplotlib.figure import Figure
 
 from ifgm_ref.bench.tasks import Row, WorldSpec
+from ifgm_ref.outputs import written
 from ifgm_ref.simulator import StopReason
 from ifgm_ref.worldfile import save_world
 
@@ -126,13 +128,23 @@ def _cell(value: object) -> object:
     return value
 
 
+def save_plot(fig: Figure, path: str | Path) -> None:
+    """Save a report's plot as PNG, whole or not at all, with no software name in it."""
+    with written(path) as partial:
+        fig.savefig(partial, dpi=110, metadata={"Software": None})
+
+
 def write_csv(
     path: Path, columns: Sequence[str], records: Sequence[object], *, append: bool = False
 ) -> None:
     """Write dataclass ``records`` as CSV (empty cells for missing values); with ``append``,
     add them to ``path``, writing the header only if the file is new."""
-    header = not (append and path.exists())
-    with path.open("a" if append else "w", newline="") as out:
+    if not append:  # a whole file: written whole or not at all
+        with written(path) as partial:
+            write_csv(partial, columns, records, append=True)
+        return
+    header = not path.exists()
+    with path.open("a", newline="") as out:
         writer = csv.writer(out, lineterminator="\n")
         if header:
             writer.writerow(columns)
@@ -259,7 +271,7 @@ def plot_success(summaries: Sequence[Summary], path: Path) -> None:
     ax.set_ylabel("reached the goal (%)")
     ax.set_title("Success rate by world class")
     fig.legend(loc="outside lower center", ncols=min(len(planners), 7), fontsize="small")
-    fig.savefig(path, dpi=110, metadata={"Software": None})
+    save_plot(fig, path)
     plt.close(fig)
 
 
@@ -296,7 +308,7 @@ def plot_path_ratio(rows: Sequence[Row], path: Path) -> None:
     for ax in axes[:, 0]:
         ax.set_ylabel("path / optimal (reached only)")
     fig.suptitle("Path length against the shortest collision-free path")
-    fig.savefig(path, dpi=110, metadata={"Software": None})
+    save_plot(fig, path)
     plt.close(fig)
 
 
@@ -343,13 +355,14 @@ def write_report(
     }
     write_csv(files["results"], Row.columns(), rows)
     write_csv(files["summary"], Summary.columns(), summaries)
-    files["markdown"].write_text(summary_markdown(summaries, rows, header))
+    with written(files["markdown"]) as partial:
+        partial.write_text(summary_markdown(summaries, rows, header))
     plot_success(summaries, files["success"])
     if has_optimal(rows):
         plot_path_ratio(rows, files["ratio"])
     else:
         del files["ratio"]  # no axes to draw
-    written = list(files.values())
+    paths = list(files.values())
     if save_failed_worlds(rows, specs, out / "worlds"):
-        written.append(out / "worlds")
-    return written
+        paths.append(out / "worlds")
+    return paths

@@ -9,6 +9,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from ifgm_ref.cli.common import output_folder
+from ifgm_ref.outputs import written
 
 if TYPE_CHECKING:
     from ifgm_ref.cli.common import Subcommands
@@ -95,6 +96,6 @@ def run_trace_matrix(args: argparse.Namespace) -> int:
         print(f"{out} is current", file=sys.stderr)
         return 0
     output_folder("--out", str(out))
-    out.write_text(text, encoding="utf-8")
-    print(f"wrote {out}", file=sys.stderr)
+    with written(out) as partial:  # said as it lands
+        partial.write_text(text, encoding="utf-8")
     return 0

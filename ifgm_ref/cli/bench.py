@@ -18,6 +18,7 @@ from ifgm_ref.cli.common import (
     robot_of,
     with_engine,
 )
+from ifgm_ref.cli.interrupt import exit_status
 from ifgm_ref.errors import ParameterError
 from ifgm_ref.params import SimParams
 
@@ -25,13 +26,12 @@ if TYPE_CHECKING:
     from ifgm_ref.bench.tasks import Condition, WorldSpec
     from ifgm_ref.cli.common import Subcommands
 
+
 #: What ``ifgm-ref bench`` runs by default: the paper's seven planners on four classes.
 DEFAULT_BENCH_PLANNERS = ("bug1", "bug2", "distbug", "iba", "fgm", "ifgm", "apf")
 DEFAULT_BENCH_CLASSES = ("open", "u", "h", "symmetric")
 #: Worlds per class of ``ifgm-ref bench`` (a sweep's default is ``bench.noise.SWEEP_PER_CLASS``).
 DEFAULT_PER_CLASS = 50
-#: Exit status when the run is interrupted (Ctrl-C): 128 + SIGINT, as a shell reports it.
-EXIT_INTERRUPTED = 130
 
 
 def add_bench(sub: Subcommands) -> None:
@@ -198,9 +198,10 @@ def run_bench(args: argparse.Namespace) -> int:
             body=sim.body,
             robot=tuple(robot_of(args).items()),
         )
-    except KeyboardInterrupt:
-        print(f"interrupted: the rows so far are in {partial}", file=sys.stderr)
-        return EXIT_INTERRUPTED
+    except KeyboardInterrupt as err:
+        name, status = exit_status(err)
+        print(f"ifgm-ref: interrupted by {name}: the rows so far are in {partial}", file=sys.stderr)
+        return status
     wall = time.perf_counter() - begin
     header = _header(args, source, where, wall, len(rows), conditions)
     write = write_report if args.noise_sweep is None else write_sweep_report

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import math
+import os
 from collections.abc import Callable
 from dataclasses import replace
 from pathlib import Path
@@ -108,9 +109,11 @@ def names(text: str) -> list[str]:
 def output_folder(option: str, name: str, *, is_folder: bool = False) -> None:
     """Make the folder an output file ``name`` (given with ``option``) goes in, or the folder
     ``name`` itself (``is_folder``), as ``figures --out`` does, before any work: a folder that
-    cannot be made is a :class:`~ifgm_ref.errors.ParameterError` naming the option, not an
-    errno after the run.
+    cannot be made, or a file ``name`` that is a folder, is a
+    :class:`~ifgm_ref.errors.ParameterError` naming the option, not an errno after the run.
     """
+    if not is_folder and (name.endswith(("/", os.sep)) or Path(name).is_dir()):
+        raise ParameterError(f"{option} {name}: is a folder; give a file name in it")
     folder = Path(name) if is_folder else Path(name).parent
     try:
         folder.mkdir(parents=True, exist_ok=True)

@@ -18,6 +18,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from ifgm_ref.errors import IfgmRefError
+from ifgm_ref.outputs import LEDGER
 
 if TYPE_CHECKING:
     from ifgm_ref.cli.common import Subcommands
@@ -79,8 +80,17 @@ def run_docs(args: argparse.Namespace) -> int:
     env = dict(os.environ, MPLBACKEND="Agg")
     env["PYTHONPATH"] = os.pathsep.join(filter(None, [str(root), env.get("PYTHONPATH")]))
     started = time.perf_counter()
+    LEDGER.doing(f"building the site in {out}, which a rerun completes")
     command = sphinx_command(root, out, fresh=args.fresh, strict=args.strict)
-    status = subprocess.run(command, env=env, check=False).returncode
+    # Sphinx runs in a process group of its own, out of the terminal's Ctrl-C: this process
+    # stops it, waits for it and says what is left, in one line (ifgm_ref.cli.interrupt).
+    with subprocess.Popen(command, env=env, process_group=0) as sphinx:
+        try:
+            status = sphinx.wait()
+        except KeyboardInterrupt:
+            sphinx.terminate()
+            sphinx.wait()
+            raise
     seconds = time.perf_counter() - started
     if status == 0:
         print(

@@ -9,6 +9,7 @@ from typing import TYPE_CHECKING
 
 from ifgm_ref.cli.common import numbers, output_folder, positive_float
 from ifgm_ref.errors import ParameterError
+from ifgm_ref.outputs import LEDGER, written
 from ifgm_ref.validate import POSITIVE, violation
 
 if TYPE_CHECKING:
@@ -130,13 +131,17 @@ def run_replay(args: argparse.Namespace) -> int:
     report = replay_log(
         log, load_planner(args.planner), setting, tolerance=tolerance, progress=None
     )
+    LEDGER.plan(*(p for p in (args.steps, args.plot) if p))
     if args.steps:
-        Path(args.steps).write_text(report.steps_csv())
+        with written(args.steps) as partial:
+            partial.write_text(report.steps_csv())
     if args.plot:
         from ifgm_ref.bags.plot import plot_replay
         from ifgm_ref.plotting import save_figure
 
-        save_figure(plot_replay(report), args.plot)
+        LEDGER.doing(f"writing {args.plot}")
+        with written(args.plot) as partial:
+            save_figure(plot_replay(report), partial)
     print(json.dumps(report.to_json_dict()) if args.json else report.text())
     return 0 if report.first_divergence is None else EXIT_DIVERGED
 

@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import dataclasses
 import json
+import sys
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -23,6 +24,7 @@ from ifgm_ref.cli.common import (
 from ifgm_ref.cli.ros import add_ros_options, exactly_one, ros_planner
 from ifgm_ref.errors import ParameterError
 from ifgm_ref.noise import KINDS, NoiseLevels
+from ifgm_ref.outputs import LEDGER, written
 from ifgm_ref.params import SENSOR_PRESETS, SimParams
 from ifgm_ref.planners import PLANNERS
 from ifgm_ref.pose import Point, Pose
@@ -168,6 +170,8 @@ def run_simulate(args: argparse.Namespace) -> int:
     sim = with_engine(sim, args)
     exactly_one(args)
     check_outputs(args)  # before the run, not after it
+    LEDGER.plan(*(p for p in (args.record, args.trace, args.plot, args.animate) if p))
+    LEDGER.doing(f"simulating {args.world}")
     if args.ros_node is not None:
         from ifgm_ref.bags.messages import metres_per_unit
 
@@ -188,8 +192,9 @@ def run_simulate(args: argparse.Namespace) -> int:
         params = planner_params(args.planner, args.param or [])
         run, recording = _run(args, world, load_planner(args.planner), sim, params)
     unit = "ft" if task is None else "m"  # Gazebo worlds are in metres
+    _print_result(args, run, task, unit)  # before the outputs: the GIF takes half a minute
+    sys.stdout.flush()
     _write_outputs(args, world, run, unit, recording)
-    _print_result(args, run, task, unit)
     return 1 if args.require_goal and not run.result.reached else 0
 
 
@@ -231,24 +236,35 @@ def _run(
 def _write_outputs(
     args: argparse.Namespace, world: World, run: Run, unit: str, recording: Recording | None
 ) -> None:
-    """Write the trace, the plot, the animation and the bag (from ``recording``) that were
-    asked for (lengths in ``unit``; the bag's in metres)."""
+    """Write the bag (from ``recording``), the trace, the plot and the animation that were
+    asked for, in that order (the slowest last), each whole or not at all
+    (:func:`~ifgm_ref.outputs.written`) and said as it lands (lengths in ``unit``; the bag's
+    in metres)."""
     result = run.result
+    if recording is not None:
+        from ifgm_ref.bags.write import write_bag
+
+        LEDGER.doing(f"writing {args.record}")
+        with written(args.record) as partial:
+            write_bag(partial, world, run, recording, unit)
     if args.trace:
-        path = Path(args.trace)
-        path.write_text(run.trace_json() if path.suffix == ".json" else run.trace_csv())
+        LEDGER.doing(f"writing {args.trace}")
+        with written(args.trace) as partial:
+            partial.write_text(run.trace_json() if partial.suffix == ".json" else run.trace_csv())
     if args.plot or args.animate:
         from ifgm_ref.plotting import animate_run, plot_run, save_figure
 
         if args.plot:
-            figure = plot_run(world, run.trace, result, colour_by=args.colour_by, unit=unit)
-            save_figure(figure, args.plot)
+            LEDGER.doing(f"writing {args.plot}")
+            figure = plot_run(
+                world, run.trace, result, colour_by=args.colour_by, unit=unit, engine=args.engine
+            )
+            with written(args.plot) as partial:
+                save_figure(figure, partial)
         if args.animate:
-            animate_run(world, run.trace, result, args.animate, unit=unit)
-    if recording is not None:
-        from ifgm_ref.bags.write import write_bag
-
-        write_bag(args.record, world, run, recording, unit)
+            LEDGER.doing(f"writing {args.animate}")
+            with written(args.animate) as partial:
+                animate_run(world, run.trace, result, partial, unit=unit, engine=args.engine)
 
 
 def _print_result(args: argparse.Namespace, run: Run, task: GazeboTask | None, unit: str) -> None:
@@ -267,7 +283,8 @@ def _print_result(args: argparse.Namespace, run: Run, task: GazeboTask | None, u
     print(
         f"{result.planner} in {result.world or args.world}: {result.stop_reason} "
         f"(reached={result.reached}, collided={result.collided}) after {result.time_s:.1f} s, "
-        f"{result.steps} steps, path {result.path_length:.2f} {unit}, min clearance {clearance}"
+        f"{result.steps} step{'' if result.steps == 1 else 's'}, "
+        f"path {result.path_length:.2f} {unit}, min clearance {clearance}"
     )
     if result.detail:
         print(f"detail: {result.detail}")

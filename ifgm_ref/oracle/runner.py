@@ -16,6 +16,8 @@ with mass of ``mujoco`` (``docs/oracle.md``, "On the physical robot").
 from __future__ import annotations
 
 import functools
+import multiprocessing
+import signal
 import sys
 import time
 import traceback
@@ -389,28 +391,50 @@ def _run_pooled(
     done: dict[str, CheckResult] = {}
     # The reference level's check is the longest (two runs of every built-in world): first.
     first = sorted(names, key=lambda name: CHECKS[name].level is not Level.REFERENCE)
-    with ProcessPoolExecutor(max_workers=jobs) as pool:
-        futures = {
-            pool.submit(_pooled_check, n, shipped, profile, artifacts, expected.get(n)): n
-            for n in first
-        }
-        if not meanwhile():
-            for future in futures:
-                future.cancel()
-            return done
-        for future in as_completed(futures):
-            try:
-                result = future.result()
-            except Exception as err:  # the worker died (or its result did not unpickle)
-                message = f"the worker process running it failed: {crash(err)}"
-                result = CheckResult(futures[future], Status.ERROR, message=message)
-            result = finished(result)
-            done[futures[future]] = result
-            if stop_on_failure and not result.ok:
-                for other in futures:
-                    other.cancel()
-                break
+    others = set(multiprocessing.active_children())
+    with ProcessPoolExecutor(max_workers=jobs, initializer=_leave_sigint_to_the_parent) as pool:
+        try:
+            futures = {
+                pool.submit(_pooled_check, n, shipped, profile, artifacts, expected.get(n)): n
+                for n in first
+            }
+            if not meanwhile():
+                for future in futures:
+                    future.cancel()
+                return done
+            for future in as_completed(futures):
+                try:
+                    result = future.result()
+                except Exception as err:  # the worker died (or its result did not unpickle)
+                    message = f"the worker process running it failed: {crash(err)}"
+                    result = CheckResult(futures[future], Status.ERROR, message=message)
+                result = finished(result)
+                done[futures[future]] = result
+                if stop_on_failure and not result.ok:
+                    for other in futures:
+                        other.cancel()
+                    break
+        except KeyboardInterrupt:  # Ctrl-C or SIGTERM: stop the workers now, not after their checks
+            pool.shutdown(wait=False, cancel_futures=True)
+            _stop(set(multiprocessing.active_children()) - others)
+            raise
     return done
+
+
+def _leave_sigint_to_the_parent() -> None:
+    """A worker ignores Ctrl-C, which reaches its whole process group, and ends at SIGTERM
+    whatever handler it inherited: the parent stops it (:func:`_stop`), and no worker prints
+    a traceback of its own."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
+
+
+def _stop(workers: set[multiprocessing.process.BaseProcess]) -> None:
+    """Terminate the pool's ``workers`` and wait for them (none is left a zombie)."""
+    for worker in workers:
+        worker.terminate()
+    for worker in workers:
+        worker.join(timeout=10)
 
 
 def _result(

@@ -13,7 +13,6 @@ import math
 import os
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
-from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -39,6 +38,7 @@ from ifgm_ref.oracle.vectors.schema import (
     VectorsDocument,
 )
 from ifgm_ref.oracle.vectors.tolerances import QUANTITIES
+from ifgm_ref.outputs import written
 from ifgm_ref.params import SimParams
 from ifgm_ref.planners import PLANNERS, make_planner
 from ifgm_ref.planners.tuning import episode_values
@@ -230,7 +230,8 @@ def _dumps(value: Any, level: int) -> str:
 def write_vectors(path: str | os.PathLike[str]) -> dict[str, Any]:
     """Build the vectors, write them to ``path`` (:func:`dumps_vectors`) and return them."""
     vectors = build_vectors()
-    Path(path).write_text(dumps_vectors(vectors), encoding="utf-8")
+    with written(path) as partial:
+        partial.write_text(dumps_vectors(vectors), encoding="utf-8")
     return vectors
 
 
