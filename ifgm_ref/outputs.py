@@ -4,7 +4,9 @@
 suffix, so that a writer choosing its format by suffix still does) and renames it over the
 file once the writer is done (:func:`os.replace`, atomic on one file system). A reader never
 sees half a file, and a writer stopped by an exception, Ctrl-C included, leaves no temporary
-and the previous file, if there was one, untouched.
+and the previous file, if there was one, untouched. A path that is there and is not a
+regular file (``/dev/stdout``, a named pipe) is written in place, and a symbolic link's
+target is replaced, not the link.
 
 :data:`LEDGER` keeps, for the command running in this process, the files it means to write
 (:meth:`Ledger.plan`), those it wrote and what it is doing (:meth:`Ledger.doing`); the
@@ -46,10 +48,10 @@ class Ledger:
         """Say what the command is doing now (``"simulating"``, ``"check 3 of 12"``)."""
         self.now = what
 
-    def landed(self, path: Path) -> None:
-        """Record ``path`` as written whole, and announce it."""
+    def landed(self, path: Path, *, announce: bool = True) -> None:
+        """Record ``path`` as written whole, and announce it (unless not ``announce``)."""
         self.written.append(path)
-        if self.announce is not None:
+        if announce and self.announce is not None:
             self.announce(path)
 
     def missing(self) -> list[Path]:
@@ -80,9 +82,11 @@ LEDGER = Ledger()
 
 
 @contextmanager
-def written(path: str | os.PathLike[str]) -> Iterator[Path]:
+def written(path: str | os.PathLike[str], *, announce: bool = True) -> Iterator[Path]:
     """Yield a temporary path for the writer of ``path``; when the block ends normally, move
-    it over ``path`` and record it in :data:`LEDGER`; when it raises, remove it.
+    it over ``path`` and record it in :data:`LEDGER` (said as it lands unless not
+    ``announce``: one of many files whose folder the command names); when it raises, remove
+    it.
 
     >>> import tempfile
     >>> folder = Path(tempfile.mkdtemp())
@@ -92,11 +96,16 @@ def written(path: str | os.PathLike[str]) -> Iterator[Path]:
     ('whole', ['a.txt'])
     """
     final = Path(path)
-    partial = final.with_name(f".{final.stem}.partial-{os.getpid()}{final.suffix}")
+    if final.exists() and not final.resolve().is_file():  # /dev/stdout, a FIFO: no rename
+        yield final
+        LEDGER.landed(final, announce=announce)
+        return
+    target = final.resolve()  # a symbolic link keeps pointing at the new file
+    partial = target.with_name(f".{target.stem}.partial-{os.getpid()}{target.suffix}")
     try:
         yield partial
-        os.replace(partial, final)
+        os.replace(partial, target)
     except BaseException:
         partial.unlink(missing_ok=True)
         raise
-    LEDGER.landed(final)
+    LEDGER.landed(final, announce=announce)

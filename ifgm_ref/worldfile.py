@@ -36,6 +36,7 @@ from pathlib import Path
 from typing import Any, TypeVar
 
 from ifgm_ref.errors import ParameterError, WorldError
+from ifgm_ref.outputs import written
 from ifgm_ref.params import RobotParams, SensorParams
 from ifgm_ref.world import Circle, Obstacle, Polygon, World
 
@@ -363,9 +364,11 @@ def dumps_world(world: World, *, digits: int | None = None) -> str:
 
 def save_world(world: World, path: str | os.PathLike[str], *, digits: int | None = None) -> None:
     """Write the world to ``path`` as UTF-8 JSON (see :func:`dumps_world`; ``digits`` rounds
-    the geometry to that many significant digits, ``None`` keeps every float exactly)."""
+    the geometry to that many significant digits, ``None`` keeps every float exactly), whole
+    or not at all (:func:`ifgm_ref.outputs.written`; one of many files, it is not said)."""
     try:
-        Path(path).write_text(dumps_world(world, digits=digits), encoding="utf-8")
+        with written(path, announce=False) as partial:
+            partial.write_text(dumps_world(world, digits=digits), encoding="utf-8")
     except OSError as err:
         raise WorldError(
             f"{os.fspath(path)}: cannot write the world file: {err.strerror or err}"

@@ -60,7 +60,7 @@ def interrupt(
     env = dict(os.environ, MPLBACKEND="Agg", PYTHONPATH=str(ROOT))
     child = subprocess.Popen(
         command, cwd=cwd, env=env, text=True, start_new_session=True,
-        stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+        stdout=subprocess.PIPE, stderr=subprocess.PIPE, preexec_fn=_heed_ctrl_c,
     )  # fmt: skip
     lines: list[str] = []
     printed: list[str] = []
@@ -98,6 +98,12 @@ def interrupt(
     assert stopped.status == expected, stopped.stderr
     assert stopped.last.startswith(f"ifgm-ref: interrupted by {sig.name}: "), stopped.stderr
     return stopped
+
+
+def _heed_ctrl_c() -> None:
+    """In the child: take SIGINT as a terminal's Ctrl-C, even where the test runs with it
+    ignored (a pytest-xdist worker), which a child would inherit and keep."""
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
 
 
 def no_temporaries(folder: Path) -> None:

@@ -392,6 +392,13 @@ def test_a_bad_timeout_is_a_one_line_error(
     ]
 
 
+@pytest.mark.parametrize("jobs", ["0", "-2"])
+def test_jobs_below_one_is_a_one_line_error_naming_the_option(jobs: str) -> None:
+    done = run_cli("oracle", "--planner", "ifgm", "--jobs", jobs)
+    assert done.returncode == 2 and done.stdout == ""
+    assert done.stderr.splitlines() == [f"ifgm-ref: error: --jobs {jobs}: must be at least 1"]
+
+
 def test_the_plugin_refuses_a_bad_startup_timeout(pytester: pytest.Pytester) -> None:
     result = pytester.runpytest_inprocess(
         "--pyargs", "ifgm_ref.oracle", "--ifgm-cmd", "nothing-runs",

@@ -29,22 +29,28 @@ if TYPE_CHECKING:
     from ifgm_ref.oracle.specification import Specification
 
 
+#: What ``ifgm-ref oracle --help`` says the command does.
+DESCRIPTION = (
+    "Run the oracle's property checks against a built-in or Python planner "
+    "(--planner) or a program speaking the JSON-lines protocol (--cmd), noise-free or under "
+    "noise (--profile robust, --noise), on the kinematic robot or one with mass (--engine "
+    "mujoco). Prints each check's line on stderr as it finishes, then the report on stdout: "
+    "every check's line and a summary (only the summary when stdout goes where stderr goes, "
+    "a terminal, a pipe or a file, which has the lines already). Exit status 0 when every "
+    "check passed (or failed as expected), 1 "
+    "otherwise. Counterexamples go to --artifacts. With --suite VERSION, the frozen cases "
+    "of that suite version run instead of drawn examples, one JSON line per case on stdout "
+    "(or --results), each verdict's line on stderr; exit status 0 when every case that "
+    "applies passed."
+)
+
+
 def add_oracle(sub: Subcommands) -> None:
     """Add ``oracle`` to the subcommands."""
     oracle = sub.add_parser(
         "oracle",
         help="check a planner against the oracle's properties (docs/oracle.md)",
-        description="Run the oracle's property checks against a built-in or Python planner "
-        "(--planner) or a program speaking the JSON-lines protocol (--cmd), noise-free or under "
-        "noise (--profile robust, --noise), on the kinematic robot or one with mass (--engine "
-        "mujoco). Prints each check's line on stderr as it finishes, then the report on stdout: "
-        "every check's line and a summary (only the summary when stdout goes where stderr goes, "
-        "a terminal, a pipe or a file, which has the lines already). Exit status 0 when every "
-        "check passed (or failed as expected), 1 "
-        "otherwise. Counterexamples go to --artifacts. With --suite VERSION, the frozen cases "
-        "of that suite version run instead of drawn examples, one JSON line per case on stdout "
-        "(or --results), each verdict's line on stderr; exit status 0 when every case that "
-        "applies passed.",
+        description=DESCRIPTION,
     )
     oracle.add_argument("--planner", metavar="NAME", help="built-in name or module:attribute")
     oracle.add_argument("--cmd", metavar="PROGRAM", help="a JSON-lines protocol program")
@@ -159,6 +165,8 @@ def run_oracle(args: argparse.Namespace) -> int:
     keep_hypothesis_out_of_the_working_folder()
 
     exactly_one(args)
+    if args.jobs < 1:
+        raise ParameterError(f"--jobs {args.jobs}: must be at least 1")
     if args.profile in PROFILE_ALIASES:
         new = PROFILE_ALIASES[args.profile]
         print(f"ifgm-ref: note: profile {args.profile!r} is now called {new!r}", file=sys.stderr)

@@ -13,6 +13,7 @@ from typing import Any
 
 from ifgm_ref.oracle.check_types import Check, Evidence
 from ifgm_ref.oracle.implementation import Implementation
+from ifgm_ref.outputs import written
 from ifgm_ref.params import DT, GOAL_TOLERANCE, SimParams
 from ifgm_ref.worldfile import save_world
 
@@ -43,7 +44,8 @@ def write_evidence(
         save_world(world, folder / f"{names[k]}.json")
     for k, run in enumerate(evidence.runs):
         stem = names[min(k, len(names) - 1)] + ("_rerun" if k >= len(names) else "")
-        (folder / f"{stem}_trace.csv").write_text(run.trace_csv())
+        with written(folder / f"{stem}_trace.csv", announce=False) as partial:
+            partial.write_text(run.trace_csv())
         mark = evidence.step if k == 0 else None
         _plot(evidence.worlds[min(k, len(names) - 1)], run, folder / f"{stem}.png", mark)
     if evidence.worlds:
@@ -62,11 +64,14 @@ def write_evidence(
                 f"--record {folder / name}_replay.mcap"
             )
         lines.append("")
-    (folder / "report.md").write_text("\n".join(lines))
+    with written(folder / "report.md", announce=False) as partial:
+        partial.write_text("\n".join(lines))
 
 
 def _plot(world: Any, run: Any, path: Path, mark: int | None) -> None:
     from ifgm_ref.plotting import finest_colouring, plot_run, save_figure
 
     colour_by = finest_colouring(run.trace)
-    save_figure(plot_run(world, run.trace, run.result, colour_by=colour_by, mark=mark), path)
+    figure = plot_run(world, run.trace, run.result, colour_by=colour_by, mark=mark)
+    with written(path, announce=False) as partial:
+        save_figure(figure, partial)

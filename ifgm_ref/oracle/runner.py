@@ -16,18 +16,14 @@ with mass of ``mujoco`` (``docs/oracle.md``, "On the physical robot").
 from __future__ import annotations
 
 import functools
-import multiprocessing
-import signal
 import sys
 import time
-import traceback
 from collections import Counter
 from collections.abc import Callable, Iterable, Mapping
-from concurrent.futures import ProcessPoolExecutor, as_completed
+from concurrent.futures import as_completed
 from dataclasses import dataclass, field, replace
 from enum import StrEnum
 from pathlib import Path
-from types import TracebackType
 from typing import Any
 
 from hypothesis import example, given, seed
@@ -45,6 +41,7 @@ from ifgm_ref.oracle.check_types import (
 )
 from ifgm_ref.oracle.checks import CHECKS
 from ifgm_ref.oracle.counterexample import slug, write_evidence
+from ifgm_ref.oracle.crash import crash
 from ifgm_ref.oracle.implementation import Implementation, Promises, promises_of
 from ifgm_ref.oracle.profiles import (
     Profile,
@@ -56,6 +53,7 @@ from ifgm_ref.oracle.profiles import (
 from ifgm_ref.oracle.robust import noisy_examples, run_statistical, with_world
 from ifgm_ref.oracle.specification import Specification, declared, in_feet
 from ifgm_ref.oracle.stable_draws import global_constants_only
+from ifgm_ref.oracle.workers import worker_pool
 from ifgm_ref.protocol import Planner
 
 
@@ -230,16 +228,10 @@ def run_check(
     except (CheckFailed, Flaky) as err:
         failure = err
     except ImplementationError as err:
-        seconds = time.perf_counter() - started
-        return CheckResult(
-            check.name, Status.ERROR, recorder.examples, len(recorder.worlds), seconds, str(err)
-        )
+        return _error(check, recorder, started, str(err))
     except Exception as err:  # the oracle's own machinery broke: still a verdict, and a summary
-        seconds = time.perf_counter() - started
-        message = f"the check itself crashed (a bug in the oracle, not a verdict): {crash(err)}"
-        return CheckResult(
-            check.name, Status.ERROR, recorder.examples, len(recorder.worlds), seconds, message
-        )
+        why = f"the check itself crashed (a bug in the oracle, not a verdict): {crash(err)}"
+        return _error(check, recorder, started, why)
     seconds = time.perf_counter() - started
     common = (check.name, recorder.examples, len(recorder.worlds), seconds)
     if failure is None:
@@ -261,6 +253,14 @@ def run_check(
         message = f"{message} (expected: {expected_failure})"
         return _result(*common, Status.EXPECTED_FAILURE, message, folder)
     return _result(*common, Status.FAILED, message, folder)
+
+
+def _error(check: Check, recorder: Recorder, started: float, message: str) -> CheckResult:
+    """The verdict ``error`` of ``check``, with what it had run since ``started``."""
+    seconds = time.perf_counter() - started
+    return CheckResult(
+        check.name, Status.ERROR, recorder.examples, len(recorder.worlds), seconds, message
+    )
 
 
 def _level_reason(check: Check, level: Level | str | None) -> str | None:
@@ -322,41 +322,6 @@ def _explorer(
     return prop if profile.seed is None else seed(profile.seed)(prop)
 
 
-def crash(err: BaseException, *, outer: TracebackType | None = None) -> str:
-    """Name an unexpected exception and where it was raised, in one line.
-
-    ``Type: message at file:line``: the innermost frame of its traceback (or of ``outer``, for
-    an exception never raised itself, such as a member of a group built in place), the path
-    relative to the folder that holds ``ifgm_ref``, or to the working folder. A group lists
-    its exceptions.
-
-    >>> try:
-    ...     [][0]
-    ... except IndexError as err:
-    ...     print(crash(err))  # doctest: +ELLIPSIS
-    IndexError: list index out of range at <doctest ...>:2
-    """
-    where = err.__traceback__ or outer
-    if isinstance(err, BaseExceptionGroup):
-        inner = "; ".join(crash(e, outer=where) for e in err.exceptions)
-        return f"{type(err).__name__} of {len(err.exceptions)}: {inner}"
-    first_line = next(iter(str(err).splitlines()), "")
-    text = f"{type(err).__name__}: {first_line}"
-    frames = traceback.extract_tb(where)
-    if frames:
-        text += f" at {_short_path(frames[-1].filename)}:{frames[-1].lineno}"
-    return text
-
-
-def _short_path(filename: str) -> str:
-    """``filename`` relative to the folder holding this package, or to the working folder."""
-    path = Path(filename)
-    for root in (Path(__file__).resolve().parents[2], Path.cwd()):
-        if path.is_relative_to(root):
-            return path.relative_to(root).as_posix()
-    return filename
-
-
 def _pooled_check(
     name: str,
     impl: Implementation,
@@ -391,50 +356,28 @@ def _run_pooled(
     done: dict[str, CheckResult] = {}
     # The reference level's check is the longest (two runs of every built-in world): first.
     first = sorted(names, key=lambda name: CHECKS[name].level is not Level.REFERENCE)
-    others = set(multiprocessing.active_children())
-    with ProcessPoolExecutor(max_workers=jobs, initializer=_leave_sigint_to_the_parent) as pool:
-        try:
-            futures = {
-                pool.submit(_pooled_check, n, shipped, profile, artifacts, expected.get(n)): n
-                for n in first
-            }
-            if not meanwhile():
-                for future in futures:
-                    future.cancel()
-                return done
-            for future in as_completed(futures):
-                try:
-                    result = future.result()
-                except Exception as err:  # the worker died (or its result did not unpickle)
-                    message = f"the worker process running it failed: {crash(err)}"
-                    result = CheckResult(futures[future], Status.ERROR, message=message)
-                result = finished(result)
-                done[futures[future]] = result
-                if stop_on_failure and not result.ok:
-                    for other in futures:
-                        other.cancel()
-                    break
-        except KeyboardInterrupt:  # Ctrl-C or SIGTERM: stop the workers now, not after their checks
-            pool.shutdown(wait=False, cancel_futures=True)
-            _stop(set(multiprocessing.active_children()) - others)
-            raise
+    with worker_pool(jobs) as pool:
+        futures = {
+            pool.submit(_pooled_check, n, shipped, profile, artifacts, expected.get(n)): n
+            for n in first
+        }
+        if not meanwhile():
+            for future in futures:
+                future.cancel()
+            return done
+        for future in as_completed(futures):
+            try:
+                result = future.result()
+            except Exception as err:  # the worker died (or its result did not unpickle)
+                message = f"the worker process running it failed: {crash(err)}"
+                result = CheckResult(futures[future], Status.ERROR, message=message)
+            result = finished(result)
+            done[futures[future]] = result
+            if stop_on_failure and not result.ok:
+                for other in futures:
+                    other.cancel()
+                break
     return done
-
-
-def _leave_sigint_to_the_parent() -> None:
-    """A worker ignores Ctrl-C, which reaches its whole process group, and ends at SIGTERM
-    whatever handler it inherited: the parent stops it (:func:`_stop`), and no worker prints
-    a traceback of its own."""
-    signal.signal(signal.SIGINT, signal.SIG_IGN)
-    signal.signal(signal.SIGTERM, signal.SIG_DFL)
-
-
-def _stop(workers: set[multiprocessing.process.BaseProcess]) -> None:
-    """Terminate the pool's ``workers`` and wait for them (none is left a zombie)."""
-    for worker in workers:
-        worker.terminate()
-    for worker in workers:
-        worker.join(timeout=10)
 
 
 def _result(
@@ -490,7 +433,7 @@ def check_planner(
         A factory returning a new planner (a class will do), an :class:`Implementation`, or a
         spec: a built-in name or ``module:attribute``.
     profile : {"quick", "standard", "thorough", "robust", "brief"} or Profile, default "quick"
-        Examples per check (50, 200, 1000; robust: 50 under the promised noise), on its engine.
+        Examples per check (50, 200, 1000; robust: 50 under the promised noise).
     promises : Promises or str, optional
         What it promises, or a built-in planner's name (default: a built-in's own, else IFGM's).
     equations : object, optional
@@ -498,20 +441,18 @@ def check_planner(
     expected_failed_checks, checks : mapping of str to str, iterable of str, optional
         ``{check: reason}``: checks known to fail ("expected failure"); run only ``checks``.
     artifacts : path or None, default "oracle-failures"
-        Where counterexamples are written; ``None`` writes nothing.
+        Where counterexamples are written (``None``: nowhere).
     on_fail : {None, "raise", "warn"}, default None
         Raise :class:`AssertionError` or warn when a check failed or errored.
     progress, stop_on_failure : bool, default False
         Print each result on stderr as it comes; stop at the first check that fails or errors.
     jobs : int, default 1
-        Run the simulation checks in this many processes (the verdicts do not depend on it);
-        the factory must then pickle (a program under test starts anew in each worker).
+        Run the simulation checks in this many processes (same verdicts); the factory pickles.
     noise : NoiseLevels or str, optional
         Check under these noise levels (``"range=0.02"``, :mod:`~.robust`), not those promised.
     level : {"paper", "reference"}, default "paper"
-        The paper's properties, or also ``agrees_with_reference`` (:func:`~.checks.checks_at`);
-        a check of a level above it is reported not applicable, saying how to run it
-        (:data:`ABOVE_LEVEL`), so that every run lists every check, as the pytest plugin does.
+        The paper's properties, or also ``agrees_with_reference``; a check above it is listed
+        not applicable, saying how to run it (:data:`ABOVE_LEVEL`), as the pytest plugin does.
     spec : Specification or path, optional
         Its declared specification (TOML: promises, level, robot, sensor, dt, goal tolerance).
 
@@ -523,10 +464,8 @@ def check_planner(
     impl, profile, level, held_to = _declared(planner, promises, equations, profile, level, spec)
     expected = dict(expected_failed_checks or {})
     names, profile = _arguments(checks, expected, with_noise(profile, noise), jobs, level)
-    done = _run_checks(
-        names, impl, profile, artifacts, expected, jobs, progress, stop_on_failure, level
-    )
-    report = replace(_report(impl, profile, done), held_to=held_to)
+    run = (names, impl, profile, artifacts, expected, jobs, progress, stop_on_failure, level)
+    report = replace(_report(impl, profile, _run_checks(*run)), held_to=held_to)
     _act_on(report, on_fail)
     return report
 

@@ -230,7 +230,7 @@ def _dumps(value: Any, level: int) -> str:
 def write_vectors(path: str | os.PathLike[str]) -> dict[str, Any]:
     """Build the vectors, write them to ``path`` (:func:`dumps_vectors`) and return them."""
     vectors = build_vectors()
-    with written(path) as partial:
+    with written(path, announce=False) as partial:  # the command says it in its summary
         partial.write_text(dumps_vectors(vectors), encoding="utf-8")
     return vectors
 

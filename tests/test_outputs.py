@@ -1,0 +1,54 @@
+"""Output files are written whole or not at all (:mod:`ifgm_ref.outputs`), never over what is
+not a regular file."""
+
+from __future__ import annotations
+
+import os
+import stat
+from pathlib import Path
+
+import pytest
+
+from ifgm_ref.outputs import LEDGER, written
+
+
+def test_a_failed_writer_leaves_the_old_file_and_no_temporary(tmp_path: Path) -> None:
+    path = tmp_path / "run.csv"
+    path.write_text("old")
+    with pytest.raises(KeyboardInterrupt), written(path) as partial:
+        partial.write_text("half")
+        raise KeyboardInterrupt
+    assert path.read_text() == "old" and sorted(tmp_path.iterdir()) == [path]
+
+
+def test_a_device_is_written_in_place_not_replaced() -> None:
+    """``--out /dev/stdout``-like paths: a rename would put a regular file in their place."""
+    with written("/dev/null") as partial:
+        assert partial == Path("/dev/null")
+        partial.write_text("discarded")
+    assert stat.S_ISCHR(os.stat("/dev/null").st_mode)
+
+
+def test_a_symbolic_link_keeps_pointing_at_the_new_file(tmp_path: Path) -> None:
+    target, link = tmp_path / "real.json", tmp_path / "link.json"
+    target.write_text("old")
+    link.symlink_to(target)
+    with written(link) as partial:
+        partial.write_text("new")
+    assert link.is_symlink() and link.resolve() == target and target.read_text() == "new"
+
+
+def test_the_ledger_says_what_landed_and_what_is_missing(tmp_path: Path) -> None:
+    said: list[Path] = []
+    LEDGER.reset(announce=said.append)
+    try:
+        a, b = tmp_path / "a.txt", tmp_path / "b.txt"
+        LEDGER.plan(a, b)
+        with written(a) as partial:
+            partial.write_text("a")
+        with written(tmp_path / "quiet.txt", announce=False) as partial:
+            partial.write_text("q")
+        assert said == [a]
+        assert LEDGER.summary() == f"wrote {a}, {tmp_path / 'quiet.txt'}; not written: {b}"
+    finally:
+        LEDGER.reset()
