@@ -328,6 +328,10 @@ def planner_params(planner: str | None, pairs: list[str]) -> dict[str, float]:
     Traceback (most recent call last):
     ...
     ifgm_ref.errors.ParameterError: --param 'd_th': expected NAME=VALUE
+    >>> planner_params("ifgm", ["d_th=-1"])
+    Traceback (most recent call last):
+    ...
+    ifgm_ref.errors.ParameterError: --param d_th=-1: must be a finite number > 0, got -1.0
     """
     allowed = PLANNERS[planner].parameters if planner in PLANNERS else None
     params: dict[str, float] = {}
@@ -344,4 +348,8 @@ def planner_params(planner: str | None, pairs: list[str]) -> dict[str, float]:
             params[name] = float(text)
         except ValueError:
             raise ParameterError(f"--param {name}: must be a number, got {text!r}") from None
+        tunings = PLANNERS[planner].tunings if planner in PLANNERS else ()
+        for tuning in (t for t in tunings if name in t.names()):
+            if why := tuning.violation(name, params[name]):
+                raise ParameterError(f"--param {pair}: {why}")
     return params

@@ -18,7 +18,7 @@ from typing import TYPE_CHECKING, Any, Self
 
 from ifgm_ref.errors import ParameterError
 from ifgm_ref.formulas import Scale, Unit, evaluate, formula_expr
-from ifgm_ref.validate import NON_NEGATIVE, POSITIVE, require
+from ifgm_ref.validate import NON_NEGATIVE, POSITIVE, require, violation
 
 if TYPE_CHECKING:
     from ifgm_ref.protocol import EpisodeParams
@@ -58,6 +58,12 @@ class Tuning:
             value = getattr(self, f.name)
             if value is not None:
                 require(f.name, value, NON_NEGATIVE if f.metadata["zero"] else POSITIVE)
+
+    @classmethod
+    def violation(cls, name: str, value: float) -> str:
+        """Why ``value`` cannot be the parameter ``name`` of this class (``""``: it can)."""
+        (found,) = [f for f in fields(cls) if f.name == name]  # type: ignore[arg-type]
+        return violation(value, NON_NEGATIVE if found.metadata["zero"] else POSITIVE)
 
     @classmethod
     def infos(cls) -> tuple[ParamInfo, ...]:
