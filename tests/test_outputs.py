@@ -52,3 +52,27 @@ def test_the_ledger_says_what_landed_and_what_is_missing(tmp_path: Path) -> None
         assert LEDGER.summary() == f"wrote {a}, {tmp_path / 'quiet.txt'}; not written: {b}"
     finally:
         LEDGER.reset()
+
+
+def test_an_interruption_a_library_turned_into_its_own_error_is_still_one(
+    monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str], tmp_path: Path
+) -> None:
+    """matplotlib's SVG writer, interrupted inside C, raised ``ValueError: Invalid affine
+    transformation matrix`` (a ``figures`` run stopped at a seeded moment): the command is
+    still reported as interrupted, in one line, with the signal's exit status."""
+    import signal
+    import time
+
+    from ifgm_ref.cli import artefacts, main
+
+    def garbled(args: object) -> int:
+        try:
+            os.kill(os.getpid(), signal.SIGTERM)
+            time.sleep(5)  # the handler raises here
+        except KeyboardInterrupt:
+            raise ValueError("Invalid affine transformation matrix") from None
+        return 0
+
+    monkeypatch.setattr(artefacts, "run_vectors", garbled)
+    assert main(["vectors", "--out", str(tmp_path / "v.json")]) == 143
+    assert capsys.readouterr().err == "ifgm-ref: interrupted by SIGTERM: nothing written\n"

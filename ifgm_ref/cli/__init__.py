@@ -24,7 +24,7 @@ from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from ifgm_ref.cli.interrupt import exit_status, terminable
+from ifgm_ref.cli.interrupt import as_interruption, exit_status, received, terminable
 from ifgm_ref.errors import IfgmRefError
 from ifgm_ref.outputs import LEDGER
 
@@ -90,10 +90,16 @@ def main(argv: Sequence[str] | None = None) -> int:
     """Run the command line; return the exit status."""
     LEDGER.reset(announce=_say_written)
     try:
-        with terminable():
-            args = build_parser().parse_args(argv)
-            args.argv = list(sys.argv[1:] if argv is None else argv)
-            return int(args.func(args))
+        try:
+            with terminable():
+                args = build_parser().parse_args(argv)
+                args.argv = list(sys.argv[1:] if argv is None else argv)
+                return int(args.func(args))
+        except Exception as err:  # a library may turn Ctrl-C into an error of its own
+            signum = received()
+            if signum is None:
+                raise
+            raise as_interruption(signum) from err
     except KeyboardInterrupt as err:
         name, status = exit_status(err)
         print(f"ifgm-ref: interrupted by {name}: {LEDGER.summary()}", file=sys.stderr)

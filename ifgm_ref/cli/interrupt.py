@@ -17,7 +17,15 @@ from collections.abc import Iterator
 from contextlib import contextmanager
 from types import FrameType
 
-__all__ = ["EXIT_INTERRUPTED", "EXIT_TERMINATED", "Terminated", "exit_status", "terminable"]
+__all__ = [
+    "EXIT_INTERRUPTED",
+    "EXIT_TERMINATED",
+    "Terminated",
+    "as_interruption",
+    "exit_status",
+    "received",
+    "terminable",
+]
 
 #: Exit status after SIGINT (Ctrl-C): 128 + 2.
 EXIT_INTERRUPTED = 128 + signal.SIGINT
@@ -29,22 +37,46 @@ class Terminated(KeyboardInterrupt):
     """SIGTERM, raised where the main thread was, as Ctrl-C would be."""
 
 
-def _raise_terminated(signum: int, frame: FrameType | None) -> None:
-    raise Terminated
+#: The signals received within :func:`terminable` (the last block), in order.
+_RECEIVED: list[signal.Signals] = []
+
+
+def _on_signal(signum: int, frame: FrameType | None) -> None:
+    _RECEIVED.append(signal.Signals(signum))
+    raise Terminated if signum == signal.SIGTERM else KeyboardInterrupt
 
 
 @contextmanager
 def terminable() -> Iterator[None]:
-    """Within the block, SIGTERM raises :class:`Terminated` in the main thread (elsewhere, and
-    after the block, it keeps its handler)."""
+    """Within the block, SIGTERM raises :class:`Terminated` in the main thread, and SIGINT
+    :class:`KeyboardInterrupt` unless it was ignored when the command started (``nohup``, a
+    background job); both are remembered (:func:`received`). Elsewhere, and after the block,
+    they keep their handlers."""
+    _RECEIVED.clear()
     if threading.current_thread() is not threading.main_thread():
         yield
         return
-    previous = signal.signal(signal.SIGTERM, _raise_terminated)
+    ours = [signal.SIGTERM]
+    if signal.getsignal(signal.SIGINT) is signal.default_int_handler:
+        ours.append(signal.SIGINT)
+    previous = {signum: signal.signal(signum, _on_signal) for signum in ours}
     try:
         yield
     finally:
-        signal.signal(signal.SIGTERM, previous)
+        for signum, handler in previous.items():
+            signal.signal(signum, handler)
+
+
+def received() -> signal.Signals | None:
+    """The first signal :func:`terminable`'s last block received, if any: a library may have
+    turned the interruption into an error of its own (matplotlib's SVG writer, interrupted in
+    C, raises ``ValueError: Invalid affine transformation matrix``)."""
+    return _RECEIVED[0] if _RECEIVED else None
+
+
+def as_interruption(signum: signal.Signals) -> KeyboardInterrupt:
+    """The interruption ``signum`` stands for: :class:`Terminated` or KeyboardInterrupt."""
+    return Terminated() if signum == signal.SIGTERM else KeyboardInterrupt()
 
 
 def exit_status(err: KeyboardInterrupt) -> tuple[str, int]:
