@@ -414,3 +414,13 @@ def test_path_ratio_title_lies_within_the_figure(
     plot_path_ratio(rows, tmp_path / "path_ratio.png")
     ((title, figure),) = boxes
     assert figure.x0 <= title.x0 and title.x1 <= figure.x1, (title, figure)
+
+
+def test_a_malformed_scheduler_address_is_one_line_naming_the_option(tmp_path: Path) -> None:
+    pytest.importorskip("distributed", reason="the dask extra is not installed")
+    args = ["--planners", "ifgm", "--classes", "u", "--per-class", "1"]
+    done = run_cli("bench", *args, "--scheduler", "nonsense", "--out", str(tmp_path / "b"))
+    assert done.returncode == 2
+    assert done.stderr.splitlines()[-1] == (
+        "ifgm-ref: error: --scheduler nonsense: missing port number in address 'nonsense'"
+    )

@@ -231,3 +231,36 @@ def test_a_replay_plot_frames_the_path_and_names_the_scan_returns(tmp_path: Path
     blank = fig.bbox.height - axes.height - legend.height  # pixels, above, between, below
     assert blank < 0.75 * fig.dpi, blank / fig.dpi
     plt.close(fig)
+
+
+@pytest.mark.parametrize("engine", ["kinematic", "mujoco"])
+def test_a_counterexample_plot_names_the_engine_it_ran_on(
+    engine: str, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """The oracle's counterexample plots say the engine, as ``simulate``'s do."""
+    from ifgm_ref import plotting
+    from ifgm_ref.oracle.check_types import Evidence
+    from ifgm_ref.oracle.checks import CHECKS
+    from ifgm_ref.oracle.counterexample import write_evidence
+    from ifgm_ref.oracle.implementation import Implementation
+    from ifgm_ref.params import SimParams
+    from ifgm_ref.planners import make_planner
+    from ifgm_ref.scenarios import resolve_world
+    from ifgm_ref.simulator import simulate
+
+    titles: list[str] = []
+    draw = plotting.plot_run
+
+    def plot_run(*args: object, **kwargs: object) -> plt.Figure:
+        figure = draw(*args, **kwargs)  # type: ignore[arg-type]
+        titles.append(figure.axes[0].get_title())
+        return figure
+
+    monkeypatch.setattr(plotting, "plot_run", plot_run)
+    world = resolve_world("post")
+    run = simulate(world, make_planner("ifgm"))
+    evidence = Evidence([world], [run], 60.0)
+    impl = Implementation.from_spec("ifgm")
+    sim = SimParams(engine=engine)
+    write_evidence(tmp_path, evidence, CHECKS["converges_open"], impl, "x", sim=sim)
+    assert titles and f"({engine} engine)" in titles[0]

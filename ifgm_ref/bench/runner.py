@@ -40,7 +40,11 @@ def _executor(jobs: int, scheduler: str | None) -> Iterator[cf.Executor | None]:
                 "running on a Dask scheduler needs Dask's distributed package: pip install "
                 "'ifgm-ref[dask]'"
             ) from None
-        with Client(scheduler) as client:
+        try:
+            client = Client(scheduler)
+        except (ValueError, OSError) as err:  # a malformed address, or nothing answering there
+            raise ParameterError(f"--scheduler {scheduler}: {err}") from None
+        with client:
             executor = client.get_executor()
             try:
                 yield executor

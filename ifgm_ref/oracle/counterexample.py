@@ -47,7 +47,8 @@ def write_evidence(
         with written(folder / f"{stem}_trace.csv", announce=False) as partial:
             partial.write_text(run.trace_csv())
         mark = evidence.step if k == 0 else None
-        _plot(evidence.worlds[min(k, len(names) - 1)], run, folder / f"{stem}.png", mark)
+        engine = (sim or SimParams()).engine
+        _plot(evidence.worlds[min(k, len(names) - 1)], run, folder / f"{stem}.png", mark, engine)
     if evidence.worlds:
         planner = impl.label if not impl.label.startswith("cmd: ") else None
         how = f"--planner {planner}" if planner else f'--cmd "{impl.label[5:]}"'
@@ -68,10 +69,10 @@ def write_evidence(
         partial.write_text("\n".join(lines))
 
 
-def _plot(world: Any, run: Any, path: Path, mark: int | None) -> None:
+def _plot(world: Any, run: Any, path: Path, mark: int | None, engine: str) -> None:
     from ifgm_ref.plotting import finest_colouring, plot_run, save_figure
 
     colour_by = finest_colouring(run.trace)
-    figure = plot_run(world, run.trace, run.result, colour_by=colour_by, mark=mark)
+    figure = plot_run(world, run.trace, run.result, colour_by=colour_by, mark=mark, engine=engine)
     with written(path, announce=False) as partial:
         save_figure(figure, partial)

@@ -221,6 +221,7 @@ class OracleSession:
         if self.spec is not None:  # its promises, level, robot, sensor, dt and goal tolerance
             held = declared(self.spec, self.implementation, self.profile)
             self.implementation, self.profile, level = held[:3]
+        self.level = level
         self.levels = levels_up_to(level)
 
     def run_case(self, case: Case) -> CaseResult:
@@ -237,6 +238,7 @@ class OracleSession:
             self.profile,
             artifacts=self.config.getoption("ifgm_artifacts"),
             expected_failure=self.expected.get(check),
+            level=self.level,  # a check above it is not applicable, as in the CLI's report
         )
         self.results.append(result)
         return result

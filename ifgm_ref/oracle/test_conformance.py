@@ -19,9 +19,7 @@ def test_property(check: str, ifgm_oracle: OracleSession) -> None:
     """The implementation under test has the property ``check`` (its sentence in the id's
     docstring: ``ifgm_ref.oracle.checks.CHECKS[check].sentence``)."""
     __tracebackhide__ = True
-    if CHECKS[check].level not in ifgm_oracle.levels:
-        pytest.skip(f"{check}: the {CHECKS[check].level} level (--ifgm-level reference)")
-    result = ifgm_oracle.run(check)
+    result = ifgm_oracle.run(check)  # one of a level above the session's: not applicable
     if result.status is Status.NOT_APPLICABLE:
         pytest.skip(f"{check}: {result.message}")
     if result.status is Status.NOT_EXERCISED:
