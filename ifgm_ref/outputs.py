@@ -49,8 +49,11 @@ class Ledger:
         self.now = what
 
     def landed(self, path: Path, *, announce: bool = True) -> None:
-        """Record ``path`` as written whole, and announce it (unless not ``announce``)."""
-        self.written.append(path)
+        """Record ``path`` as written whole and announce it; a file not announced (one of many
+        in a folder the command names: world files, a counterexample's) is recorded only if
+        planned, so that an interruption's line stays one line."""
+        if announce or path in self.planned:
+            self.written.append(path)
         if announce and self.announce is not None:
             self.announce(path)
 

@@ -161,7 +161,7 @@ def test_figures_keeps_whole_figures_and_names_the_missing(tmp_path: Path) -> No
 def test_oracle_stops_its_workers_with_one_line(tmp_path: Path) -> None:
     stopped = interrupt(
         ["oracle", "--planner", "ifgm", "--jobs", "2", "--artifacts", str(tmp_path / "a")],
-        tmp_path, (2.0, 4.0),
+        tmp_path, (0.5, 2.0), after="PASSED",  # the equations are done: the pool is at work
     )  # fmt: skip
     assert stopped.stderr.count("ifgm-ref: interrupted") == 1
 
@@ -169,7 +169,9 @@ def test_oracle_stops_its_workers_with_one_line(tmp_path: Path) -> None:
 def test_bench_keeps_its_rows_so_far(tmp_path: Path) -> None:
     out = tmp_path / "bench"
     args = ["bench", "--planners", "ifgm,bug1", "--classes", "u", "--per-class", "20"]
-    stopped = interrupt([*args, "--jobs", "1", "--out", str(out)], tmp_path, (2.0, 4.0))
+    stopped = interrupt(
+        [*args, "--jobs", "1", "--out", str(out)], tmp_path, (1.0, 2.0), after="bench:"
+    )
     assert stopped.last.endswith(f"the rows so far are in {out / 'results.partial.csv'}")
     no_temporaries(out)
 
@@ -184,7 +186,8 @@ def test_replay_keeps_whole_files(tmp_path: Path) -> None:
     stopped = interrupt(args, tmp_path, (1.2, 2.0))
     no_temporaries(tmp_path)
     kept = sorted(p for p in tmp_path.iterdir() if p != bag)
-    missing = [Path(m) for m in stopped.last.split("; not written: ")[1].split(", ")]
+    _, _, listed = stopped.last.partition("; not written: ")  # none yet if stopped in start-up
+    missing = [Path(m) for m in listed.split(", ")] if listed else [steps, plot]
     assert sorted([*kept, *missing]) == sorted([steps, plot]) and missing
     if steps in kept:
         assert steps.read_text().count("\n") > 1000  # every step, not part of them
