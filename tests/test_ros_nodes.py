@@ -288,6 +288,23 @@ def test_simulate_and_oracle_take_ros_nodes_on_the_command_line(tmp_path: Path) 
     assert crashed.returncode == 1 and "the probe crashes on purpose" in crashed.stdout
 
 
+def test_a_counterexample_of_ros_nodes_replays_them(tmp_path: Path) -> None:
+    """The report's replay command runs the same nodes with the same ROS options (it said
+    ``--planner ros: ...`` before, which ``simulate`` refuses), and meets the same collision."""
+    straight, options = node(NODES / "straight.py"), ["--remap", "/a:=/b", "--ros-goal-topic", "/g"]
+    args = ["oracle", "--ros-node", straight, *options]
+    args += ["--check", "collision_free", "--profile", "brief", "--artifacts", str(tmp_path)]
+    command = [sys.executable, "-m", "ifgm_ref", *args]
+    failed = subprocess.run(command, capture_output=True, text=True)
+    assert failed.returncode == 1 and "FAILED" in failed.stdout, failed.stdout + failed.stderr
+    (report,) = tmp_path.rglob("report.md")
+    (replay,) = [line.strip() for line in report.read_text().splitlines() if "simulate" in line]
+    assert f"--ros-node {shlex.quote(straight)} --remap /a:=/b --ros-goal-topic /g" in replay
+    command = [sys.executable, "-m", "ifgm_ref", *shlex.split(replay)[1:], "--json"]
+    replayed = subprocess.run(command, capture_output=True, text=True)
+    assert '"stop_reason": "collision"' in replayed.stdout, replayed.stdout + replayed.stderr
+
+
 # -- ROS 2: rclpy nodes over the same broker ----------------------------------------------------
 
 

@@ -8,6 +8,7 @@ from ifgm_ref.bags.messages import metres_per_unit
 from ifgm_ref.cli.ros import ros_options
 from ifgm_ref.oracle.implementation import Implementation, promises_of
 from ifgm_ref.ros.bridge import RosFactory
+from ifgm_ref.ros.rules import GOAL_TOPIC
 
 
 def ros_implementation(args: argparse.Namespace, equations: object | None) -> Implementation:
@@ -20,8 +21,15 @@ def ros_implementation(args: argparse.Namespace, equations: object | None) -> Im
     ImplementationError
         When a node cannot start or answer the first reset.
     """
-    factory = RosFactory(args.ros_node, **ros_options(args, metres_per_unit("ft")))
+    options = ros_options(args, metres_per_unit("ft"))
+    factory = RosFactory(args.ros_node, **options)
     label = "ros: " + " + ".join(args.ros_node)
-    impl = Implementation(factory, label, promises_of(args.promises or "ifgm"), equations)
+    node_option = "--ros2-node" if options["distro"] == "ros2" else "--ros-node"
+    runs_as = [arg for command in args.ros_node for arg in (node_option, command)]
+    runs_as += [arg for remap in args.remap for arg in ("--remap", remap)]
+    if args.ros_goal_topic != GOAL_TOPIC:
+        runs_as += ["--ros-goal-topic", args.ros_goal_topic]
+    promises = promises_of(args.promises or "ifgm")
+    impl = Implementation(factory, label, promises, equations, runs_as=tuple(runs_as))
     impl.answers_reset()
     return impl

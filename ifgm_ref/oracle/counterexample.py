@@ -50,8 +50,7 @@ def write_evidence(
         engine = (sim or SimParams()).engine
         _plot(evidence.worlds[min(k, len(names) - 1)], run, folder / f"{stem}.png", mark, engine)
     if evidence.worlds:
-        planner = impl.label if not impl.label.startswith("cmd: ") else None
-        how = f"--planner {planner}" if planner else f'--cmd "{impl.label[5:]}"'
+        how = impl.simulate_options()
         limit = f" --max-time {evidence.max_time:.6g}" if evidence.max_time else ""
         if sim is not None and sim.engine != SimParams().engine:  # replay on the same engine
             limit += f" --engine {sim.engine}" + (f" --body {sim.body}" if sim.body else "")

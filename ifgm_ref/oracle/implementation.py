@@ -179,12 +179,32 @@ class Implementation:
     equations : object or None
         Anything with the reference's equation functions as attributes (a module, say), to
         check eqs. (1)-(4); ``None`` skips the equation checks.
+    runs_as : tuple of str
+        The ``ifgm-ref simulate`` options that run it, as a counterexample's replay command
+        gives them (:meth:`simulate_options`); empty: derived from ``label``.
     """
 
     factory: Callable[[], Planner]
     label: str
     promises: Promises = field(default_factory=Promises)
     equations: object | None = None
+    runs_as: tuple[str, ...] = ()
+
+    def simulate_options(self) -> str:
+        """The ``ifgm-ref simulate`` options that run it: :attr:`runs_as`, quoted, or
+        ``--planner LABEL``, or ``--cmd "COMMAND"`` for a program labelled ``cmd: COMMAND``.
+
+        >>> Implementation(lambda: None, "cmd: ./port --fast").simulate_options()
+        '--cmd "./port --fast"'
+        >>> nodes = Implementation(lambda: None, "ros", runs_as=("--ros-node", "python3 a.py"))
+        >>> nodes.simulate_options()
+        "--ros-node 'python3 a.py'"
+        """
+        if self.runs_as:
+            return shlex.join(self.runs_as)
+        if self.label.startswith("cmd: "):
+            return f'--cmd "{self.label[5:]}"'
+        return f"--planner {self.label}"
 
     @classmethod
     def from_spec(
