@@ -1,14 +1,14 @@
 """The planners on BARN's worlds: success, collisions, timeouts, BARN's score, wall time.
 
 Run from the project root: ``python benchmarks/bench_barn.py`` (``--help`` for options). By
-default it runs the 200 BARN worlds that ship with ifgm-ref (``ifgm_ref/barn_worlds/``,
+default it runs the 200 BARN worlds that ship with ifgm-ref (``ifgm_ref/io/barn_worlds/``,
 with their README); ``--barn DIR`` takes a folder or a clone of BARN's repository (all 300)
 instead. Each planner runs with the Jackal's LiDAR; IFGM runs
 a second time with the paper's IR sensor scaled to the robot (``paper_ir``). Each line gives,
 for one planner and sensor, the share of episodes that reached the goal, collided and timed
 out (in BARN's sense: neither arrived nor collided, so a run ended by the simulator's stall
 rule counts as a time-out: it would still be there at BARN's 100 s), the mean BARN score
-(``ifgm_ref.barn.barn_score``; BARN's DWA baseline in Gazebo scores 0.159 on BARN's 50
+(``ifgm_ref.io.barn.barn_score``; BARN's DWA baseline in Gazebo scores 0.159 on BARN's 50
 test worlds) and the wall time. It measures, it asserts nothing.
 """
 
@@ -18,10 +18,10 @@ import argparse
 import time
 from pathlib import Path
 
-from ifgm_ref.barn import bundled_barn_folder
-from ifgm_ref.bench.report import machine, summarize_rows
-from ifgm_ref.bench.runner import run_bench
-from ifgm_ref.bench.tasks import barn_specs
+from ifgm_ref.apps.bench.report import machine, summarize_rows
+from ifgm_ref.apps.bench.runner import run_bench
+from ifgm_ref.apps.bench.tasks import barn_specs
+from ifgm_ref.io.barn import bundled_barn_folder
 
 PLANNERS = ["ifgm", "iba", "distbug", "bug2", "fgm", "apf"]
 #: Planners that also run with the paper's IR sensor.

@@ -5,9 +5,9 @@ Run from the project root: ``python benchmarks/bench_barn_scan.py`` (``--help`` 
 
 BARN's worlds hold some 240 cylinders, all within the Jackal LiDAR's 30 m of one another, so
 culling by range keeps them all and a 720-ray scan computed every one of the 170,000 or so
-(cylinder, ray) pairs. :mod:`ifgm_ref.raycast` now tests a cylinder only against the rays
+(cylinder, ray) pairs. :mod:`ifgm_ref.sim.raycast` now tests a cylinder only against the rays
 that face it (``_facing_pairs``) once there are ``_PAIRS_FROM`` pairs or more; this script
-times :meth:`ifgm_ref.sensor.IRSensor.scan` both ways, by setting ``_PAIRS_FROM`` beyond
+times :meth:`ifgm_ref.sim.sensor.IRSensor.scan` both ways, by setting ``_PAIRS_FROM`` beyond
 reach (``every pair``, the code before) and back (``facing pairs``), on the same poses: a
 walk from BARN's start through each world's cylinders. It prints the median scan of each
 world, their ratio, and whether the two gave the same ranges to the bit (they must: it
@@ -29,12 +29,12 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")  # one core, as the benchmark
 if importlib.util.find_spec("ifgm_ref") is None:  # run from a checkout without installing
     sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
-from ifgm_ref import raycast
-from ifgm_ref.bench import barn
-from ifgm_ref.bench.report import machine
-from ifgm_ref.pose import Pose
-from ifgm_ref.sensor import IRSensor
-from ifgm_ref.world import World
+from ifgm_ref.apps.bench.report import machine
+from ifgm_ref.core.pose import Pose
+from ifgm_ref.io import barn
+from ifgm_ref.sim import raycast
+from ifgm_ref.sim.sensor import IRSensor
+from ifgm_ref.sim.world import World
 
 #: The bundled worlds timed by default: a spread of BARN's difficulty ranking (0 to 299).
 WORLDS = (1, 50, 100, 151, 200, 250, 299)

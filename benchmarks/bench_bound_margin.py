@@ -2,7 +2,7 @@
 
 Run from the project root: ``python benchmarks/bench_bound_margin.py`` (``--help`` for
 options). The oracle fails a planner that has not reached the goal within
-:func:`ifgm_ref.convergence.time_bound` of the world; a bound the reference only just meets
+:func:`ifgm_ref.sim.convergence.time_bound` of the world; a bound the reference only just meets
 rejects every faithful port that is a little slower (rounding, a wobble of the heading).
 
 Target (issue "the oracle a stranger can trust"): where a reference planner that promises
@@ -19,11 +19,11 @@ import os
 import statistics
 from collections import defaultdict
 
-from ifgm_ref.bench.report import machine
-from ifgm_ref.bench.runner import run_bench
-from ifgm_ref.bench.tasks import generated_specs
-from ifgm_ref.convergence import time_bound
-from ifgm_ref.worldgen.classes import GENERATORS
+from ifgm_ref.apps.bench.report import machine
+from ifgm_ref.apps.bench.runner import run_bench
+from ifgm_ref.apps.bench.tasks import generated_specs
+from ifgm_ref.sim.convergence import time_bound
+from ifgm_ref.sim.worldgen.classes import GENERATORS
 
 #: The reference planners that promise convergence in every solvable class.
 CONVERGENT = ("bug1", "bug2", "distbug", "iba", "ifgm")

@@ -9,7 +9,7 @@ The decisions
 The episodes of ``benchmarks/bench_decision.py``, recorded by its ``record``: each planner
 (IFGM, FGM, DistBug; IBA for information) in each of its ``WORLDS`` with the default robot
 and sensor, up to ``--max-time`` seconds, the stall rules off. They are written as protocol
-lines (``ifgm_ref.transport.wire``): per episode a ``reset``, then each ``observe`` and the
+lines (``ifgm_ref.io.transport.wire``): per episode a ``reset``, then each ``observe`` and the
 ``command`` the Python planner answered.
 
 The time (host)
@@ -62,8 +62,8 @@ sys.path[:0] = [str(BENCHMARKS), str(ROOT)]  # bench_decision and cortex_m4; ifg
 import bench_decision  # noqa: E402
 import cortex_m4  # noqa: E402
 
-from ifgm_ref.bench.report import machine  # noqa: E402
-from ifgm_ref.transport import wire  # noqa: E402
+from ifgm_ref.apps.bench.report import machine  # noqa: E402
+from ifgm_ref.io.transport import wire  # noqa: E402
 
 #: The C port.
 PORT = ROOT / "examples" / "c"

@@ -32,11 +32,11 @@ import time
 from dataclasses import dataclass
 from pathlib import Path
 
-from ifgm_ref.bench.report import machine
+from ifgm_ref.apps.bench.report import machine
+from ifgm_ref.core.pose import Point, Pose
+from ifgm_ref.core.protocol import EpisodeParams
+from ifgm_ref.io.transport.external import ExternalPlanner
 from ifgm_ref.oracle.runner import Status
-from ifgm_ref.pose import Point, Pose
-from ifgm_ref.protocol import EpisodeParams
-from ifgm_ref.transport.external import ExternalPlanner
 
 RELAY = Path(__file__).resolve().parent / "cmd_relay.py"
 #: The start-up timeout of the starts timed alone, s: long enough never to cut one short.

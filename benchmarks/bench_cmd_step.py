@@ -4,8 +4,8 @@ Run from the project root: ``python benchmarks/bench_cmd_step.py [--repeats N] [
 
 The reference IFGM's episode in ``u_trap`` is recorded in process; its observations are then
 handed, open loop, to the program (default: the C port, ``examples/c/build/ifgm_json``, built
-with ``make`` if missing) through :class:`~ifgm_ref.transport.external.ExternalPlanner`, once
-with each kind of :mod:`~ifgm_ref.transport.pipes` (alternating, ``--repeats`` passes each,
+with ``make`` if missing) through :class:`~ifgm_ref.io.transport.external.ExternalPlanner`, once
+with each kind of :mod:`~ifgm_ref.io.transport.pipes` (alternating, ``--repeats`` passes each,
 one program per pass). The report gives the median pass in microseconds per step and, apart,
 what the oracle's side spends encoding the ``observe`` message and reading the ``command``
 reply, which both kinds share.
@@ -19,20 +19,20 @@ import subprocess
 import time
 from pathlib import Path
 
-from ifgm_ref.bench.report import machine
-from ifgm_ref.planners import make_planner
-from ifgm_ref.recording import RecordingPlanner
-from ifgm_ref.scenarios import resolve_world
-from ifgm_ref.simulator import simulate
-from ifgm_ref.transport import pipes
-from ifgm_ref.transport.external import ExternalPlanner
-from ifgm_ref.transport.wire import (
+from ifgm_ref.apps.bench.report import machine
+from ifgm_ref.core.recording import RecordingPlanner
+from ifgm_ref.io.scenarios import resolve_world
+from ifgm_ref.io.transport import pipes
+from ifgm_ref.io.transport.external import ExternalPlanner
+from ifgm_ref.io.transport.wire import (
     command_message,
     decode,
     encode,
     observe_message,
     parse_command,
 )
+from ifgm_ref.planners import make_planner
+from ifgm_ref.sim.simulator import simulate
 
 ROOT = Path(__file__).resolve().parent.parent
 C_PORT = ROOT / "examples" / "c" / "build" / "ifgm_json"

@@ -12,14 +12,14 @@ They may overlap, as world obstacles may. The robot poses are drawn uniformly in
 
 The measurements
 ----------------
-* ``scan``: :meth:`ifgm_ref.sensor.IRSensor.scan` with the default sensor -- 135 degrees,
+* ``scan``: :meth:`ifgm_ref.sim.sensor.IRSensor.scan` with the default sensor -- 135 degrees,
   76 rays, ``range_max`` 15 ft -- so culling leaves the edges near the robot (about 18 of
   100 on average).
 * ``scan, no culling``: the same with ``range_max`` 100 ft, beyond the field's diagonal
   (85 ft): every edge survives culling, the worst case of this world.
-* ``ray cast only``: :meth:`ifgm_ref.raycast.RayCaster.cast_fan` alone, the kernel under
+* ``ray cast only``: :meth:`ifgm_ref.sim.raycast.RayCaster.cast_fan` alone, the kernel under
   ``scan`` (the difference is the ``LaserScan`` built around each result).
-* ``simulator step``: :func:`ifgm_ref.simulator.simulate` with the ``straight`` planner in a
+* ``simulator step``: :func:`ifgm_ref.sim.simulator.simulate` with the ``straight`` planner in a
   corridor world of 20 obstacles (10 boxes either side of the straight line, all within
   sensor range of it), timed over a whole 300 s episode: each step scans, decides, moves,
   checks the swept disc for collision and records the trace.
@@ -51,15 +51,15 @@ if importlib.util.find_spec("ifgm_ref") is None:  # run from a checkout without 
 import numpy as np
 import shapely
 
-from ifgm_ref.bench.report import machine
-from ifgm_ref.params import SensorParams, SimParams
+from ifgm_ref.apps.bench.report import machine
+from ifgm_ref.core.params import SensorParams, SimParams
+from ifgm_ref.core.pose import Point, Pose
 from ifgm_ref.planners.straight import StraightPlanner
-from ifgm_ref.pose import Point, Pose
-from ifgm_ref.raycast import RayCaster, RayFan
-from ifgm_ref.sensor import IRSensor
-from ifgm_ref.shapes import rectangle
-from ifgm_ref.simulator import simulate
-from ifgm_ref.world import Polygon, World
+from ifgm_ref.sim.raycast import RayCaster, RayFan
+from ifgm_ref.sim.sensor import IRSensor
+from ifgm_ref.sim.shapes import rectangle
+from ifgm_ref.sim.simulator import simulate
+from ifgm_ref.sim.world import Polygon, World
 
 #: Side of the square field, ft.
 FIELD_FT = 60.0

@@ -7,7 +7,7 @@ The decisions
 Each planner (IFGM, FGM, DistBug; IBA for information) runs one real episode in each world
 (by default ``scenario1``, the paper's simple obstacles, and ``u_trap``, a U across the
 line), with the default robot, sensor (135 degrees, 76 rays, 15 ft) and time step, up to
-``--max-time`` seconds; :class:`~ifgm_ref.recording.RecordingPlanner` keeps every
+``--max-time`` seconds; :class:`~ifgm_ref.core.recording.RecordingPlanner` keeps every
 observation and the command answered. So each planner is timed on its own decisions: moving
 to the goal, meeting and avoiding obstacles, and (FGM in the U) trapped with every ray
 blocked, where FGM's arrays are largest (every return against every ray). The default limit
@@ -75,15 +75,15 @@ import numpy as np
 from numpy.typing import NDArray
 
 import ifgm_ref
-from ifgm_ref.bench.report import machine
-from ifgm_ref.laserscan import LaserScan
-from ifgm_ref.params import SimParams
+from ifgm_ref.apps.bench.report import machine
+from ifgm_ref.core.laserscan import LaserScan
+from ifgm_ref.core.params import SimParams
+from ifgm_ref.core.protocol import Command, Observation, Planner
+from ifgm_ref.core.recording import Recording, RecordingPlanner
+from ifgm_ref.core.recording import replay as replay_recording
+from ifgm_ref.io.scenarios import resolve_world
 from ifgm_ref.planners import make_planner
-from ifgm_ref.protocol import Command, Observation, Planner
-from ifgm_ref.recording import Recording, RecordingPlanner
-from ifgm_ref.recording import replay as replay_recording
-from ifgm_ref.scenarios import resolve_world
-from ifgm_ref.simulator import simulate
+from ifgm_ref.sim.simulator import simulate
 
 #: The planners compared (IBA, IFGM's avoidance half, for information).
 PLANNERS = ("ifgm", "fgm", "distbug", "iba")
@@ -208,7 +208,7 @@ def replay(
     step: Callable[[Planner, Observation], Command],
     swap: Callable[[Observation], Observation] | None = None,
 ) -> None:
-    """Replay ``episodes`` into fresh planners (:func:`ifgm_ref.recording.replay`),
+    """Replay ``episodes`` into fresh planners (:func:`ifgm_ref.core.recording.replay`),
     deciding each step by ``step(planner, observation)``; check that every command equals the
     recorded one. ``swap`` may replace the observations handed over (prepared before the
     episode starts)."""

@@ -3,13 +3,13 @@
 Run from the project root: ``python benchmarks/bench_engines.py`` (``--help`` for options);
 the mujoco engine needs the ``physics`` extra (``pip install -e ".[physics]"``).
 
-For each world and planner it runs the episode :func:`ifgm_ref.simulator.simulate` runs for
-``ifgm-ref simulate WORLD --planner P --engine E``, in both engines (:mod:`ifgm_ref.engine`):
+For each world and planner it runs the episode :func:`ifgm_ref.sim.simulator.simulate` runs for
+``ifgm-ref simulate WORLD --planner P --engine E``, in both engines (:mod:`ifgm_ref.sim.engine`):
 
 * the paper's worlds ``u_trap`` and ``scenario1`` with the paper's robot and IR sensor
   (``SimParams()``: ``dt`` 0.1 s; the mujoco engine's ``paper`` body);
 * BARN's worlds 1 and 100 of the bundled set, with BARN's robot, the Jackal LiDAR (720 rays)
-  and BARN's settings (``ifgm_ref.barn.SIM``: ``dt`` 0.05 s, 100 s; the ``jackal`` body).
+  and BARN's settings (``ifgm_ref.io.barn.SIM``: ``dt`` 0.05 s, 100 s; the ``jackal`` body).
 
 An episode's wall time includes building its engine (the kinematic engine's sensor and
 checker; the MuJoCo model compiled from the world), as ``ifgm-ref bench`` pays it once per
@@ -39,14 +39,14 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")  # one core, as the benchmark
 if importlib.util.find_spec("ifgm_ref") is None:  # run from a checkout without installing
     sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
-from ifgm_ref.bench import barn
-from ifgm_ref.bench.report import machine
-from ifgm_ref.engine import require_physics
-from ifgm_ref.params import ENGINES, SimParams
+from ifgm_ref.apps.bench.report import machine
+from ifgm_ref.core.params import ENGINES, SimParams
+from ifgm_ref.io import barn
+from ifgm_ref.io.scenarios import resolve_world
 from ifgm_ref.planners import make_planner
-from ifgm_ref.scenarios import resolve_world
-from ifgm_ref.simulator import simulate
-from ifgm_ref.world import World
+from ifgm_ref.sim.engine import require_physics
+from ifgm_ref.sim.simulator import simulate
+from ifgm_ref.sim.world import World
 
 #: The planners run by default.
 PLANNERS = ("ifgm", "iba")
@@ -135,7 +135,7 @@ def main() -> None:
     if unknown:
         parser.error(f"unknown world(s) {', '.join(unknown)}; choose from {', '.join(CASES)}")
     require_physics()
-    import ifgm_ref.physics.engine  # noqa: F401 -- MuJoCo's import, outside the timing
+    import ifgm_ref.sim.physics.mujoco  # noqa: F401 -- MuJoCo's import, outside the timing
 
     print(f"machine: {machine()}")
     print(f"median of {args.repeats} passes, engines alternating; wall time, build included")

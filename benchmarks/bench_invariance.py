@@ -12,8 +12,8 @@ runs, the planner steps in each, and its seconds (mean), of which simulating.
 The examples do not come from Hypothesis, whose draws depend on the literals of the modules
 loaded (``docs/oracle.md``) and so on the oracle's own code: example ``k`` is drawn from
 ``numpy.random.default_rng([seed, k])`` with the world generators of
-:mod:`ifgm_ref.worldgen.classes` (a class of the planner's promised ones, uniformly; a
-placement from :func:`~ifgm_ref.worldgen.classes.placement`; a scale factor from the check's
+:mod:`ifgm_ref.sim.worldgen.classes` (a class of the planner's promised ones, uniformly; a
+placement from :func:`~ifgm_ref.sim.worldgen.classes.placement`; a scale factor from the check's
 ``EXACT_SCALES + ROUNDED_SCALES``), and each is handed to the check's test function. The
 script uses only names that exist before and after issue 24 changed the checks, so the same
 command measures both (``PYTHONPATH=<old tree> python benchmarks/bench_invariance.py``).
@@ -40,7 +40,9 @@ import numpy as np
 
 import ifgm_ref
 import ifgm_ref.oracle.checks as checks
-from ifgm_ref.bench.report import machine
+from ifgm_ref.apps.bench.report import machine
+from ifgm_ref.core.pose import Point, Pose
+from ifgm_ref.core.protocol import Command, EpisodeParams, Observation, Planner
 from ifgm_ref.oracle.check_types import CheckFailed, Recorder
 from ifgm_ref.oracle.implementation import Implementation, promises_of
 from ifgm_ref.oracle.invariance import EXACT_SCALES, ROUNDED_SCALES
@@ -48,11 +50,9 @@ from ifgm_ref.oracle.mutants import MUTANTS
 from ifgm_ref.oracle.profiles import Profile
 from ifgm_ref.oracle.runner import run_check
 from ifgm_ref.oracle.variants import VARIANTS
-from ifgm_ref.pose import Point, Pose
-from ifgm_ref.protocol import Command, EpisodeParams, Observation, Planner
-from ifgm_ref.simulator import Run
-from ifgm_ref.worldgen.classes import GENERATORS, placement
-from ifgm_ref.worldgen.draws import RandomDraw
+from ifgm_ref.sim.simulator import Run
+from ifgm_ref.sim.worldgen.classes import GENERATORS, placement
+from ifgm_ref.sim.worldgen.draws import RandomDraw
 
 #: The two checks measured.
 CHECKS = ("rigid_motion_invariant", "scale_invariant")

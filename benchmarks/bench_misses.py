@@ -16,7 +16,7 @@ episode) and given its kind from the trace; every other miss takes its kind from
     Any other collision: the robot drove into the obstacle at the speed it was asked for (a
     gap the planner judged wide enough, the disc's side touching while it turns).
 ``stall: disc rule`` / ``stall: lap rule``
-    The simulator's stall rules (:mod:`ifgm_ref.simulator`).
+    The simulator's stall rules (:mod:`ifgm_ref.sim.simulator`).
 ``time_limit``, ``goal_unreachable``
     Still going at BARN's 100 s; the planner's own verdict (IBA after a full circuit).
 
@@ -39,14 +39,14 @@ from pathlib import Path
 if importlib.util.find_spec("ifgm_ref") is None:  # run from a checkout without installing
     sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
-from ifgm_ref.barn import gazebo_task
-from ifgm_ref.bench.report import Row, read_rows
-from ifgm_ref.collision import ClearanceChecker
-from ifgm_ref.params import SimParams, robot_changes
-from ifgm_ref.physics.bodies import body_for, body_named
+from ifgm_ref.apps.bench.report import Row, read_rows
+from ifgm_ref.core.params import SimParams, robot_changes
+from ifgm_ref.core.pose import Pose
+from ifgm_ref.io.barn import gazebo_task
 from ifgm_ref.planners import make_planner
-from ifgm_ref.pose import Pose
-from ifgm_ref.simulator import Run, TraceStep, simulate
+from ifgm_ref.sim.collision import ClearanceChecker
+from ifgm_ref.sim.physics.bodies import body_for, body_named
+from ifgm_ref.sim.simulator import Run, TraceStep, simulate
 
 FIELDS = (
     "world",

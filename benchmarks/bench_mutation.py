@@ -66,16 +66,16 @@ ROOT = Path(__file__).resolve().parent.parent
 PACKAGE = ROOT / "ifgm_ref"
 #: The decision code of IFGM (issue 26's list).
 FILES = (
-    "planners/ifgm.py",
-    "planners/ifgm_atoms.py",
+    "planners/ifgm/planner.py",
+    "planners/ifgm/atoms.py",
     "planners/iba.py",
     "planners/boundary.py",
     "planners/sight.py",
-    "flowchart.py",
-    "percepts/clusters.py",
-    "percepts/corridor.py",
-    "percepts/memory.py",
-    "percepts/points.py",
+    "paper/flowchart.py",
+    "paper/percepts/clusters.py",
+    "paper/percepts/corridor.py",
+    "paper/percepts/memory.py",
+    "paper/percepts/points.py",
 )
 #: The tests that exercise the decision code.
 TESTS = (
@@ -191,8 +191,8 @@ def _replace(tree: ast.AST, old: ast.AST, new: ast.AST) -> None:
 #: The trace filter: every IFGM trace in the built-in worlds, as CSV (run in the copy).
 _TRACES = """
 from ifgm_ref.planners import make_planner
-from ifgm_ref.scenarios import BUILTIN_WORLDS, resolve_world
-from ifgm_ref.simulator import simulate
+from ifgm_ref.io.scenarios import BUILTIN_WORLDS, resolve_world
+from ifgm_ref.sim.simulator import simulate
 for name in sorted(BUILTIN_WORLDS):
     print(simulate(resolve_world(name), make_planner("ifgm")).trace_csv(), end="")
 """

@@ -19,8 +19,8 @@ import os
 import statistics
 import time
 
-import ifgm_ref.equations
-from ifgm_ref.bench.report import machine
+import ifgm_ref.paper.equations
+from ifgm_ref.apps.bench.report import machine
 from ifgm_ref.oracle.check_types import Kind
 from ifgm_ref.oracle.checks import CHECKS
 from ifgm_ref.oracle.runner import Report, Status, check_planner
@@ -47,7 +47,7 @@ def main() -> None:
                 reports[level] = check_planner(
                     planner,
                     profile="quick",
-                    equations=ifgm_ref.equations,
+                    equations=ifgm_ref.paper.equations,
                     jobs=args.jobs,
                     artifacts=None,
                     level=level,

@@ -22,7 +22,7 @@ import os
 import statistics
 from concurrent.futures import ProcessPoolExecutor
 
-from ifgm_ref.bench.report import machine
+from ifgm_ref.apps.bench.report import machine
 from ifgm_ref.oracle.checks import CHECKS
 from ifgm_ref.oracle.implementation import Implementation, promises_of
 from ifgm_ref.oracle.mutants import MUTANTS

@@ -25,10 +25,10 @@ import statistics
 import time
 from collections.abc import Sequence
 
-from ifgm_ref.bench.report import machine, summarize
-from ifgm_ref.bench.runner import run_bench
-from ifgm_ref.bench.tasks import Row, WorldSpec, generated_specs
-from ifgm_ref.cli.bench import DEFAULT_BENCH_CLASSES, DEFAULT_BENCH_PLANNERS
+from ifgm_ref.apps.bench.report import machine, summarize
+from ifgm_ref.apps.bench.runner import run_bench
+from ifgm_ref.apps.bench.tasks import Row, WorldSpec, generated_specs
+from ifgm_ref.apps.cli.bench import DEFAULT_BENCH_CLASSES, DEFAULT_BENCH_PLANNERS
 
 CLASSES = list(DEFAULT_BENCH_CLASSES)
 PLANNERS = list(DEFAULT_BENCH_PLANNERS)

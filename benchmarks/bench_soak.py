@@ -10,10 +10,10 @@ Run from the project root (``--help`` for the options; ``--dask`` needs
 
 Each planner runs noise-free in the worlds ``random_world(CLASS, SEED)`` of every class, for
 the seeds ``--first-seed`` to ``--first-seed + --per-class - 1``, each episode to the world's
-convergence bound (:mod:`ifgm_ref.bench.soak`). The script prints the machine, one line per
+convergence bound (:mod:`ifgm_ref.apps.bench.soak`). The script prints the machine, one line per
 failure as it happens (stderr), then a table of planner x class: goals reached of N, the
 failures by stop reason and the upper end of the Wilson 95 % interval of the failure rate
-(:mod:`ifgm_ref.bench.soak_report`); then every failure with the command that replays it,
+(:mod:`ifgm_ref.apps.bench.soak_report`); then every failure with the command that replays it,
 and the wall time and throughput. It asserts nothing.
 
 Into ``--out`` (default ``soak-results``) it writes ``rows.partial.jsonl`` as rows arrive (an
@@ -38,8 +38,8 @@ from pathlib import Path
 
 from tqdm import tqdm
 
-from ifgm_ref.bench.report import machine
-from ifgm_ref.bench.soak import (
+from ifgm_ref.apps.bench.report import machine
+from ifgm_ref.apps.bench.soak import (
     SOAK_CLASSES,
     SOAK_PLANNERS,
     SoakRow,
@@ -49,12 +49,12 @@ from ifgm_ref.bench.soak import (
     soak_world,
     write_rows,
 )
-from ifgm_ref.bench.soak_report import describe, failure_report, summarise, summary_table
-from ifgm_ref.cli.common import EXIT_USAGE, Parser, names, non_negative_int
-from ifgm_ref.cli.simulate import PLOT_SUFFIXES
-from ifgm_ref.errors import IfgmRefError, ParameterError
-from ifgm_ref.transport.loading import load_planner
-from ifgm_ref.worldfile import save_world
+from ifgm_ref.apps.bench.soak_report import describe, failure_report, summarise, summary_table
+from ifgm_ref.apps.cli.common import EXIT_USAGE, Parser, names, non_negative_int
+from ifgm_ref.apps.cli.simulate import PLOT_SUFFIXES
+from ifgm_ref.core.errors import IfgmRefError, ParameterError
+from ifgm_ref.io.transport.loading import load_planner
+from ifgm_ref.io.worldfile import save_world
 
 #: How the failure list names this script in its replay commands.
 PROGRAM = "python benchmarks/bench_soak.py"
@@ -145,7 +145,7 @@ def run_replay(args: argparse.Namespace) -> int:
     world, row, run = replay(args.planner, world_class, seed)
     print(describe(row))
     if args.plot and run is not None:
-        from ifgm_ref.plotting import plot_run, save_figure
+        from ifgm_ref.sim.plotting import plot_run, save_figure
 
         save_figure(plot_run(world, run.trace, run.result), args.plot)
         print(f"wrote {args.plot}")

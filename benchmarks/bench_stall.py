@@ -2,17 +2,17 @@
 
 Run from the project root: ``python benchmarks/bench_stall.py`` (``--help`` for options; 4
 min on 2 processes with the defaults, on a quiet machine). The lap rule
-(:mod:`ifgm_ref.laps`) ends an episode ``stalled`` when the robot is back within ``rho`` of
+(:mod:`ifgm_ref.sim.laps`) ends an episode ``stalled`` when the robot is back within ``rho`` of
 a place, travelling the same way, after ``K`` laps of at least ``L`` each, its best distance
 to the goal no better than at the first lap's start by more than ``eps``. This script
-measures its thresholds as the disc rule's were measured (:mod:`ifgm_ref.simulator`): every
+measures its thresholds as the disc rule's were measured (:mod:`ifgm_ref.sim.simulator`): every
 planner in every built-in world, ``--worlds`` generated worlds per class, BARN's sample
 worlds in ``tests/worlds/barn`` and the test worlds in ``tests/worlds`` (the cases issues
 found: livelocks, false ``goal_unreachable``), each to the oracle's time bound (BARN's:
 100 s), first with the lap rule off (the disc rule on, as by default). ``--draws``,
 ``--barn DIR`` and ``--noise`` add or replace worlds and conditions.
 
-Each trace is then replayed through the rule's own code (:class:`ifgm_ref.laps.LapLog`, the
+Each trace is then replayed through the rule's own code (:class:`ifgm_ref.sim.laps.LapLog`, the
 path lengths summed as the simulator sums them, so the replay fires at the step the
 simulator would), and the script prints:
 
@@ -49,26 +49,26 @@ from typing import Any
 
 from tqdm import tqdm
 
-from ifgm_ref.bench import barn
-from ifgm_ref.bench.report import machine
-from ifgm_ref.bench.tasks import (
+from ifgm_ref.apps.bench.report import machine
+from ifgm_ref.apps.bench.tasks import (
     barn_specs,
     builtin_specs,
     folder_specs,
     generated_specs,
     noise_seed,
 )
-from ifgm_ref.convergence import time_bound
-from ifgm_ref.formulas import Scale
-from ifgm_ref.laps import LapLog, LapRule
-from ifgm_ref.noise import NoiseLevels
-from ifgm_ref.params import SimParams
+from ifgm_ref.core.formulas import Scale
+from ifgm_ref.core.params import SimParams
+from ifgm_ref.core.pose import distance
+from ifgm_ref.core.protocol import EpisodeParams
+from ifgm_ref.io import barn
 from ifgm_ref.planners import PLANNERS, make_planner
-from ifgm_ref.pose import distance
-from ifgm_ref.protocol import EpisodeParams
-from ifgm_ref.simulator import Run, StopReason, simulate
-from ifgm_ref.world import World
-from ifgm_ref.worldgen.classes import GENERATORS, random_world
+from ifgm_ref.sim.convergence import time_bound
+from ifgm_ref.sim.laps import LapLog, LapRule
+from ifgm_ref.sim.noise import NoiseLevels
+from ifgm_ref.sim.simulator import Run, StopReason, simulate
+from ifgm_ref.sim.world import World
+from ifgm_ref.sim.worldgen.classes import GENERATORS, random_world
 
 TEST_WORLDS = Path(__file__).resolve().parent.parent / "tests" / "worlds"
 #: ``(rho, L)`` as multiples of the defaults (``r`` and ``2 pi r``): the default first.

@@ -35,13 +35,13 @@ if importlib.util.find_spec("ifgm_ref") is None:  # run from a checkout without 
 
 import itertools
 
-from ifgm_ref.barn import gazebo_task
-from ifgm_ref.bench.report import Row, read_rows
-from ifgm_ref.params import robot_changes
-from ifgm_ref.physics.engine import MujocoEngine
+from ifgm_ref.apps.bench.report import Row, read_rows
+from ifgm_ref.core.params import robot_changes
+from ifgm_ref.core.pose import wrap_angle
+from ifgm_ref.io.barn import gazebo_task
 from ifgm_ref.planners import make_planner
-from ifgm_ref.pose import wrap_angle
-from ifgm_ref.simulator import Run, simulate
+from ifgm_ref.sim.physics.mujoco import MujocoEngine
+from ifgm_ref.sim.simulator import Run, simulate
 
 FIELDS = (
     "world",

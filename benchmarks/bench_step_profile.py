@@ -2,15 +2,15 @@
 
 Run from the project root: ``python benchmarks/bench_step_profile.py`` (``--help`` for
 options). For each world and sensor it runs one episode of the planner with
-:func:`ifgm_ref.simulator.simulate` and times it per step; then it times each part of the
+:func:`ifgm_ref.sim.simulator.simulate` and times it per step; then it times each part of the
 step again, on the same episode, one part at a time:
 
-* ``scan``: :meth:`ifgm_ref.sensor.IRSensor.scan` at every pose the robot was at;
-* ``clearance``: :meth:`ifgm_ref.collision.ClearanceChecker.segment_clearance` of every move;
-* ``robot``: :func:`ifgm_ref.robot.advance` of every command;
+* ``scan``: :meth:`ifgm_ref.sim.sensor.IRSensor.scan` at every pose the robot was at;
+* ``clearance``: :meth:`ifgm_ref.sim.collision.ClearanceChecker.segment_clearance` of every move;
+* ``robot``: :func:`ifgm_ref.sim.robot.advance` of every command;
 * ``planner``: a fresh planner replayed through the episode's observations
-  (:func:`ifgm_ref.recording.replay`), open loop;
-* ``trace``: the :class:`~ifgm_ref.simulator.TraceStep` of every step.
+  (:func:`ifgm_ref.core.recording.replay`), open loop;
+* ``trace``: the :class:`~ifgm_ref.sim.simulator.TraceStep` of every step.
 
 ``rest`` is the whole step less the parts: the simulator's own loop (the stall and lap
 rules, odometry and actuation, the observation). Times are microseconds per step, the median
@@ -33,19 +33,19 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")  # one core, as the benchmark
 if importlib.util.find_spec("ifgm_ref") is None:  # run from a checkout without installing
     sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
-from ifgm_ref.bench import barn
-from ifgm_ref.bench.report import machine
-from ifgm_ref.collision import ClearanceChecker
-from ifgm_ref.params import SimParams
+from ifgm_ref.apps.bench.report import machine
+from ifgm_ref.core.params import SimParams
+from ifgm_ref.core.pose import Pose
+from ifgm_ref.core.recording import RecordingPlanner, replay
+from ifgm_ref.io import barn
+from ifgm_ref.io.scenarios import resolve_world
 from ifgm_ref.planners import make_planner
-from ifgm_ref.pose import Pose
-from ifgm_ref.recording import RecordingPlanner, replay
-from ifgm_ref.robot import advance
-from ifgm_ref.scenarios import resolve_world
-from ifgm_ref.sensor import IRSensor
-from ifgm_ref.simulator import TraceStep, simulate
-from ifgm_ref.world import World
-from ifgm_ref.worldgen.classes import random_world
+from ifgm_ref.sim.collision import ClearanceChecker
+from ifgm_ref.sim.robot import advance
+from ifgm_ref.sim.sensor import IRSensor
+from ifgm_ref.sim.simulator import TraceStep, simulate
+from ifgm_ref.sim.world import World
+from ifgm_ref.sim.worldgen.classes import random_world
 
 #: The episodes profiled: a name, how to build the world, the simulation settings.
 CASES: dict[str, Callable[[], tuple[World, SimParams]]] = {

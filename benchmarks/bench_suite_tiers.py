@@ -27,7 +27,7 @@ import tempfile
 import time
 from pathlib import Path
 
-from ifgm_ref.bench.report import machine
+from ifgm_ref.apps.bench.report import machine
 from ifgm_ref.oracle.check_types import Kind
 from ifgm_ref.oracle.checks import CHECKS
 

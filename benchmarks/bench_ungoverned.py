@@ -25,12 +25,12 @@ from pathlib import Path
 if importlib.util.find_spec("ifgm_ref") is None:  # run from a checkout without installing
     sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
-from ifgm_ref.barn import gazebo_task
-from ifgm_ref.bench.report import Row, read_rows
-from ifgm_ref.params import robot_changes
+from ifgm_ref.apps.bench.report import Row, read_rows
+from ifgm_ref.core.params import robot_changes
+from ifgm_ref.io.barn import gazebo_task
 from ifgm_ref.planners import make_planner
 from ifgm_ref.planners.governor import StopsAtOnce
-from ifgm_ref.simulator import simulate
+from ifgm_ref.sim.simulator import simulate
 
 FIELDS = ("world", "planner", "robot", "governed", "ungoverned", "ungoverned_min_clearance")
 

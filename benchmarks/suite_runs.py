@@ -55,7 +55,7 @@ import time
 from dataclasses import dataclass
 from pathlib import Path
 
-from ifgm_ref.bench.report import machine
+from ifgm_ref.apps.bench.report import machine
 from ifgm_ref.oracle.mutants import MUTANTS
 
 ROOT = Path(__file__).resolve().parent.parent

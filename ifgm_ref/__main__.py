@@ -2,7 +2,7 @@
 
 import sys
 
-from ifgm_ref.cli import main
+from ifgm_ref.apps.cli import main
 
 if __name__ == "__main__":
     sys.exit(main())

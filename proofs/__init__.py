@@ -10,6 +10,6 @@ the braking governor (``proofs.braking``, with ``proofs.braking_fan``). Each has
 - ``main()``: prints the derivation as a worked page: ``python -m proofs.eq4``.
 
 Claims are cited as ``proofs.eqN:claim_name`` (e.g. in ``docs/errata.md``). Claims of kind
-``numeric spot check`` tie the sympy formulas to :mod:`ifgm_ref.equations` at sample points;
+``numeric spot check`` tie the sympy formulas to :mod:`ifgm_ref.paper.equations` at sample points;
 they are regression tests, not proofs.
 """

@@ -325,7 +325,7 @@ def _indent(block: str, spaces: int) -> str:
 
 
 def wrap_exact(angle: sp.Expr) -> sp.Expr:
-    """Wrap an exact sympy angle into ``[-pi, pi)``, as :func:`ifgm_ref.pose.wrap_angle` does.
+    """Wrap an exact sympy angle into ``[-pi, pi)``, as :func:`ifgm_ref.core.pose.wrap_angle` does.
 
     >>> wrap_exact(3 * sp.pi / 2), wrap_exact(sp.pi)
     (-pi/2, -pi)

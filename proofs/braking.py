@@ -16,7 +16,7 @@ from collections.abc import Callable
 
 import sympy as sp
 
-from ifgm_ref.paper import traces
+from ifgm_ref.core.elements import traces
 from ifgm_ref.planners.governor import Limits
 from proofs import braking_fan as fan
 from proofs._util import Derivation, entry_points

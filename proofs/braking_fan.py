@@ -20,11 +20,11 @@ import numpy as np
 import sympy as sp
 from sympy.calculus.util import function_range
 
-from ifgm_ref.laserscan import LaserScan
+from ifgm_ref.core.laserscan import LaserScan
+from ifgm_ref.core.pose import Point, Pose
+from ifgm_ref.core.protocol import Command, Observation
 from ifgm_ref.planners import governor as gov
 from ifgm_ref.planners.governor import GovernorState, Limits
-from ifgm_ref.pose import Point, Pose
-from ifgm_ref.protocol import Command, Observation
 from proofs._util import Derivation, held_eq
 
 __all__ = [

@@ -13,8 +13,8 @@ import functools
 
 import sympy as sp
 
-from ifgm_ref.equations import eq1_gap_midpoint
-from ifgm_ref.paper import traces
+from ifgm_ref.core.elements import traces
+from ifgm_ref.paper.equations import eq1_gap_midpoint
 from proofs._util import Derivation, entry_points
 
 __all__ = ["claims", "derivation", "main"]
@@ -162,7 +162,7 @@ def derivation() -> Derivation:
             lambda a, b, c, e, axis=axis: eq1_gap_midpoint((a, b), (c, e))[axis],
             lambda a, b, c, e, axis=axis: float(formula(a, b, c, e)[axis]),
             points,
-            f"ifgm_ref.equations.eq1_gap_midpoint gives M's {name} coordinate",
+            f"ifgm_ref.paper.equations.eq1_gap_midpoint gives M's {name} coordinate",
             abs_tol=0.0,
             reason="halving is exact in binary floating point, so x1/2 + x2/2 and "
             "(x1 + x2)/2 round identically",

@@ -19,13 +19,13 @@ import math
 
 import sympy as sp
 
-from ifgm_ref.equations import (
+from ifgm_ref.core.elements import traces
+from ifgm_ref.paper.equations import (
     eq1_gap_midpoint,
     eq2_gap_angle,
     eq2_gap_angle_literal,
     fgm_gap_centre_angle,
 )
-from ifgm_ref.paper import traces
 from proofs._util import Derivation, entry_points, held_eq
 
 __all__ = ["claims", "derivation", "main"]

@@ -14,8 +14,8 @@ import math
 
 import sympy as sp
 
-from ifgm_ref.equations import eq3_goal_angle, eq3_goal_angle_literal
-from ifgm_ref.paper import traces
+from ifgm_ref.core.elements import traces
+from ifgm_ref.paper.equations import eq3_goal_angle, eq3_goal_angle_literal
 from proofs._util import Derivation, entry_points, held_eq
 
 __all__ = ["claims", "derivation", "main"]

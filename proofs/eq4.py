@@ -14,12 +14,12 @@ import math
 
 import sympy as sp
 
-from ifgm_ref.equations import (
+from ifgm_ref.core.elements import traces
+from ifgm_ref.paper.equations import (
     eq4_final_heading,
     eq4_final_heading_fgm,
     eq4_final_heading_literal,
 )
-from ifgm_ref.paper import traces
 from proofs._util import Derivation, entry_points, held_eq, wrap_exact
 
 __all__ = ["claims", "derivation", "main"]

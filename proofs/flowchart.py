@@ -1,6 +1,6 @@
 """Figure 3, reconstructed: its guards partition the percept space, proved over all atoms.
 
-The guards are read from the code (:data:`ifgm_ref.flowchart.GUARDS`), evaluated on sympy
+The guards are read from the code (:data:`ifgm_ref.paper.flowchart.GUARDS`), evaluated on sympy
 Boolean symbols instead of numpy booleans -- the guards use only ``&``, ``|`` and ``~``, which
 build sympy ``And``/``Or``/``Not`` -- and every claim is decided by sympy's SAT solver
 (``satisfiable``), which is complete for propositional logic: ``False`` means no assignment
@@ -18,9 +18,9 @@ from itertools import combinations
 import sympy as sp
 from sympy.logic.inference import satisfiable
 
-from ifgm_ref.flowchart import GUARDS, Atoms, Branch
-from ifgm_ref.paper import traces
-from ifgm_ref.planners.ifgm import DEAD_END_MAX_STEPS, DEAD_END_STEP
+from ifgm_ref.core.elements import traces
+from ifgm_ref.paper.flowchart import GUARDS, Atoms, Branch
+from ifgm_ref.planners.ifgm.planner import DEAD_END_MAX_STEPS, DEAD_END_STEP
 from proofs._util import Derivation, entry_points
 
 __all__ = ["build", "claims", "derivation", "main"]
@@ -41,7 +41,7 @@ def build(guards: dict[Branch, object] | None = None) -> Derivation:
     d.text(
         f"""
         The decision function reads {len(Atoms.names())} yes/no atoms and has {len(g)}
-        branches. Each branch's guard, read from ifgm_ref.flowchart.GUARDS:
+        branches. Each branch's guard, read from ifgm_ref.paper.flowchart.GUARDS:
         """
     )
     for branch, formula in g.items():

@@ -11,9 +11,9 @@ parameter of every registered planner (:data:`ifgm_ref.planners.PLANNERS`), is
     f(k r, k v, w, dt, k R, res, fov) = k**p * f(r, v, w, dt, R, res, fov)
 
 proved by ``simplify(lhs - rhs) == 0`` with ``k`` and every symbol positive; the same for the
-simulator's default stall time (:data:`ifgm_ref.simulator.STALL_TIME`, a time, ``p = 0``),
+simulator's default stall time (:data:`ifgm_ref.sim.simulator.STALL_TIME`, a time, ``p = 0``),
 after which a robot that makes no progress ends its episode, and for the lap rule's
-thresholds (:mod:`ifgm_ref.laps`: the radius of a place, the shortest lap and the progress
+thresholds (:mod:`ifgm_ref.sim.laps`: the radius of a place, the shortest lap and the progress
 that counts, lengths, ``p = 1``). A formula with an
 absolute constant (``r + 1`` declared a length) leaves a remainder and fails. The formulas are
 read from the code, so a changed formula is re-proved. The oracle's ``scale_invariant`` check
@@ -33,12 +33,12 @@ from collections.abc import Iterable, Mapping
 
 import sympy as sp
 
-from ifgm_ref.formulas import LENGTH_SYMBOLS, SYMBOLS, Unit, formula_expr
-from ifgm_ref.laps import LAP_LENGTH, LAP_PROGRESS, LAP_RADIUS
-from ifgm_ref.paper import traces
+from ifgm_ref.core.elements import traces
+from ifgm_ref.core.formulas import LENGTH_SYMBOLS, SYMBOLS, Unit, formula_expr
 from ifgm_ref.planners import PLANNERS
 from ifgm_ref.planners.tuning import ParamInfo
-from ifgm_ref.simulator import STALL_TIME
+from ifgm_ref.sim.laps import LAP_LENGTH, LAP_PROGRESS, LAP_RADIUS
+from ifgm_ref.sim.simulator import STALL_TIME
 from proofs._util import Derivation, entry_points
 
 __all__ = ["PAPER_ROBOT", "PAPER_VALUES", "build", "claims", "derivation", "main"]
@@ -46,8 +46,8 @@ __all__ = ["PAPER_ROBOT", "PAPER_VALUES", "build", "claims", "derivation", "main
 #: The scale factor: every length is multiplied by it.
 K = sp.Symbol("k", positive=True)
 
-#: The paper's robot as exact numbers (:meth:`ifgm_ref.formulas.Scale.paper`, section
-#: 5.1's 197 ft in 149 s; our choices for what the paper leaves open, :mod:`ifgm_ref.params`).
+#: The paper's robot as exact numbers (:meth:`ifgm_ref.core.formulas.Scale.paper`, section
+#: 5.1's 197 ft in 149 s; our choices for what the paper leaves open, :mod:`ifgm_ref.core.params`).
 PAPER_ROBOT: dict[str, sp.Expr] = {
     "r": sp.Integer(1),
     "v": sp.Rational(197, 149),

@@ -1,4 +1,4 @@
-"""``ifgm-ref simulate --record``: a run as a ROS bag (ifgm_ref.bags), read back by readers
+"""``ifgm-ref simulate --record``: a run as a ROS bag (ifgm_ref.io.bags), read back by readers
 that are not ours: the ``mcap`` and ``mcap_ros2`` libraries for MCAP, rosbags' AnyReader for
 the ROS 1 bag and the sqlite3 folder.
 
@@ -20,18 +20,18 @@ from mcap.reader import make_reader
 from mcap_ros2.decoder import DecoderFactory
 from rosbags.highlevel import AnyReader
 
-from ifgm_ref.bags.write import write_bag
-from ifgm_ref.cli import main
-from ifgm_ref.noise import NoiseLevels
-from ifgm_ref.params import SimParams
+from ifgm_ref.apps.cli import main
+from ifgm_ref.core.params import SimParams
+from ifgm_ref.core.pose import Pose
+from ifgm_ref.core.protocol import Command, Observation, Planner
+from ifgm_ref.core.recording import Recording, RecordingPlanner
+from ifgm_ref.io.bags.write import write_bag
+from ifgm_ref.io.scenarios import resolve_world
+from ifgm_ref.io.transport.wire import reset_message
 from ifgm_ref.planners.ifgm import IFGMPlanner
-from ifgm_ref.pose import Pose
-from ifgm_ref.protocol import Command, Observation, Planner
-from ifgm_ref.recording import Recording, RecordingPlanner
-from ifgm_ref.scenarios import resolve_world
-from ifgm_ref.simulator import Run, simulate
-from ifgm_ref.transport.wire import reset_message
-from ifgm_ref.world import Circle, World
+from ifgm_ref.sim.noise import NoiseLevels
+from ifgm_ref.sim.simulator import Run, simulate
+from ifgm_ref.sim.world import Circle, World
 
 FT = 0.3048  # metres per foot: the built-in worlds are in feet
 #: Every topic and its ROS 2 message type, as the issue lists them.

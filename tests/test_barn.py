@@ -1,4 +1,4 @@
-"""BARN worlds (ifgm_ref/barn.py): layouts, reference length, score, ``bench --barn``."""
+"""BARN worlds (ifgm_ref/io/barn.py): layouts, reference length, score, ``bench --barn``."""
 
 from __future__ import annotations
 
@@ -11,14 +11,14 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from ifgm_ref.barn import BUNDLED_INDICES, MissingWorlds
-from ifgm_ref.bench import barn
-from ifgm_ref.bench.tasks import WorldSpec, barn_specs, run_world
-from ifgm_ref.cli import main
-from ifgm_ref.errors import ParameterError, WorldError
+from ifgm_ref.apps.bench.tasks import WorldSpec, barn_specs, run_world
+from ifgm_ref.apps.cli import main
+from ifgm_ref.core.errors import ParameterError, WorldError
+from ifgm_ref.io import barn
+from ifgm_ref.io.barn import BUNDLED_INDICES, MissingWorlds
 from ifgm_ref.planners import make_planner
-from ifgm_ref.simulator import simulate
-from ifgm_ref.world import Circle
+from ifgm_ref.sim.simulator import simulate
+from ifgm_ref.sim.world import Circle
 from tests.test_cli import run_cli
 
 BARN = Path(__file__).parent / "worlds" / "barn"
@@ -271,12 +271,3 @@ def test_a_gazebo_world_takes_its_start_and_goal_from_options() -> None:
     )  # fmt: skip
     assert result["reached"] is True
     assert "barn_score" in result  # still BARN's world 1, with its path
-
-
-def test_the_benchmark_imports_barn_from_where_it_lives() -> None:
-    """``ifgm_ref.bench.barn`` keeps its import path; its names are ``ifgm_ref.barn``'s."""
-    from ifgm_ref import barn
-    from ifgm_ref.bench import barn as bench_barn
-
-    for name in bench_barn.__all__:
-        assert getattr(bench_barn, name) is getattr(barn, name), name

@@ -15,8 +15,8 @@ import shapely
 from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
-from ifgm_ref.bench.optimal import optimal_path
-from ifgm_ref.bench.report import (
+from ifgm_ref.apps.bench.optimal import optimal_path
+from ifgm_ref.apps.bench.report import (
     plot_path_ratio,
     read_rows,
     summarize,
@@ -24,14 +24,14 @@ from ifgm_ref.bench.report import (
     write_csv,
     write_report,
 )
-from ifgm_ref.bench.runner import run_bench
-from ifgm_ref.bench.tasks import ERROR, Row, WorldSpec, generated_specs, run_world
-from ifgm_ref.errors import ParameterError, WorldError
+from ifgm_ref.apps.bench.runner import run_bench
+from ifgm_ref.apps.bench.tasks import ERROR, Row, WorldSpec, generated_specs, run_world
+from ifgm_ref.core.errors import ParameterError, WorldError
+from ifgm_ref.core.pose import distance
 from ifgm_ref.oracle.strategies import SOLVABLE_CLASSES, enclosed_worlds
-from ifgm_ref.pose import distance
-from ifgm_ref.shapes import rectangle
-from ifgm_ref.world import Polygon, World
-from ifgm_ref.worldgen.classes import random_world
+from ifgm_ref.sim.shapes import rectangle
+from ifgm_ref.sim.world import Polygon, World
+from ifgm_ref.sim.worldgen.classes import random_world
 from tests.planner_doubles import CRASHES
 from tests.test_cli import run_cli
 

@@ -1,7 +1,7 @@
 """``benchmarks/bench_decision.py``: the cost of one planner decision.
 
 The benchmark is a script (``benchmarks/`` is not a package), loaded here from its path. It
-records episodes, replays them through :func:`ifgm_ref.recording.replay` asserting
+records episodes, replays them through :func:`ifgm_ref.core.recording.replay` asserting
 that every replayed command is the recorded one, and counts what each decision executes. The
 tests check what could silently go wrong: a planner missing from the report, a replay that
 would time other decisions than the recorded ones, counts that change from run to run, and
@@ -19,8 +19,8 @@ from types import ModuleType
 import numpy as np
 import pytest
 
+from ifgm_ref.core.protocol import Command, Observation
 from ifgm_ref.planners import IBAPlanner
-from ifgm_ref.protocol import Command, Observation
 
 SCRIPT = Path(__file__).resolve().parent.parent / "benchmarks" / "bench_decision.py"
 

@@ -9,14 +9,14 @@ from pathlib import Path
 
 import pytest
 
-from ifgm_ref.barn import gazebo_task
-from ifgm_ref.bench.report import read_rows
-from ifgm_ref.bench.runner import run_bench
-from ifgm_ref.bench.tasks import Row, generated_specs, run_world
-from ifgm_ref.cli import main
-from ifgm_ref.errors import ParameterError
+from ifgm_ref.apps.bench.report import read_rows
+from ifgm_ref.apps.bench.runner import run_bench
+from ifgm_ref.apps.bench.tasks import Row, generated_specs, run_world
+from ifgm_ref.apps.cli import main
+from ifgm_ref.core.errors import ParameterError
+from ifgm_ref.io.barn import gazebo_task
 from ifgm_ref.planners import make_planner
-from ifgm_ref.simulator import simulate
+from ifgm_ref.sim.simulator import simulate
 
 BARN = Path(__file__).parent / "worlds" / "barn"
 #: The columns of ``results.csv`` before the engine's: they keep their names and order.

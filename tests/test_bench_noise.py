@@ -1,6 +1,6 @@
 """The benchmark under noise: ``--noise`` and ``--noise-sweep``, the noise columns, the seeds,
-the sweep's summary and plots, and the Wilson interval (``ifgm_ref/bench/noise.py``,
-``ifgm_ref/stats.py``)."""
+the sweep's summary and plots, and the Wilson interval (``ifgm_ref/apps/bench/noise_sweep.py``,
+``ifgm_ref/core/stats.py``)."""
 
 from __future__ import annotations
 
@@ -12,7 +12,7 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from ifgm_ref.bench.noise import (
+from ifgm_ref.apps.bench.noise_sweep import (
     AXIS_LABELS,
     DEFAULT_SWEEP,
     parse_sweep,
@@ -21,16 +21,23 @@ from ifgm_ref.bench.noise import (
     sweep_conditions,
     write_sweep_report,
 )
-from ifgm_ref.bench.report import read_rows
-from ifgm_ref.bench.runner import run_bench
-from ifgm_ref.bench.tasks import Condition, Row, WorldSpec, generated_specs, noise_seed, run_world
-from ifgm_ref.cli import main
-from ifgm_ref.errors import ParameterError
-from ifgm_ref.noise import KINDS, NoiseLevels
-from ifgm_ref.params import SimParams
-from ifgm_ref.simulator import simulate
-from ifgm_ref.stats import wilson_interval
-from ifgm_ref.transport.loading import load_factory
+from ifgm_ref.apps.bench.report import read_rows
+from ifgm_ref.apps.bench.runner import run_bench
+from ifgm_ref.apps.bench.tasks import (
+    Condition,
+    Row,
+    WorldSpec,
+    generated_specs,
+    noise_seed,
+    run_world,
+)
+from ifgm_ref.apps.cli import main
+from ifgm_ref.core.errors import ParameterError
+from ifgm_ref.core.params import SimParams
+from ifgm_ref.core.stats import wilson_interval
+from ifgm_ref.io.transport.loading import load_factory
+from ifgm_ref.sim.noise import KINDS, NoiseLevels
+from ifgm_ref.sim.simulator import simulate
 
 #: The tiny sweep: 2 planners x 2 worlds x (the baseline and 2 levels of range noise).
 SPECS = generated_specs(["open", "u"], 1, seed=0)

@@ -17,19 +17,19 @@ import numpy as np
 import pytest
 import shapely
 
-from ifgm_ref.errors import ParameterError
-from ifgm_ref.params import RobotParams, SensorParams, SimParams
+from ifgm_ref.core.errors import ParameterError
+from ifgm_ref.core.params import RobotParams, SensorParams, SimParams
+from ifgm_ref.core.pose import Point, Pose, distance
+from ifgm_ref.core.protocol import EpisodeParams, Planner
+from ifgm_ref.io.scenarios import resolve_world
 from ifgm_ref.planners.boundary import GOAL_UNREACHABLE, BoundaryParams, BoundaryPlanner
 from ifgm_ref.planners.bug1 import Bug1Planner
 from ifgm_ref.planners.bug2 import Bug2Planner, signed_distance
 from ifgm_ref.planners.distbug import DistBugPlanner, DistBugRule
 from ifgm_ref.planners.sight import Body, Sight
-from ifgm_ref.pose import Point, Pose, distance
-from ifgm_ref.protocol import EpisodeParams, Planner
-from ifgm_ref.scenarios import resolve_world
-from ifgm_ref.shapes import rectangle, regular_polygon, u_shape
-from ifgm_ref.simulator import Run, StopReason, simulate
-from ifgm_ref.world import Bounds, World
+from ifgm_ref.sim.shapes import rectangle, regular_polygon, u_shape
+from ifgm_ref.sim.simulator import Run, StopReason, simulate
+from ifgm_ref.sim.world import Bounds, World
 
 PLANNERS: dict[str, type[BoundaryPlanner]] = {
     "bug1": Bug1Planner,

@@ -25,8 +25,14 @@ from typing import Any
 
 import pytest
 
-from ifgm_ref.bench import barn
-from ifgm_ref.convergence import time_bound
+from ifgm_ref.core.params import SimParams
+from ifgm_ref.core.pose import Point
+from ifgm_ref.core.protocol import Command, Observation
+from ifgm_ref.core.recording import RecordingPlanner
+from ifgm_ref.io import barn
+from ifgm_ref.io.scenarios import resolve_world
+from ifgm_ref.io.transport import wire
+from ifgm_ref.io.transport.external import ExternalPlanner
 from ifgm_ref.oracle.braking import late_step, with_dynamics
 from ifgm_ref.oracle.check_types import Kind
 from ifgm_ref.oracle.checks import CHECKS
@@ -38,7 +44,6 @@ from ifgm_ref.oracle.runner import Status, check_planner
 from ifgm_ref.oracle.suite.run import run_cases
 from ifgm_ref.oracle.suite.versions import load_suite
 from ifgm_ref.oracle.vectors import QUANTITIES
-from ifgm_ref.params import SimParams
 from ifgm_ref.planners import make_planner
 from ifgm_ref.planners.boundary import GOAL_UNREACHABLE
 from ifgm_ref.planners.circuit import Circuit, CircuitPhase
@@ -46,17 +51,12 @@ from ifgm_ref.planners.distbug import DistBugRule
 from ifgm_ref.planners.edge_following import FollowSide
 from ifgm_ref.planners.governor import BrakingGovernor
 from ifgm_ref.planners.ifgm import IFGMPlanner
-from ifgm_ref.planners.ifgm_atoms import IFGMState, Percepts
+from ifgm_ref.planners.ifgm.atoms import IFGMState, Percepts
 from ifgm_ref.planners.sight import Sight
-from ifgm_ref.pose import Point
-from ifgm_ref.protocol import Command, Observation
-from ifgm_ref.recording import RecordingPlanner
-from ifgm_ref.scenarios import resolve_world
-from ifgm_ref.simulator import Run, simulate
-from ifgm_ref.transport import wire
-from ifgm_ref.transport.external import ExternalPlanner
-from ifgm_ref.world import World
-from ifgm_ref.worldgen.classes import random_world
+from ifgm_ref.sim.convergence import time_bound
+from ifgm_ref.sim.simulator import Run, simulate
+from ifgm_ref.sim.world import World
+from ifgm_ref.sim.worldgen.classes import random_world
 from tests.built_once import built_once
 from tests.test_invariance import _enclosure, long_mixed_example
 from tests.test_oracle import BRIEF
@@ -553,7 +553,7 @@ def _same_runs(ours: Run, reference: Run) -> None:
 @pytest.mark.parametrize("world", WORLDS)
 @pytest.mark.parametrize("planner", PLANNERS)
 def test_the_c_planner_drives_as_the_python_one(build: Path, planner: str, world: str) -> None:
-    """Closed loop through ``ifgm_json`` in ``ifgm_ref.simulator.simulate``, each C planner
+    """Closed loop through ``ifgm_json`` in ``ifgm_ref.sim.simulator.simulate``, each C planner
     gives the Python planner's run: the same stop reason, the same branch at every step, the
     commands within the vectors' double tolerances and the positions within a micro-foot."""
     reference = simulate(resolve_world(world), make_planner(planner))

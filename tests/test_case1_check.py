@@ -6,15 +6,15 @@ from __future__ import annotations
 
 import pytest
 
+from ifgm_ref.core.pose import Point, Pose
+from ifgm_ref.core.protocol import Command, EpisodeParams, Observation, Planner
 from ifgm_ref.oracle.check_types import CheckFailed
 from ifgm_ref.oracle.checks import CHECKS, _check_case1
 from ifgm_ref.oracle.implementation import Implementation, promises_of
 from ifgm_ref.oracle.runner import Status, run_check
 from ifgm_ref.planners.ifgm import IFGMPlanner
-from ifgm_ref.pose import Point, Pose
-from ifgm_ref.protocol import Command, EpisodeParams, Observation, Planner
-from ifgm_ref.simulator import TraceStep
-from ifgm_ref.world import Polygon
+from ifgm_ref.sim.simulator import TraceStep
+from ifgm_ref.sim.world import Polygon
 
 GAP = Polygon(((9.5, -3.0), (10.5, -3.0), (10.5, 3.0), (9.5, 3.0)))
 

@@ -11,16 +11,16 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from ifgm_ref.params import SensorParams
+from ifgm_ref.core.params import SensorParams
+from ifgm_ref.core.pose import Point, Pose, distance
+from ifgm_ref.core.protocol import EpisodeParams
+from ifgm_ref.io.scenarios import resolve_world
 from ifgm_ref.planners import make_planner
 from ifgm_ref.planners.circuit import Circuit, CircuitPhase, encloses
 from ifgm_ref.planners.distbug import DistBugRule
 from ifgm_ref.planners.edge_following import FollowSide
 from ifgm_ref.planners.sight import Body, BoundaryParams, Sight
-from ifgm_ref.pose import Point, Pose, distance
-from ifgm_ref.protocol import EpisodeParams
-from ifgm_ref.scenarios import resolve_world
-from ifgm_ref.simulator import simulate
+from ifgm_ref.sim.simulator import simulate
 
 EPISODE = EpisodeParams()
 TUNING = BoundaryParams.for_episode(EPISODE)

@@ -18,11 +18,9 @@ from pathlib import Path
 
 import pytest
 
-from ifgm_ref.cli import EXIT_BROKEN_PIPE, main
-from ifgm_ref.planners.ifgm import IFGMPlanner
-from ifgm_ref.scenarios import BUILTIN_WORLDS
-from ifgm_ref.simulator import Result, simulate
-from ifgm_ref.worldfile import (
+from ifgm_ref.apps.cli import EXIT_BROKEN_PIPE, main
+from ifgm_ref.io.scenarios import BUILTIN_WORLDS
+from ifgm_ref.io.worldfile import (
     EXPORT_DIGITS,
     dumps_world,
     load_world,
@@ -30,6 +28,8 @@ from ifgm_ref.worldfile import (
     world_from_dict,
     world_to_dict,
 )
+from ifgm_ref.planners.ifgm import IFGMPlanner
+from ifgm_ref.sim.simulator import Result, simulate
 
 README = Path(__file__).resolve().parent.parent / "README.md"
 WORLD = {
@@ -41,7 +41,7 @@ WORLD = {
 
 
 def run_cli(*args: str, cwd: Path | None = None) -> subprocess.CompletedProcess[str]:
-    """``ifgm-ref ARGS`` run in this process (:func:`ifgm_ref.cli.main`, from ``cwd``), its
+    """``ifgm-ref ARGS`` run in this process (:func:`ifgm_ref.apps.cli.main`, from ``cwd``), its
     exit status and what it printed on stdout and stderr. What a process adds (the entry
     point, a closed pipe, signals) is tested with a real one (:func:`run_process`)."""
     out, err = io.StringIO(), io.StringIO()
@@ -215,7 +215,7 @@ def test_a_factory_that_makes_no_planner_is_a_one_line_error() -> None:
     assert done.returncode == 2
     assert done.stderr.splitlines() == [
         "ifgm-ref: error: 'os:getcwd' made a str, not a planner: it has no name, reset, step "
-        "(see ifgm_ref.protocol.Planner)"
+        "(see ifgm_ref.core.protocol.Planner)"
     ]
 
 
@@ -231,7 +231,7 @@ def test_an_argument_error_is_one_line() -> None:
 def test_a_factory_module_is_found_in_the_working_folder(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    from ifgm_ref.transport.loading import load_planner
+    from ifgm_ref.io.transport.loading import load_planner
 
     (tmp_path / "my_cwd_planner_module.py").write_text(
         "from ifgm_ref.planners.iba import IBAPlanner\n\ndef make():\n    return IBAPlanner()\n"

@@ -1,4 +1,4 @@
-"""Swept-disc clearance (ifgm_ref.collision) against shapely's exact geometry."""
+"""Swept-disc clearance (ifgm_ref.sim.collision) against shapely's exact geometry."""
 
 from __future__ import annotations
 
@@ -8,9 +8,9 @@ import shapely
 from hypothesis import assume, example, given
 from hypothesis import strategies as st
 
-from ifgm_ref.collision import ClearanceChecker, point_segment_distance, segment_distance
-from ifgm_ref.pose import Point, Pose
-from ifgm_ref.world import Circle, Polygon, World
+from ifgm_ref.core.pose import Point, Pose
+from ifgm_ref.sim.collision import ClearanceChecker, point_segment_distance, segment_distance
+from ifgm_ref.sim.world import Circle, Polygon, World
 
 coords = st.floats(-20.0, 20.0, allow_nan=False)
 #: shapely.buffer approximates the disc's round caps with chords; with quad_segs=64 the chord

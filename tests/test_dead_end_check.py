@@ -10,14 +10,14 @@ from dataclasses import replace
 
 import pytest
 
+from ifgm_ref.io.scenarios import resolve_world
 from ifgm_ref.oracle.dead_end import STEP, dead_end_turns, turn_errors
 from ifgm_ref.oracle.implementation import Implementation, promises_of
 from ifgm_ref.oracle.profiles import PROFILES
 from ifgm_ref.oracle.runner import check_planner
 from ifgm_ref.planners.ifgm import IFGMPlanner
-from ifgm_ref.planners.ifgm_readings import Readings
-from ifgm_ref.scenarios import resolve_world
-from ifgm_ref.simulator import TraceStep, simulate
+from ifgm_ref.planners.ifgm.readings import Readings
+from ifgm_ref.sim.simulator import TraceStep, simulate
 
 BAND = math.radians(4.5)  # w dt / 2 for the paper's robot
 

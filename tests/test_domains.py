@@ -17,12 +17,12 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from ifgm_ref import equations
-from ifgm_ref.errors import ParameterError
+from ifgm_ref.core.errors import ParameterError
 from ifgm_ref.oracle.check_types import Kind
 from ifgm_ref.oracle.checks import CHECKS
 from ifgm_ref.oracle.domains import DOMAINS, Argument, Interval, floats, inputs
 from ifgm_ref.oracle.vectors import build_vectors
+from ifgm_ref.paper import equations
 
 NAMES = list(DOMAINS)
 

@@ -12,20 +12,20 @@ import numpy as np
 import pytest
 from numpy.typing import NDArray
 
-from ifgm_ref import barn
-from ifgm_ref.laserscan import LaserScan
-from ifgm_ref.params import SENSOR_PRESETS
+from ifgm_ref.core.laserscan import LaserScan
+from ifgm_ref.core.params import SENSOR_PRESETS
+from ifgm_ref.core.pose import Point, Pose
+from ifgm_ref.core.protocol import EpisodeParams, Observation, Planner
+from ifgm_ref.io import barn
+from ifgm_ref.io.scenarios import resolve_world
 from ifgm_ref.planners import PLANNERS, make_planner
 from ifgm_ref.planners.costmap import INSCRIBED, LETHAL, Costmap, CostmapSettings
 from ifgm_ref.planners.dwa import CostmapParams, DWABranch, DWAParams, DWAPlanner
 from ifgm_ref.planners.dwa_rollout import Samples, legal_costs, rollout, samples
 from ifgm_ref.planners.grid_path import blocked, plan_path, wavefront
 from ifgm_ref.planners.tuning import episode_values
-from ifgm_ref.pose import Point, Pose
-from ifgm_ref.protocol import EpisodeParams, Observation, Planner
-from ifgm_ref.scenarios import resolve_world
-from ifgm_ref.simulator import StopReason, simulate
-from ifgm_ref.world import World
+from ifgm_ref.sim.simulator import StopReason, simulate
+from ifgm_ref.sim.world import World
 
 BARN_WORLDS = Path(__file__).parent / "worlds" / "barn"
 #: BARN's costmap for BARN's robot (costmap_common_params.yaml), the margin 1 m.

@@ -1,4 +1,4 @@
-"""Properties of equations (1)-(4), literal and interpreted (``ifgm_ref.equations``).
+"""Properties of equations (1)-(4), literal and interpreted (``ifgm_ref.paper.equations``).
 
 Each test is named after the equation and the property it checks; the properties are the ones
 ``proofs/`` proves with sympy, here checked on floats. Where the proofs say the literal and
@@ -22,7 +22,10 @@ import pytest
 from hypothesis import assume, given
 from hypothesis import strategies as st
 
-from ifgm_ref.equations import (
+from ifgm_ref.core.errors import ParameterError
+from ifgm_ref.core.pose import wrap_angle
+from ifgm_ref.oracle.domains import DOMAINS, HALF_FOV, floats
+from ifgm_ref.paper.equations import (
     eq1_gap_midpoint,
     eq2_gap_angle,
     eq2_gap_angle_literal,
@@ -33,9 +36,6 @@ from ifgm_ref.equations import (
     eq4_final_heading_literal,
     fgm_gap_centre_angle,
 )
-from ifgm_ref.errors import ParameterError
-from ifgm_ref.oracle.domains import DOMAINS, HALF_FOV, floats
-from ifgm_ref.pose import wrap_angle
 
 EPS = sys.float_info.epsilon
 #: The domains of the arguments drawn here.

@@ -1,4 +1,4 @@
-"""The explorer of ``notebooks/05_explore.ipynb`` (``ifgm_ref/explore.py``): its world holds
+"""The explorer of ``notebooks/05_explore.ipynb`` (``ifgm_ref/apps/explore.py``): its world holds
 the U across the start-goal line, every slider reaches the run, bad values are refused."""
 
 from __future__ import annotations
@@ -10,8 +10,7 @@ import pytest
 import shapely
 from matplotlib.collections import LineCollection
 
-from ifgm_ref.errors import ParameterError
-from ifgm_ref.explore import (
+from ifgm_ref.apps.explore import (
     BRANCH_COLOURS,
     CHANGE_LABEL,
     GATE_GAP,
@@ -22,7 +21,8 @@ from ifgm_ref.explore import (
     explore_run,
     explore_world,
 )
-from ifgm_ref.flowchart import Branch
+from ifgm_ref.core.errors import ParameterError
+from ifgm_ref.paper.flowchart import Branch
 
 
 @pytest.mark.parametrize(("width", "depth"), [(4.0, 2.0), (24.0, 16.0), (40.0, 30.0)])

@@ -20,19 +20,19 @@ from pathlib import Path
 
 import pytest
 
-from ifgm_ref.cli import main
-from ifgm_ref.errors import ImplementationError, ParameterError
-from ifgm_ref.laserscan import LaserScan
+from ifgm_ref.apps.cli import main
+from ifgm_ref.core.errors import ImplementationError, ParameterError
+from ifgm_ref.core.laserscan import LaserScan
+from ifgm_ref.core.pose import Point, Pose
+from ifgm_ref.core.protocol import Command, EpisodeParams, Observation, Planner
+from ifgm_ref.io.scenarios import resolve_world
+from ifgm_ref.io.transport.external import ExternalFactory, ExternalPlanner
+from ifgm_ref.io.transport.serve import serve
+from ifgm_ref.io.transport.wire import bye_message, encode, observe_message, reset_message
 from ifgm_ref.oracle.implementation import Implementation
 from ifgm_ref.planners.ifgm import IFGMPlanner
 from ifgm_ref.planners.straight import StraightPlanner
-from ifgm_ref.pose import Point, Pose
-from ifgm_ref.protocol import Command, EpisodeParams, Observation, Planner
-from ifgm_ref.scenarios import resolve_world
-from ifgm_ref.simulator import Run, simulate
-from ifgm_ref.transport.external import ExternalFactory, ExternalPlanner
-from ifgm_ref.transport.serve import serve
-from ifgm_ref.transport.wire import bye_message, encode, observe_message, reset_message
+from ifgm_ref.sim.simulator import Run, simulate
 
 ROOT = Path(__file__).resolve().parent.parent
 GOAL_SEEKER = ROOT / "examples" / "goal_seeker.py"

@@ -29,9 +29,12 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from ifgm_ref.errors import ParameterError
-from ifgm_ref.laserscan import LaserScan
-from ifgm_ref.params import SensorParams, SimParams
+from ifgm_ref.core.errors import ParameterError
+from ifgm_ref.core.laserscan import LaserScan
+from ifgm_ref.core.params import SensorParams, SimParams
+from ifgm_ref.core.pose import Point, Pose, wrap_angle
+from ifgm_ref.core.protocol import EpisodeParams, Observation, Planner
+from ifgm_ref.io.scenarios import resolve_world
 from ifgm_ref.planners import fgm
 from ifgm_ref.planners.apf import (
     APFBranch,
@@ -50,12 +53,9 @@ from ifgm_ref.planners.fgm import (
     fgm_decide,
     find_gaps,
 )
-from ifgm_ref.pose import Point, Pose, wrap_angle
-from ifgm_ref.protocol import EpisodeParams, Observation, Planner
-from ifgm_ref.scenarios import resolve_world
-from ifgm_ref.shapes import circle
-from ifgm_ref.simulator import Run, StopReason, simulate, stall_steps
-from ifgm_ref.world import World
+from ifgm_ref.sim.shapes import circle
+from ifgm_ref.sim.simulator import Run, StopReason, simulate, stall_steps
+from ifgm_ref.sim.world import World
 
 SENSOR = SensorParams()
 #: Robot radius plus FGM's default margin, ft.

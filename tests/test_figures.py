@@ -1,5 +1,5 @@
-"""The paper's figures and reproduction table (ifgm_ref.figures) and the reconstructed
-scenarios' facts (ifgm_ref.scenarios)."""
+"""The paper's figures and reproduction table (ifgm_ref.apps.figures) and the reconstructed
+scenarios' facts (ifgm_ref.io.scenarios)."""
 
 from __future__ import annotations
 
@@ -13,7 +13,7 @@ import pytest
 import shapely
 from matplotlib.patches import Circle as CirclePatch
 
-from ifgm_ref.figures import (
+from ifgm_ref.apps.figures import (
     FIGURES,
     reproduction_rows,
     stable_svg_ids,
@@ -21,13 +21,13 @@ from ifgm_ref.figures import (
     table_markdown,
     write_all,
 )
-from ifgm_ref.params import PAPER_FREE_DISTANCE_FT, PAPER_FREE_TIME_S, RobotParams, SimParams
+from ifgm_ref.core.params import PAPER_FREE_DISTANCE_FT, PAPER_FREE_TIME_S, RobotParams, SimParams
+from ifgm_ref.core.pose import Point, Pose, distance
+from ifgm_ref.core.protocol import EpisodeParams
+from ifgm_ref.io.scenarios import FIG7_GAP_FAR, FIG7_GAP_NEAR, resolve_world
 from ifgm_ref.planners.ifgm import IFGMPlanner
-from ifgm_ref.pose import Point, Pose, distance
-from ifgm_ref.protocol import EpisodeParams
-from ifgm_ref.scenarios import FIG7_GAP_FAR, FIG7_GAP_NEAR, resolve_world
-from ifgm_ref.simulator import simulate
-from ifgm_ref.world import Circle, Obstacle
+from ifgm_ref.sim.simulator import simulate
+from ifgm_ref.sim.world import Circle, Obstacle
 
 PAPER_FIGS = Path(__file__).resolve().parent.parent / "paper_figs"
 

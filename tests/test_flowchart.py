@@ -1,4 +1,4 @@
-"""The reconstructed Figure 3 (ifgm_ref.flowchart): one branch for every percept."""
+"""The reconstructed Figure 3 (ifgm_ref.paper.flowchart): one branch for every percept."""
 
 from __future__ import annotations
 
@@ -9,8 +9,8 @@ from collections.abc import Iterator
 
 import pytest
 
-from ifgm_ref.errors import InvariantError
-from ifgm_ref.flowchart import (
+from ifgm_ref.core.errors import InvariantError
+from ifgm_ref.paper.flowchart import (
     DEAD_END_PHASES,
     DECIDED,
     FORMER_LABELS,

@@ -1,6 +1,6 @@
 """Figure 3 over generated percepts: the branch the guards choose, and each branch's promise.
 
-``proofs/flowchart.py`` proves that the guards of :mod:`ifgm_ref.flowchart` partition the atom
+``proofs/flowchart.py`` proves that the guards of :mod:`ifgm_ref.paper.flowchart` partition the atom
 space. These properties go one level down, to what the planner sees: over generated
 observations (:mod:`ifgm_ref.oracle.percept_strategies`: scans in the ROS convention, poses
 and goals in every direction) the IFGM planner takes exactly the branch the guards choose
@@ -35,9 +35,10 @@ import pytest
 from hypothesis import Phase, assume, event, example, given, note, settings
 from hypothesis import strategies as st
 
-from ifgm_ref.equations import eq1_gap_midpoint, eq2_gap_angle, eq3_goal_angle, eq4_final_heading
-from ifgm_ref.flowchart import Atoms, Branch, decide
-from ifgm_ref.laserscan import FRONT_HALF_WIDTH, LaserScan
+from ifgm_ref.core.laserscan import FRONT_HALF_WIDTH, LaserScan
+from ifgm_ref.core.params import RobotParams, SensorParams
+from ifgm_ref.core.pose import Point, Pose, distance, wrap_angle
+from ifgm_ref.core.protocol import Command, EpisodeParams, Observation
 from ifgm_ref.oracle.percept_strategies import (
     DEFAULT_SENSOR,
     GapFamily,
@@ -51,16 +52,25 @@ from ifgm_ref.oracle.percept_strategies import (
     scan_from_ranges,
     scans,
 )
-from ifgm_ref.params import RobotParams, SensorParams
-from ifgm_ref.percepts.clusters import Cluster, cluster_scan, gaps_between
-from ifgm_ref.percepts.corridor import free_length
-from ifgm_ref.percepts.memory import PerceptMemory
-from ifgm_ref.percepts.points import scan_points, to_world
+from ifgm_ref.paper.equations import (
+    eq1_gap_midpoint,
+    eq2_gap_angle,
+    eq3_goal_angle,
+    eq4_final_heading,
+)
+from ifgm_ref.paper.flowchart import Atoms, Branch, decide
+from ifgm_ref.paper.percepts.clusters import Cluster, cluster_scan, gaps_between
+from ifgm_ref.paper.percepts.corridor import free_length
+from ifgm_ref.paper.percepts.memory import PerceptMemory
+from ifgm_ref.paper.percepts.points import scan_points, to_world
 from ifgm_ref.planners.boundary import BoundaryParams
 from ifgm_ref.planners.edge_following import MAX_CORRECTION, FollowSide
-from ifgm_ref.planners.ifgm import DEAD_END_MAX_STEPS, DEAD_END_STEP, IFGMParams, IFGMPlanner
-from ifgm_ref.pose import Point, Pose, distance, wrap_angle
-from ifgm_ref.protocol import Command, EpisodeParams, Observation
+from ifgm_ref.planners.ifgm.planner import (
+    DEAD_END_MAX_STEPS,
+    DEAD_END_STEP,
+    IFGMParams,
+    IFGMPlanner,
+)
 
 # -- the reference's parameters, from their docstrings -------------------------------------------
 

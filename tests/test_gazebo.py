@@ -1,4 +1,4 @@
-"""The Gazebo SDF loader (ifgm_ref/gazebo.py): poses composed, cylinders and boxes, errors."""
+"""The Gazebo SDF loader (ifgm_ref/io/gazebo.py): poses composed, cylinders and boxes, errors."""
 
 from __future__ import annotations
 
@@ -9,11 +9,11 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from ifgm_ref.errors import WorldError
-from ifgm_ref.gazebo import load_sdf_world
-from ifgm_ref.params import RobotParams
-from ifgm_ref.pose import Point, Pose
-from ifgm_ref.world import Circle, Polygon
+from ifgm_ref.core.errors import WorldError
+from ifgm_ref.core.params import RobotParams
+from ifgm_ref.core.pose import Point, Pose
+from ifgm_ref.io.gazebo import load_sdf_world
+from ifgm_ref.sim.world import Circle, Polygon
 
 BARN = Path(__file__).parent / "worlds" / "barn"
 ROBOT = RobotParams(radius=0.2)

@@ -18,9 +18,13 @@ import shapely
 from hypothesis import given
 from hypothesis import strategies as st
 
-from ifgm_ref.errors import ParameterError
-from ifgm_ref.laserscan import LaserScan
-from ifgm_ref.params import RobotParams, SimParams, robot_changes
+from ifgm_ref.core.errors import ParameterError
+from ifgm_ref.core.laserscan import LaserScan
+from ifgm_ref.core.params import RobotParams, SimParams, robot_changes
+from ifgm_ref.core.pose import Point, Pose
+from ifgm_ref.core.protocol import Command, EpisodeParams, Observation
+from ifgm_ref.core.recording import RecordingPlanner
+from ifgm_ref.io.scenarios import resolve_world
 from ifgm_ref.planners import PLANNERS, make_planner
 from ifgm_ref.planners.governor import (
     GovernorState,
@@ -31,12 +35,8 @@ from ifgm_ref.planners.governor import (
     safe_speed,
     stopping_distance,
 )
-from ifgm_ref.pose import Point, Pose
-from ifgm_ref.protocol import Command, EpisodeParams, Observation
-from ifgm_ref.recording import RecordingPlanner
-from ifgm_ref.scenarios import resolve_world
-from ifgm_ref.simulator import simulate
-from ifgm_ref.world import Polygon, World
+from ifgm_ref.sim.simulator import simulate
+from ifgm_ref.sim.world import Polygon, World
 from tests.test_cli import run_cli
 
 LIMITS = Limits(radius=0.5, top_speed=2.0, braking=3.0, acceleration=2.0, period=0.1)
@@ -217,7 +217,7 @@ def test_the_speed_bound_bounds_the_kinematic_robot() -> None:
     robot = RobotParams(braking=1.5, acceleration=0.8, response=0.0)
     world = World(start=Pose(0.0, 0.0, 0.0), goal=Point(500.0, 0.0), robot=robot)
     lim = Limits.of(EpisodeParams(robot=robot))
-    from ifgm_ref.engine import KinematicEngine
+    from ifgm_ref.sim.engine import KinematicEngine
 
     engine, state, pose = KinematicEngine(world, 0.1), GovernorState(), world.start
     for speed in rng.uniform(0.0, robot.speed, 200):

@@ -27,9 +27,9 @@ from pathlib import Path
 
 import pytest
 
-from ifgm_ref.errors import ImplementationError
-from ifgm_ref.protocol import EpisodeParams, Observation
-from ifgm_ref.transport.external import ExternalPlanner
+from ifgm_ref.core.errors import ImplementationError
+from ifgm_ref.core.protocol import EpisodeParams, Observation
+from ifgm_ref.io.transport.external import ExternalPlanner
 from tests.test_cli import run_cli
 from tests.test_external import GOAL, SCAN, START
 

@@ -11,18 +11,18 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from ifgm_ref.laserscan import Beam, LaserScan
-from ifgm_ref.percepts.corridor import disc_travel
+from ifgm_ref.core.laserscan import Beam, LaserScan
+from ifgm_ref.core.pose import Point, Pose, wrap_angle
+from ifgm_ref.core.protocol import Behaviour, Command, EpisodeParams
+from ifgm_ref.io.scenarios import resolve_world
+from ifgm_ref.paper.percepts.corridor import disc_travel
 from ifgm_ref.planners import make_planner
 from ifgm_ref.planners.boundary import EdgeFollower, keep_clear
 from ifgm_ref.planners.edge_following import FollowSide
 from ifgm_ref.planners.iba import IBAPlanner, IBARule, beam_openness, freer_side
 from ifgm_ref.planners.sight import Body, BoundaryParams, Sight
-from ifgm_ref.pose import Point, Pose, wrap_angle
-from ifgm_ref.protocol import Behaviour, Command, EpisodeParams
-from ifgm_ref.scenarios import resolve_world
-from ifgm_ref.simulator import simulate
-from ifgm_ref.world import Polygon, World
+from ifgm_ref.sim.simulator import simulate
+from ifgm_ref.sim.world import Polygon, World
 
 ANGLES = dict(angle_min=-1.0, angle_max=1.0, angle_increment=0.5, range_min=0.0, range_max=10.0)
 
@@ -51,7 +51,7 @@ def test_ties_break_towards_the_goal() -> None:
 
 
 def _mirrored(world: World) -> World:
-    from ifgm_ref.world import Polygon
+    from ifgm_ref.sim.world import Polygon
 
     obstacles = tuple(Polygon(tuple((x, -y) for x, y in ob.vertices)) for ob in world.obstacles)
     start = Pose(world.start.x, -world.start.y, -world.start.theta)

@@ -10,16 +10,21 @@ from dataclasses import dataclass, replace
 
 import pytest
 
-from ifgm_ref.equations import eq1_gap_midpoint, eq2_gap_angle, eq3_goal_angle, eq4_final_heading
-from ifgm_ref.errors import ParameterError
-from ifgm_ref.flowchart import Atoms, Branch
-from ifgm_ref.params import RobotParams
-from ifgm_ref.percepts.clusters import Gap
-from ifgm_ref.planners.ifgm import DEAD_END_STEP, IFGMPlanner
-from ifgm_ref.pose import Point, Pose, wrap_angle
-from ifgm_ref.protocol import Command, EpisodeParams, Observation
-from ifgm_ref.scenarios import BUILTIN_WORLDS, resolve_world
-from ifgm_ref.simulator import Run, simulate
+from ifgm_ref.core.errors import ParameterError
+from ifgm_ref.core.params import RobotParams
+from ifgm_ref.core.pose import Point, Pose, wrap_angle
+from ifgm_ref.core.protocol import Command, EpisodeParams, Observation
+from ifgm_ref.io.scenarios import BUILTIN_WORLDS, resolve_world
+from ifgm_ref.paper.equations import (
+    eq1_gap_midpoint,
+    eq2_gap_angle,
+    eq3_goal_angle,
+    eq4_final_heading,
+)
+from ifgm_ref.paper.flowchart import Atoms, Branch
+from ifgm_ref.paper.percepts.clusters import Gap
+from ifgm_ref.planners.ifgm.planner import DEAD_END_STEP, IFGMPlanner
+from ifgm_ref.sim.simulator import Run, simulate
 
 
 @dataclass(frozen=True)

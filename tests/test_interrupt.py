@@ -3,8 +3,8 @@
 Each command runs as ``ifgm-ref`` in a process group of its own, and the signal goes to the
 whole group, as a terminal's Ctrl-C does, at a moment drawn from a seeded generator (the same
 moments every run) within a window where the command is busy: after a line it prints, or
-after its start. Every case asserts the contract of :mod:`ifgm_ref.cli.interrupt` and
-:mod:`ifgm_ref.outputs`: exit 130 (SIGINT) or 143 (SIGTERM), one ``ifgm-ref: interrupted``
+after its start. Every case asserts the contract of :mod:`ifgm_ref.apps.cli.interrupt` and
+:mod:`ifgm_ref.core.outputs`: exit 130 (SIGINT) or 143 (SIGTERM), one ``ifgm-ref: interrupted``
 line and no traceback, every file left whole (no temporary beside it), the files finished
 kept, the missing ones named, and no process of the group left running.
 """
@@ -24,7 +24,7 @@ from pathlib import Path
 import pytest
 from PIL import Image
 
-from ifgm_ref.bags.read import read_log
+from ifgm_ref.io.bags.read import read_log
 from tests.test_cli import run_cli
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -107,7 +107,7 @@ def _heed_ctrl_c() -> None:
 
 
 def no_temporaries(folder: Path) -> None:
-    """No half-written file beside the outputs (:func:`ifgm_ref.outputs.written`)."""
+    """No half-written file beside the outputs (:func:`ifgm_ref.core.outputs.written`)."""
     assert not [p.name for p in folder.rglob(".*partial*")]
 
 

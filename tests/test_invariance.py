@@ -17,7 +17,11 @@ import numpy as np
 import pytest
 from hypothesis import strategies as st
 
-from ifgm_ref.convergence import time_bound
+from ifgm_ref.core.params import SimParams
+from ifgm_ref.core.pose import Point, Pose, wrap_angle
+from ifgm_ref.core.protocol import Command, EpisodeParams, Observation
+from ifgm_ref.core.recording import Recording, RecordingPlanner
+from ifgm_ref.io.worldfile import load_world
 from ifgm_ref.oracle.checks import CHECKS
 from ifgm_ref.oracle.implementation import Implementation, promises_of
 from ifgm_ref.oracle.invariance import HEADING_TOL, SPEED_TOL, answer_errors, generic
@@ -26,17 +30,13 @@ from ifgm_ref.oracle.mutants import GapAngleInWorldFrame, QuadrantBlindGoalAngle
 from ifgm_ref.oracle.profiles import Profile
 from ifgm_ref.oracle.runner import Status, run_check
 from ifgm_ref.oracle.variants import VARIANTS
-from ifgm_ref.params import SimParams
 from ifgm_ref.planners import make_planner
-from ifgm_ref.pose import Point, Pose, wrap_angle
-from ifgm_ref.protocol import Command, EpisodeParams, Observation
-from ifgm_ref.recording import Recording, RecordingPlanner
-from ifgm_ref.shapes import rectangle
-from ifgm_ref.simulator import simulate
-from ifgm_ref.world import World
-from ifgm_ref.worldfile import load_world
-from ifgm_ref.worldgen.classes import gap_wall, placed, random_world
-from ifgm_ref.worldgen.draws import RandomDraw
+from ifgm_ref.sim.convergence import time_bound
+from ifgm_ref.sim.shapes import rectangle
+from ifgm_ref.sim.simulator import simulate
+from ifgm_ref.sim.world import World
+from ifgm_ref.sim.worldgen.classes import gap_wall, placed, random_world
+from ifgm_ref.sim.worldgen.draws import RandomDraw
 
 WORLDS = Path(__file__).parent / "worlds"
 ONE = Profile("one", 1, shrink=False)

@@ -1,4 +1,4 @@
-"""The simulator's lap rule (ifgm_ref.laps): it ends an endless lapper at the step its
+"""The simulator's lap rule (ifgm_ref.sim.laps): it ends an endless lapper at the step its
 definition says, spares a Bug1-like lap and a half and IFGM's dead-end escapes, switches off,
 and fires at the same step when every length is scaled by a power of two."""
 
@@ -10,18 +10,18 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from ifgm_ref.errors import ParameterError
-from ifgm_ref.formulas import Scale
-from ifgm_ref.laps import LapLog, LapRule
+from ifgm_ref.core.errors import ParameterError
+from ifgm_ref.core.formulas import Scale
+from ifgm_ref.core.params import SimParams
+from ifgm_ref.core.pose import Point, Pose, distance, wrap_angle
+from ifgm_ref.core.protocol import Command, EpisodeParams, Observation
+from ifgm_ref.io.scenarios import resolve_world
 from ifgm_ref.oracle.metamorphic import scale_sim, scale_world
-from ifgm_ref.params import SimParams
 from ifgm_ref.planners.ifgm import IFGMPlanner
-from ifgm_ref.pose import Point, Pose, distance, wrap_angle
-from ifgm_ref.protocol import Command, EpisodeParams, Observation
-from ifgm_ref.scenarios import resolve_world
-from ifgm_ref.shapes import circle
-from ifgm_ref.simulator import Run, StopReason, lap_rule, simulate
-from ifgm_ref.world import World
+from ifgm_ref.sim.laps import LapLog, LapRule
+from ifgm_ref.sim.shapes import circle
+from ifgm_ref.sim.simulator import Run, StopReason, lap_rule, simulate
+from ifgm_ref.sim.world import World
 
 #: Both stall rules off.
 NO_STALL = SimParams(stall_time=None, stall_laps=None)
@@ -240,7 +240,7 @@ def test_the_lap_rule_fires_at_the_same_step_when_every_length_is_scaled(k: floa
 
 
 def test_the_rule_is_derived_from_the_robot() -> None:
-    """rho = r, L = 2 pi r, eps = v dt (:mod:`ifgm_ref.laps`), for the paper's robot and a
+    """rho = r, L = 2 pi r, eps = v dt (:mod:`ifgm_ref.sim.laps`), for the paper's robot and a
     robot of another size, speed and time step."""
     paper = LapRule.of(Scale.paper(), 2)
     assert (paper.radius, paper.length) == (1.0, 2.0 * math.pi)

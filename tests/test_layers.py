@@ -1,16 +1,20 @@
-"""The paper's "no prior map" rule made structural: planners cannot reach what knows the map.
+"""The package's folders are its layers, and the imports keep to them.
 
-Section 3: "No priori information or map of the environment is required since the decisions
-are based on current percepts." Planners (and the equations, percepts and flowchart layers
-below them) must not import, directly or through other modules of ours, the world, the
-sensor, the simulator or anything above them.
+Bottom up: ``core`` (foundations), ``paper`` (equations, Figure 3, percepts), ``planners`` and
+``sim`` side by side, ``io``, ``oracle``, ``apps`` (docs/architecture.md). A module imports from
+its own folder and the folders below only, function-level imports included; ``planners`` and
+``sim`` never import each other.
 
-The same import graph keeps the layers above apart: the transport (the JSON-lines protocol,
-planners found by name) serves the oracle, the command line and the benchmark alike and
-imports none of them; the world classes and the time bound serve the oracle and the
-benchmark, which import each other not at all. No module imports itself through others (no
-import cycle, function-level imports included), and the oracle is layered: what is checked
-and how examples are drawn, then the checks, then what runs them.
+That is the paper's "no prior map" rule made structural (section 3: "No priori information or
+map of the environment is required since the decisions are based on current percepts"): the
+planners, and the paper and the foundations below them, cannot reach the world, the sensor,
+the simulator or anything above them.
+
+Within the layers: the transport (the JSON-lines protocol, planners found by name) and the
+ROS stand-in serve the oracle, the command line and the benchmark alike and import none of
+them; the oracle and the benchmark import each other not at all. No module imports itself
+through others (no import cycle), and the oracle is layered in its turn: what is checked and
+how examples are drawn, then the checks, then what runs them.
 """
 
 from __future__ import annotations
@@ -21,35 +25,31 @@ from pathlib import Path
 import pytest
 
 PACKAGE = Path(__file__).resolve().parent.parent / "ifgm_ref"
-#: Modules that know the map or sit above the planners.
-MAP_AWARE = {
-    "ifgm_ref.world",
-    "ifgm_ref.worldfile",
-    "ifgm_ref.shapes",
-    "ifgm_ref.scenarios",
-    "ifgm_ref.raycast",
-    "ifgm_ref.sensor",
-    "ifgm_ref.collision",
-    "ifgm_ref.simulator",
-    "ifgm_ref.plotting",
-    "ifgm_ref.cli",
-    "ifgm_ref.convergence",
-}
-#: Packages that know the map or sit above the planners, every module in them.
-MAP_AWARE_PACKAGES = ("ifgm_ref.cli.", "ifgm_ref.worldgen", "ifgm_ref.oracle", "ifgm_ref.bench")
-#: The map-free layers: their whole import closure must avoid MAP_AWARE.
+#: The layers, bottom up: the folders of ``ifgm_ref`` and their floor. Folders on one floor
+#: stand side by side and never import each other.
+FLOORS = {"core": 0, "paper": 1, "planners": 2, "sim": 2, "io": 3, "oracle": 4, "apps": 5}
+#: The package's own face (``__init__``, which installs the old names) and ``python -m``.
+ROOT_MODULES = {"ifgm_ref", "ifgm_ref.__main__"}
+#: What knows the map: a planner reaches none of it.
+MAP_AWARE = (
+    "ifgm_ref.sim",
+    "ifgm_ref.io.worldfile",
+    "ifgm_ref.io.gazebo",
+    "ifgm_ref.io.barn",
+    "ifgm_ref.io.scenarios",
+    "ifgm_ref.io.bags",
+    "ifgm_ref.oracle",
+    "ifgm_ref.apps",
+)
+#: The map-free layers, whose whole import closure avoids MAP_AWARE: the planners and all
+#: below them; the transport (both ends of the JSON-lines protocol see what a planner sees,
+#: and planners are found by name) and the ROS stand-in and its broker (the same).
 MAP_FREE_PREFIXES = (
+    "ifgm_ref.core",
+    "ifgm_ref.paper",
     "ifgm_ref.planners",
-    "ifgm_ref.equations",
-    "ifgm_ref.percepts",
-    "ifgm_ref.flowchart",
-    "ifgm_ref.protocol",
-    "ifgm_ref.laserscan",
-    # the protocol over JSON lines: both of its ends see what a planner sees, nothing more;
-    # and planners found by name
-    "ifgm_ref.transport",
-    # unchanged ROS nodes as a planner: the stand-in and its broker see what a planner sees
-    "ifgm_ref.ros",
+    "ifgm_ref.io.transport",
+    "ifgm_ref.io.ros",
 )
 
 
@@ -90,7 +90,7 @@ MAP_FREE = sorted(m for m in MODULES if m.startswith(MAP_FREE_PREFIXES))
 
 
 def _map_aware(module: str) -> bool:
-    return module in MAP_AWARE or module.startswith(MAP_AWARE_PACKAGES)
+    return any(_within(module, aware) for aware in MAP_AWARE)
 
 
 def _within(module: str, prefix: str) -> bool:
@@ -99,42 +99,91 @@ def _within(module: str, prefix: str) -> bool:
 
 #: (layer, what it must never reach, why): each layer's whole import closure avoids the other.
 SEPARATE = [
-    ("ifgm_ref.transport", "ifgm_ref.oracle", "the oracle uses the transport, not the reverse"),
-    ("ifgm_ref.transport", "ifgm_ref.bench", "the benchmark uses the transport"),
-    ("ifgm_ref.transport", "ifgm_ref.cli", "the command line uses the transport"),
-    ("ifgm_ref.ros", "ifgm_ref.oracle", "the oracle runs ROS nodes, not the reverse"),
-    ("ifgm_ref.ros", "ifgm_ref.cli", "the command line runs ROS nodes"),
-    ("ifgm_ref.ros", "ifgm_ref.bench", "the benchmark does without ROS nodes"),
-    ("ifgm_ref.bench", "ifgm_ref.oracle", "both take worlds and bounds from worldgen, convergence"),
-    ("ifgm_ref.oracle", "ifgm_ref.bench", "both take worlds and bounds from worldgen, convergence"),
-    ("ifgm_ref.worldgen", "ifgm_ref.oracle", "the oracle's strategies wrap the generators"),
-    ("ifgm_ref.worldgen", "ifgm_ref.bench", "the benchmark samples the generators"),
-    ("ifgm_ref.convergence", "ifgm_ref.oracle", "the oracle and the benchmark use the bound"),
-    ("ifgm_ref.convergence", "ifgm_ref.bench", "the oracle and the benchmark use the bound"),
-    ("ifgm_ref.cli.simulate", "ifgm_ref.oracle", "a run, in process or through --cmd"),
-    ("ifgm_ref.cli.bench", "ifgm_ref.oracle", "the benchmark does without the oracle"),
-    ("ifgm_ref.cli.serve", "ifgm_ref.oracle", "a planner served needs no oracle"),
-    ("ifgm_ref.cli.common", "ifgm_ref.oracle", "what every subcommand shares"),
-    ("ifgm_ref.simulator", "ifgm_ref.planners", "it runs any planner; formulas: ifgm_ref.formulas"),
-    ("ifgm_ref.laps", "ifgm_ref.planners", "the lap rule's thresholds are formulas too"),
-    ("ifgm_ref.formulas", "ifgm_ref.planners", "below the planners and the simulator"),
+    ("ifgm_ref.io.transport", "ifgm_ref.oracle", "the oracle uses the transport, not the reverse"),
+    ("ifgm_ref.io.transport", "ifgm_ref.apps.bench", "the benchmark uses the transport"),
+    ("ifgm_ref.io.transport", "ifgm_ref.apps.cli", "the command line uses the transport"),
+    ("ifgm_ref.io.ros", "ifgm_ref.oracle", "the oracle runs ROS nodes, not the reverse"),
+    ("ifgm_ref.io.ros", "ifgm_ref.apps.cli", "the command line runs ROS nodes"),
+    ("ifgm_ref.io.ros", "ifgm_ref.apps.bench", "the benchmark does without ROS nodes"),
+    (
+        "ifgm_ref.apps.bench",
+        "ifgm_ref.oracle",
+        "both take worlds and bounds from worldgen, convergence",
+    ),
+    (
+        "ifgm_ref.oracle",
+        "ifgm_ref.apps.bench",
+        "both take worlds and bounds from worldgen, convergence",
+    ),
+    ("ifgm_ref.sim.worldgen", "ifgm_ref.oracle", "the oracle's strategies wrap the generators"),
+    ("ifgm_ref.sim.worldgen", "ifgm_ref.apps.bench", "the benchmark samples the generators"),
+    ("ifgm_ref.sim.convergence", "ifgm_ref.oracle", "the oracle and the benchmark use the bound"),
+    (
+        "ifgm_ref.sim.convergence",
+        "ifgm_ref.apps.bench",
+        "the oracle and the benchmark use the bound",
+    ),
+    ("ifgm_ref.apps.cli.simulate", "ifgm_ref.oracle", "a run, in process or through --cmd"),
+    ("ifgm_ref.apps.cli.bench", "ifgm_ref.oracle", "the benchmark does without the oracle"),
+    ("ifgm_ref.apps.cli.serve", "ifgm_ref.oracle", "a planner served needs no oracle"),
+    ("ifgm_ref.apps.cli.common", "ifgm_ref.oracle", "what every subcommand shares"),
+    (
+        "ifgm_ref.sim.simulator",
+        "ifgm_ref.planners",
+        "it runs any planner; formulas: ifgm_ref.core.formulas",
+    ),
+    ("ifgm_ref.sim.laps", "ifgm_ref.planners", "the lap rule's thresholds are formulas too"),
+    ("ifgm_ref.core.formulas", "ifgm_ref.planners", "below the planners and the simulator"),
 ]
 
 
 def test_the_validator_sits_below_everything_it_checks() -> None:
-    """:mod:`ifgm_ref.validate`, which the equations, the parameters, the protocol and the
+    """:mod:`ifgm_ref.core.validate`, which the equations, the parameters, the protocol and the
     command line all call, imports nothing of the project but its errors."""
-    assert set(_closure("ifgm_ref.validate")) == {"ifgm_ref.errors"}
+    assert set(_closure("ifgm_ref.core.validate")) == {"ifgm_ref.core.errors"}
 
 
 def test_map_free_layers_exist() -> None:
     assert "ifgm_ref.planners" in MAP_FREE
+    assert "ifgm_ref.paper.flowchart" in MAP_FREE
     assert "ifgm_ref.planners.straight" in MAP_FREE
-    assert "ifgm_ref.transport.wire" in MAP_FREE
-    assert "ifgm_ref.transport.loading" in MAP_FREE
+    assert "ifgm_ref.io.transport.wire" in MAP_FREE
+    assert "ifgm_ref.io.transport.loading" in MAP_FREE
     for layer, other, _ in SEPARATE:
         assert any(_within(m, layer) for m in MODULES), layer
         assert any(_within(m, other) for m in MODULES), other
+
+
+def _floor(module: str) -> tuple[str, int] | None:
+    """The folder of ``module`` and its floor; ``None`` for the package's root modules."""
+    if module in ROOT_MODULES:
+        return None
+    folder = module.split(".")[1]
+    assert folder in FLOORS, f"{module} is in no layer's folder: place it in one of {FLOORS}"
+    return folder, FLOORS[folder]
+
+
+@pytest.mark.parametrize("module", sorted(m for m in MODULES if m not in ROOT_MODULES))
+def test_each_module_imports_its_own_folder_and_the_folders_below(module: str) -> None:
+    here = _floor(module)
+    assert here is not None
+    for dep in GRAPH[module]:
+        there = _floor(dep)
+        if there is None or there[0] == here[0]:
+            continue
+        assert there[1] < here[1], (
+            f"{module} ({here[0]}, floor {here[1]}) imports {dep} "
+            f"({there[0]}, floor {there[1]}): a folder imports only the folders below it"
+        )
+
+
+def test_the_folder_check_has_teeth() -> None:
+    GRAPH["ifgm_ref.sim.world"].add("ifgm_ref.planners.fgm")
+    try:
+        with pytest.raises(AssertionError, match="imports only the folders below"):
+            test_each_module_imports_its_own_folder_and_the_folders_below("ifgm_ref.sim.world")
+    finally:
+        GRAPH["ifgm_ref.sim.world"].discard("ifgm_ref.planners.fgm")
 
 
 @pytest.mark.paper("s3.no_map")
@@ -154,20 +203,20 @@ def test_layers_stay_apart(layer: str, other: str, why: str) -> None:
 
 
 def test_the_check_has_teeth() -> None:
-    GRAPH["ifgm_ref.planners.straight"].add("ifgm_ref.sensor")
+    GRAPH["ifgm_ref.planners.straight"].add("ifgm_ref.sim.sensor")
     try:
-        assert "ifgm_ref.sensor" in _closure("ifgm_ref.planners")
+        assert "ifgm_ref.sim.sensor" in _closure("ifgm_ref.planners")
     finally:
-        GRAPH["ifgm_ref.planners.straight"].discard("ifgm_ref.sensor")
+        GRAPH["ifgm_ref.planners.straight"].discard("ifgm_ref.sim.sensor")
 
 
 def test_the_separation_has_teeth() -> None:
-    GRAPH["ifgm_ref.transport.wire"].add("ifgm_ref.oracle.checks")
+    GRAPH["ifgm_ref.io.transport.wire"].add("ifgm_ref.oracle.checks")
     try:
         with pytest.raises(AssertionError, match=r"ifgm_ref\.oracle\.checks"):
-            test_layers_stay_apart("ifgm_ref.transport", "ifgm_ref.oracle", "test")
+            test_layers_stay_apart("ifgm_ref.io.transport", "ifgm_ref.oracle", "test")
     finally:
-        GRAPH["ifgm_ref.transport.wire"].discard("ifgm_ref.oracle.checks")
+        GRAPH["ifgm_ref.io.transport.wire"].discard("ifgm_ref.oracle.checks")
 
 
 #: The oracle's layers, bottom up: what is checked and how examples are drawn; the checks;

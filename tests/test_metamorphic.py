@@ -14,8 +14,9 @@ from dataclasses import replace
 import pytest
 from hypothesis import strategies as st
 
-from ifgm_ref.errors import ParameterError
-from ifgm_ref.formulas import Unit
+from ifgm_ref.core.errors import ParameterError
+from ifgm_ref.core.formulas import Unit
+from ifgm_ref.core.params import RobotParams, SensorParams, SimParams
 from ifgm_ref.oracle.checks import CHECKS
 from ifgm_ref.oracle.implementation import Implementation, promises_of
 from ifgm_ref.oracle.metamorphic import (
@@ -27,10 +28,9 @@ from ifgm_ref.oracle.metamorphic import (
 from ifgm_ref.oracle.mutants import AbsoluteStandoff
 from ifgm_ref.oracle.profiles import Profile
 from ifgm_ref.oracle.runner import Status, check_planner, run_check
-from ifgm_ref.params import RobotParams, SensorParams, SimParams
 from ifgm_ref.planners import PLANNERS
-from ifgm_ref.world import Circle, Polygon, World
-from ifgm_ref.worldgen.classes import random_world
+from ifgm_ref.sim.world import Circle, Polygon, World
+from ifgm_ref.sim.worldgen.classes import random_world
 
 #: A few examples per planner keep CI cheap (the CLI's quick profile runs 50).
 FEW = Profile("few", 20)
@@ -158,7 +158,7 @@ def test_a_crashing_planner_gets_a_verdict() -> None:
                 raise RuntimeError("only feet")
 
         def step(self, observation):
-            from ifgm_ref.protocol import Command
+            from ifgm_ref.core.protocol import Command
 
             return Command(math.atan2(observation.goal.y - observation.pose.y, 1.0), 1.0)
 

@@ -1,4 +1,4 @@
-"""The simulator's noise models (``ifgm_ref/noise.py``, ``docs/noise.md``): each model's
+"""The simulator's noise models (``ifgm_ref/sim/noise.py``, ``docs/noise.md``): each model's
 formula, that every kind draws from its own seeded stream, that noise-free runs are the runs
 of before, and that a noisy run replays from its seeds."""
 
@@ -10,16 +10,16 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from ifgm_ref.errors import ParameterError
-from ifgm_ref.noise import Actuation, NoiseLevels, Odometry
-from ifgm_ref.params import RobotParams, SensorParams, SimParams
+from ifgm_ref.core.errors import ParameterError
+from ifgm_ref.core.params import RobotParams, SensorParams, SimParams
+from ifgm_ref.core.pose import Point, Pose, distance
+from ifgm_ref.core.protocol import Command
+from ifgm_ref.io.scenarios import resolve_world
 from ifgm_ref.planners import make_planner
-from ifgm_ref.pose import Point, Pose, distance
-from ifgm_ref.protocol import Command
-from ifgm_ref.scenarios import resolve_world
-from ifgm_ref.sensor import IRSensor
-from ifgm_ref.simulator import simulate
-from ifgm_ref.world import Circle, World
+from ifgm_ref.sim.noise import Actuation, NoiseLevels, Odometry
+from ifgm_ref.sim.sensor import IRSensor
+from ifgm_ref.sim.simulator import simulate
+from ifgm_ref.sim.world import Circle, World
 
 #: A ring of radius 10 round the origin: every ray of a sensor there returns at 10 - 0.5.
 RING = World(

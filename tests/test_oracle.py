@@ -21,10 +21,11 @@ import shapely
 from hypothesis import find, given, settings
 from hypothesis import strategies as st
 
-import ifgm_ref.equations as reference
-from ifgm_ref.bags.read import read_log
-from ifgm_ref.cli import main
-from ifgm_ref.convergence import time_bound
+import ifgm_ref.paper.equations as reference
+from ifgm_ref.apps.cli import main
+from ifgm_ref.core.params import SimParams
+from ifgm_ref.io.bags.read import read_log
+from ifgm_ref.io.worldfile import load_world
 from ifgm_ref.oracle.check_types import Check, Kind, Level
 from ifgm_ref.oracle.checks import CHECKS, checks_at
 from ifgm_ref.oracle.implementation import Implementation, promises_of
@@ -35,12 +36,11 @@ from ifgm_ref.oracle.strategies import SOLVABLE_CLASSES, enclosed_worlds, open_w
 from ifgm_ref.oracle.suite.run import run_cases
 from ifgm_ref.oracle.suite.versions import load_suite
 from ifgm_ref.oracle.variants import VARIANTS
-from ifgm_ref.params import SimParams
 from ifgm_ref.planners import make_planner
-from ifgm_ref.simulator import simulate
-from ifgm_ref.world import Circle
-from ifgm_ref.worldfile import load_world
-from ifgm_ref.worldgen.classes import PASSAGE, solvable
+from ifgm_ref.sim.convergence import time_bound
+from ifgm_ref.sim.simulator import simulate
+from ifgm_ref.sim.world import Circle
+from ifgm_ref.sim.worldgen.classes import PASSAGE, solvable
 
 WORLDS = Path(__file__).parent / "worlds"
 #: The paper level's simulation checks (the reference level: test_reference_conformance.py).
@@ -463,7 +463,7 @@ def test_plugin_runs_one_test_per_property(pytester: pytest.Pytester) -> None:
         "--ifgm-impl",
         "ifgm",
         "--ifgm-equations",
-        "ifgm_ref.equations",
+        "ifgm_ref.paper.equations",
         "-k",
         "eq1 or eq2_gap_angle or reports_unreachable or agrees_with_reference",
         "-v",
@@ -487,7 +487,7 @@ def test_plugin_runs_one_test_per_property(pytester: pytest.Pytester) -> None:
 @pytest.mark.parametrize(
     ("impl", "equations", "outcome"),
     [
-        ("fgm", "ifgm_ref.equations", "passed"),
+        ("fgm", "ifgm_ref.paper.equations", "passed"),
         ("ifgm_ref.planners.fgm:FGMPlanner", None, "skipped"),
     ],
 )

@@ -36,7 +36,7 @@ EQ1 = ["--check", "eq1_gap_midpoint"]
 
 
 def test_equations_option_runs_the_equation_checks() -> None:
-    done = run_cli("oracle", "--planner", "ifgm", *EQ1, "--equations", "ifgm_ref.equations")
+    done = run_cli("oracle", "--planner", "ifgm", *EQ1, "--equations", "ifgm_ref.paper.equations")
     assert done.returncode == 0, done.stderr
     assert done.stdout.startswith("PASSED              eq1_gap_midpoint           50 examples")
 
@@ -61,7 +61,10 @@ def test_equations_may_be_a_module_attribute(tmp_path: Path) -> None:
     [
         ("no_such_eqs_xyz", "cannot import 'no_such_eqs_xyz': No module named 'no_such_eqs_xyz'"),
         ("math", "'math' has none of the equation functions eq1_gap_midpoint, eq2_gap_angle"),
-        ("ifgm_ref.equations:nope", "module 'ifgm_ref.equations' has no attribute 'nope'"),
+        (
+            "ifgm_ref.paper.equations:nope",
+            "module 'ifgm_ref.paper.equations' has no attribute 'nope'",
+        ),
     ],
 )
 def test_equations_that_cannot_be_loaded_are_a_one_line_error(spec: str, message: str) -> None:
@@ -132,7 +135,7 @@ def _in_a_terminal(*args: str) -> str:
 
 
 def test_a_terminal_shows_each_check_once_and_the_summary() -> None:
-    args = ["oracle", "--planner", "ifgm", "--equations", "ifgm_ref.equations", "--jobs", "1"]
+    args = ["oracle", "--planner", "ifgm", "--equations", "ifgm_ref.paper.equations", "--jobs", "1"]
     args += [*EQ1, "--check", "eq2_gap_angle"]
     screen = _in_a_terminal(*args)
     assert screen.count("eq1_gap_midpoint") == 1, screen
@@ -270,7 +273,7 @@ def test_crash_names_the_innermost_frame() -> None:
 def test_the_old_profile_name_default_still_works() -> None:
     report = check_planner("ifgm", profile="default", checks=["eq1_gap_midpoint"])
     assert report.profile == "standard"
-    args = ["oracle", "--planner", "ifgm", *EQ1, "--equations", "ifgm_ref.equations"]
+    args = ["oracle", "--planner", "ifgm", *EQ1, "--equations", "ifgm_ref.paper.equations"]
     done = run_cli(*args, "--profile", "default")
     assert done.returncode == 0
     assert "ifgm-ref: note: profile 'default' is now called 'standard'" in done.stderr
@@ -281,7 +284,7 @@ def test_the_old_profile_name_default_still_works() -> None:
 def test_the_plugin_takes_the_old_profile_name(pytester: pytest.Pytester) -> None:
     result = pytester.runpytest_inprocess(
         "--pyargs", "ifgm_ref.oracle", "--ifgm-impl", "ifgm", "--ifgm-profile", "default",
-        "--ifgm-equations", "ifgm_ref.equations", "-k", "eq1_gap", "-p", "no:cacheprovider",
+        "--ifgm-equations", "ifgm_ref.paper.equations", "-k", "eq1_gap", "-p", "no:cacheprovider",
     )  # fmt: skip
     result.stdout.fnmatch_lines(["ifgm-ref oracle: profile standard (200 examples per check)*"])
     result.assert_outcomes(passed=1)
@@ -303,7 +306,7 @@ def test_a_factory_that_makes_no_planner_is_a_one_line_error(args: list[str]) ->
     assert done.returncode == 2
     assert done.stderr.splitlines() == [
         "ifgm-ref: error: 'os:getcwd' made a str, not a planner: it has no name, reset, step "
-        "(see ifgm_ref.protocol.Planner)"
+        "(see ifgm_ref.core.protocol.Planner)"
     ]
 
 
@@ -420,7 +423,7 @@ def test_the_oracle_leaves_no_hypothesis_folder_where_it_runs(
     work = tmp_path / "work"
     work.mkdir()
     done = run_cli(
-        "oracle", "--planner", "ifgm", "--equations", "ifgm_ref.equations", *EQ1, cwd=work
+        "oracle", "--planner", "ifgm", "--equations", "ifgm_ref.paper.equations", *EQ1, cwd=work
     )
     assert done.returncode == 0, done.stderr
     assert list(work.iterdir()) == []

@@ -9,19 +9,19 @@ from typing import ClassVar
 
 import pytest
 
-from ifgm_ref.cli import main
-from ifgm_ref.convergence import time_bound
-from ifgm_ref.errors import ImplementationError
+from ifgm_ref.apps.cli import main
+from ifgm_ref.core.errors import ImplementationError
+from ifgm_ref.core.params import SimParams
+from ifgm_ref.core.pose import Point, Pose
+from ifgm_ref.core.protocol import Command, EpisodeParams, Observation
+from ifgm_ref.io.scenarios import resolve_world
 from ifgm_ref.oracle.check_types import Recorder
 from ifgm_ref.oracle.checks import CHECKS
 from ifgm_ref.oracle.implementation import Implementation, promises_of
 from ifgm_ref.oracle.mutants import MUTANTS
 from ifgm_ref.oracle.profiles import Profile, engine_tag, on_engine
 from ifgm_ref.oracle.runner import Status, check_planner, run_check
-from ifgm_ref.params import SimParams
-from ifgm_ref.pose import Point, Pose
-from ifgm_ref.protocol import Command, EpisodeParams, Observation
-from ifgm_ref.scenarios import resolve_world
+from ifgm_ref.sim.convergence import time_bound
 
 pytest.importorskip("mujoco")
 

@@ -5,16 +5,16 @@ from __future__ import annotations
 
 import math
 
+from ifgm_ref.core.params import RobotParams
+from ifgm_ref.core.pose import Point, Pose
+from ifgm_ref.core.protocol import Command, EpisodeParams, Observation
 from ifgm_ref.oracle.checks import CHECKS
 from ifgm_ref.oracle.episodes import ending, place_of
 from ifgm_ref.oracle.implementation import Implementation, Promises
 from ifgm_ref.oracle.profiles import Profile
 from ifgm_ref.oracle.runner import Status, run_check
-from ifgm_ref.params import RobotParams
-from ifgm_ref.pose import Point, Pose
-from ifgm_ref.protocol import Command, EpisodeParams, Observation
-from ifgm_ref.simulator import simulate
-from ifgm_ref.world import World
+from ifgm_ref.sim.simulator import simulate
+from ifgm_ref.sim.world import World
 
 #: Two examples: the first stalls.
 TWO = Profile("two", 2)

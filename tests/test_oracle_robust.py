@@ -16,8 +16,11 @@ from pathlib import Path
 import pytest
 from hypothesis import find, settings
 
-from ifgm_ref.convergence import time_bound
-from ifgm_ref.noise import NoiseLevels
+from ifgm_ref.core.params import SimParams
+from ifgm_ref.core.pose import Point, Pose
+from ifgm_ref.core.protocol import Command, EpisodeParams, Observation
+from ifgm_ref.io.transport.wire import parse_reset, reset_message
+from ifgm_ref.io.worldfile import load_world
 from ifgm_ref.oracle.check_types import Kind
 from ifgm_ref.oracle.checks import CHECKS, checks_at
 from ifgm_ref.oracle.implementation import REFERENCE_NOISE, Implementation, Promises, promises_of
@@ -30,18 +33,15 @@ from ifgm_ref.oracle.robust import (
 )
 from ifgm_ref.oracle.runner import Status, check_planner, run_check
 from ifgm_ref.oracle.strategies import gap_walls
-from ifgm_ref.params import SimParams
 from ifgm_ref.planners import make_planner
 from ifgm_ref.planners.straight import StraightPlanner
-from ifgm_ref.pose import Point, Pose
-from ifgm_ref.protocol import Command, EpisodeParams, Observation
-from ifgm_ref.shapes import rectangle
-from ifgm_ref.simulator import simulate
-from ifgm_ref.transport.wire import parse_reset, reset_message
-from ifgm_ref.world import World
-from ifgm_ref.worldfile import load_world
-from ifgm_ref.worldgen.classes import random_world
-from ifgm_ref.worldgen.draws import Draw
+from ifgm_ref.sim.convergence import time_bound
+from ifgm_ref.sim.noise import NoiseLevels
+from ifgm_ref.sim.shapes import rectangle
+from ifgm_ref.sim.simulator import simulate
+from ifgm_ref.sim.world import World
+from ifgm_ref.sim.worldgen.classes import random_world
+from ifgm_ref.sim.worldgen.draws import Draw
 from tests.test_cli import run_cli
 
 #: The paper level's simulation checks (the promises under noise are the paper's).
@@ -326,7 +326,7 @@ def test_plugin_header_names_the_noise_levels(pytester: pytest.Pytester) -> None
     """The pytest header says which levels a robust run checks and which are promised."""
     result = pytester.runpytest_inprocess(
         "--pyargs", "ifgm_ref.oracle", "--ifgm-impl", "ifgm", "--ifgm-profile", "robust",
-        "--ifgm-equations", "ifgm_ref.equations", "-k", "eq1_gap", "-p", "no:cacheprovider",
+        "--ifgm-equations", "ifgm_ref.paper.equations", "-k", "eq1_gap", "-p", "no:cacheprovider",
     )  # fmt: skip
     tags = REFERENCE_NOISE.tags()
     result.stdout.fnmatch_lines([f"ifgm-ref oracle: noise {tags} checked, {tags} promised"])

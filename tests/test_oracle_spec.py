@@ -14,7 +14,10 @@ from pathlib import Path
 
 import pytest
 
-from ifgm_ref.errors import ParameterError
+from ifgm_ref.core.errors import ParameterError
+from ifgm_ref.core.params import SensorParams
+from ifgm_ref.core.pose import Point, Pose, distance
+from ifgm_ref.core.protocol import Command, EpisodeParams, Observation
 from ifgm_ref.oracle.checks import CHECKS
 from ifgm_ref.oracle.implementation import Implementation
 from ifgm_ref.oracle.profiles import Profile
@@ -27,11 +30,8 @@ from ifgm_ref.oracle.specification import (
     load_specification,
     refuse_options,
 )
-from ifgm_ref.params import SensorParams
 from ifgm_ref.planners import make_planner
-from ifgm_ref.pose import Point, Pose, distance
-from ifgm_ref.protocol import Command, EpisodeParams, Observation
-from ifgm_ref.world import World
+from ifgm_ref.sim.world import World
 from tests.test_cli import run_cli
 
 SPECS = Path(__file__).resolve().parent.parent / "examples" / "specs"
@@ -337,10 +337,10 @@ def test_the_plugin_takes_a_spec_and_says_what_it_holds_to(pytester: pytest.Pyte
 
 
 _STOPS_SHORT_MODULE = f"""
-from ifgm_ref.params import SensorParams
+from ifgm_ref.core.params import SensorParams
 from ifgm_ref.planners import make_planner
-from ifgm_ref.pose import distance
-from ifgm_ref.protocol import Command
+from ifgm_ref.core.pose import distance
+from ifgm_ref.core.protocol import Command
 
 
 class StopsShort:

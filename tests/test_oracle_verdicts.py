@@ -13,14 +13,14 @@ import math
 
 import pytest
 
+from ifgm_ref.core.pose import Point, Pose
+from ifgm_ref.core.protocol import Command, EpisodeParams, Observation
 from ifgm_ref.oracle.check_types import Kind
 from ifgm_ref.oracle.checks import CHECKS
 from ifgm_ref.oracle.implementation import Implementation, Promises, promises_of
 from ifgm_ref.oracle.profiles import Profile
 from ifgm_ref.oracle.runner import CheckResult, Report, Status, run_check
 from ifgm_ref.planners import PLANNERS
-from ifgm_ref.pose import Point, Pose
-from ifgm_ref.protocol import Command, EpisodeParams, Observation
 
 #: The reference IFGM, with what it promises.
 IFGM = Implementation(PLANNERS["ifgm"].factory, "ifgm", promises_of("ifgm"))

@@ -1,4 +1,4 @@
-"""Output files are written whole or not at all (:mod:`ifgm_ref.outputs`), never over what is
+"""Output files are written whole or not at all (:mod:`ifgm_ref.core.outputs`), never over what is
 not a regular file."""
 
 from __future__ import annotations
@@ -9,7 +9,7 @@ from pathlib import Path
 
 import pytest
 
-from ifgm_ref.outputs import LEDGER, written
+from ifgm_ref.core.outputs import LEDGER, written
 
 
 def test_a_failed_writer_leaves_the_old_file_and_no_temporary(tmp_path: Path) -> None:
@@ -63,7 +63,7 @@ def test_an_interruption_a_library_turned_into_its_own_error_is_still_one(
     import signal
     import time
 
-    from ifgm_ref.cli import artefacts, main
+    from ifgm_ref.apps.cli import artefacts, main
 
     def garbled(args: object) -> int:
         try:

@@ -1,4 +1,4 @@
-"""Percepts (ifgm_ref.percepts): obstacles as clusters and the gaps between them."""
+"""Percepts (ifgm_ref.paper.percepts): obstacles as clusters and the gaps between them."""
 
 from __future__ import annotations
 
@@ -10,14 +10,14 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from ifgm_ref.laserscan import LaserScan
-from ifgm_ref.percepts.clusters import GapReading, Side, cluster_scan, gaps_between
-from ifgm_ref.percepts.memory import PerceptMemory
-from ifgm_ref.percepts.points import point_to_world, to_world
-from ifgm_ref.pose import Point, Pose
-from ifgm_ref.sensor import IRSensor
-from ifgm_ref.shapes import rectangle
-from ifgm_ref.world import Polygon, World
+from ifgm_ref.core.laserscan import LaserScan
+from ifgm_ref.core.pose import Point, Pose
+from ifgm_ref.paper.percepts.clusters import GapReading, Side, cluster_scan, gaps_between
+from ifgm_ref.paper.percepts.memory import PerceptMemory
+from ifgm_ref.paper.percepts.points import point_to_world, to_world
+from ifgm_ref.sim.sensor import IRSensor
+from ifgm_ref.sim.shapes import rectangle
+from ifgm_ref.sim.world import Polygon, World
 
 
 def _scan_of(*obstacles: Polygon) -> LaserScan:

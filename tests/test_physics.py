@@ -1,4 +1,4 @@
-"""The mujoco engine (ifgm_ref.physics): the model, the sensor, motion, odometry, contacts."""
+"""The mujoco engine (ifgm_ref.sim.physics): the model, the sensor, motion, odometry, contacts."""
 
 from __future__ import annotations
 
@@ -10,22 +10,22 @@ import numpy as np
 import pytest
 import shapely
 
-from ifgm_ref.barn import ROBOT as BARN_ROBOT
-from ifgm_ref.barn import bundled_barn_folder, load_barn_world
-from ifgm_ref.engine import PHYSICS_HINT, make_engine
-from ifgm_ref.errors import ParameterError
-from ifgm_ref.params import RobotParams, SimParams
-from ifgm_ref.physics.bodies import JACKAL, PAPER, body_for
-from ifgm_ref.physics.engine import MujocoEngine
-from ifgm_ref.physics.mjcf import substeps, triangles
+from ifgm_ref.core.errors import ParameterError
+from ifgm_ref.core.params import RobotParams, SimParams
+from ifgm_ref.core.pose import Point, Pose
+from ifgm_ref.core.protocol import Command, EpisodeParams
+from ifgm_ref.io.barn import ROBOT as BARN_ROBOT
+from ifgm_ref.io.barn import bundled_barn_folder, load_barn_world
+from ifgm_ref.io.scenarios import resolve_world
 from ifgm_ref.planners import make_planner
 from ifgm_ref.planners.governor import GovernorState, Limits, stopping_distance
-from ifgm_ref.pose import Point, Pose
-from ifgm_ref.protocol import Command, EpisodeParams
-from ifgm_ref.scenarios import resolve_world
-from ifgm_ref.sensor import IRSensor
-from ifgm_ref.simulator import simulate
-from ifgm_ref.world import Circle, Polygon, World
+from ifgm_ref.sim.engine import PHYSICS_HINT, make_engine
+from ifgm_ref.sim.physics.bodies import JACKAL, PAPER, body_for
+from ifgm_ref.sim.physics.mjcf import substeps, triangles
+from ifgm_ref.sim.physics.mujoco import MujocoEngine
+from ifgm_ref.sim.sensor import IRSensor
+from ifgm_ref.sim.simulator import simulate
+from ifgm_ref.sim.world import Circle, Polygon, World
 
 MUJOCO = SimParams(engine="mujoco")
 

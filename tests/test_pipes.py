@@ -1,4 +1,4 @@
-"""Both kinds of :class:`~ifgm_ref.transport.pipes.Pipes` keep the same contract.
+"""Both kinds of :class:`~ifgm_ref.io.transport.pipes.Pipes` keep the same contract.
 
 The adapter's own failure tests (``tests/test_external.py``) run over the platform's kind;
 here each contract point is checked for both, since the threaded kind serves where the
@@ -16,7 +16,7 @@ from collections.abc import Callable, Iterator
 
 import pytest
 
-from ifgm_ref.transport.pipes import CHUNK, MAX_LINE, LineTooLongError, Pipes, connect
+from ifgm_ref.io.transport.pipes import CHUNK, MAX_LINE, LineTooLongError, Pipes, connect
 
 #: A program's behaviour after its prelude, by name: it echoes, or misbehaves.
 PROGRAMS = {

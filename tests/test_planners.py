@@ -5,11 +5,11 @@ from __future__ import annotations
 
 import pytest
 
-from ifgm_ref.params import SimParams
+from ifgm_ref.core.params import SimParams
+from ifgm_ref.core.protocol import Planner
+from ifgm_ref.io.scenarios import resolve_world
 from ifgm_ref.planners import PLANNERS, make_planner
-from ifgm_ref.protocol import Planner
-from ifgm_ref.scenarios import resolve_world
-from ifgm_ref.simulator import StopReason, simulate
+from ifgm_ref.sim.simulator import StopReason, simulate
 
 #: The paper's planners. ``dwa``, BARN's baseline (it keeps a map, which the paper's methods do
 #: not), is checked in tests/test_dwa.py, on BARN's worlds and on a built-in one.

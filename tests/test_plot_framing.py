@@ -3,7 +3,7 @@ the world and the path, not the sensor's reach; everything drawn is in the legen
 is named; the animation's titles are sentences.
 
 The frames are checked against extents computed here from the world and the trace, not
-against the module's own :func:`~ifgm_ref.plotting.frame`.
+against the module's own :func:`~ifgm_ref.sim.plotting.frame`.
 """
 
 from __future__ import annotations
@@ -22,19 +22,19 @@ from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
 from numpy.typing import NDArray
 
-from ifgm_ref.bags.plot import plot_replay
-from ifgm_ref.bags.read import read_log
-from ifgm_ref.bags.replay import ReplayReport, replay_log, setting_of
-from ifgm_ref.bags.write import write_bag
-from ifgm_ref.barn import gazebo_task
-from ifgm_ref.noise import NoiseLevels
+from ifgm_ref.apps.replay import ReplayReport, replay_log, setting_of
+from ifgm_ref.apps.replay_plot import plot_replay
+from ifgm_ref.core.recording import RecordingPlanner
+from ifgm_ref.io.bags.read import read_log
+from ifgm_ref.io.bags.write import write_bag
+from ifgm_ref.io.barn import gazebo_task
+from ifgm_ref.io.scenarios import resolve_world
 from ifgm_ref.planners.fgm import FGMPlanner
 from ifgm_ref.planners.ifgm import IFGMPlanner
-from ifgm_ref.plotting import animate_run, plot_run
-from ifgm_ref.recording import RecordingPlanner
-from ifgm_ref.scenarios import resolve_world
-from ifgm_ref.simulator import Run, simulate
-from ifgm_ref.world import Circle, World
+from ifgm_ref.sim.noise import NoiseLevels
+from ifgm_ref.sim.plotting import animate_run, plot_run
+from ifgm_ref.sim.simulator import Run, simulate
+from ifgm_ref.sim.world import Circle, World
 
 #: The most a plot's side may be, as a multiple of the larger side of what it must show:
 #: room for the margins and for the widening to the axes' shape, none for a 30 m sensor
@@ -238,15 +238,15 @@ def test_a_counterexample_plot_names_the_engine_it_ran_on(
     engine: str, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
     """The oracle's counterexample plots say the engine, as ``simulate``'s do."""
-    from ifgm_ref import plotting
+    from ifgm_ref.core.params import SimParams
+    from ifgm_ref.io.scenarios import resolve_world
     from ifgm_ref.oracle.check_types import Evidence
     from ifgm_ref.oracle.checks import CHECKS
     from ifgm_ref.oracle.counterexample import write_evidence
     from ifgm_ref.oracle.implementation import Implementation
-    from ifgm_ref.params import SimParams
     from ifgm_ref.planners import make_planner
-    from ifgm_ref.scenarios import resolve_world
-    from ifgm_ref.simulator import simulate
+    from ifgm_ref.sim import plotting
+    from ifgm_ref.sim.simulator import simulate
 
     titles: list[str] = []
     draw = plotting.plot_run

@@ -1,4 +1,4 @@
-"""Plots and animations (ifgm_ref.plotting): what they show, checked on the figure objects."""
+"""Plots and animations (ifgm_ref.sim.plotting): what they show, checked on the figure objects."""
 
 from __future__ import annotations
 
@@ -14,10 +14,11 @@ import matplotlib.pyplot as plt
 import pytest
 from PIL import Image
 
-from ifgm_ref.noise import NoiseLevels
+from ifgm_ref.io.scenarios import resolve_world
 from ifgm_ref.planners.fgm import FGMPlanner
 from ifgm_ref.planners.ifgm import IFGMPlanner
-from ifgm_ref.plotting import (
+from ifgm_ref.sim.noise import NoiseLevels
+from ifgm_ref.sim.plotting import (
     BELIEVED_LABEL,
     END_LABEL,
     MAX_FRAMES,
@@ -29,8 +30,7 @@ from ifgm_ref.plotting import (
     plot_run,
     switch_indices,
 )
-from ifgm_ref.scenarios import resolve_world
-from ifgm_ref.simulator import simulate
+from ifgm_ref.sim.simulator import simulate
 
 
 def test_run_plot_colours_the_path_by_behaviour_and_marks_switches() -> None:

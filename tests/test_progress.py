@@ -8,8 +8,8 @@ from typing import Any
 
 import pytest
 
-from ifgm_ref import progress
-from ifgm_ref.progress import progress_bar
+from ifgm_ref.core import progress
+from ifgm_ref.core.progress import progress_bar
 
 
 class _Log(io.StringIO):

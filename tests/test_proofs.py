@@ -21,7 +21,7 @@ from pathlib import Path
 import pytest
 import sympy as sp
 
-from ifgm_ref.formulas import Unit
+from ifgm_ref.core.formulas import Unit
 from ifgm_ref.planners import PLANNERS
 from ifgm_ref.planners.tuning import ParamInfo
 from proofs._util import ClaimFailed, ClaimKind, Derivation

@@ -1,4 +1,4 @@
-"""The ray-casting kernel (ifgm_ref.raycast) against shapely's exact geometry.
+"""The ray-casting kernel (ifgm_ref.sim.raycast) against shapely's exact geometry.
 
 Oracle: the first hit of a ray is the distance from its origin to ``ray & obstacle``, the
 intersection of the ray (a shapely ``LineString``) with each polygon (exact in float64), and
@@ -32,8 +32,8 @@ from hypothesis import assume, given, note
 from hypothesis import strategies as st
 from numpy.typing import NDArray
 
-from ifgm_ref import raycast
-from ifgm_ref.raycast import RayCaster, RayFan, cast_rays
+from ifgm_ref.sim import raycast
+from ifgm_ref.sim.raycast import RayCaster, RayFan, cast_rays
 
 #: Distance tolerance, ft (see the module docstring).
 TOL = 1e-9

@@ -1,4 +1,4 @@
-"""Readings as options (issue 26, item 3; ifgm_ref.planners.ifgm_readings): the reference IFGM
+"""Readings as options (issue 26, item 3; ifgm_ref.planners.ifgm.readings): the reference IFGM
 runs each reading the errata table leaves open, a port declares the one it takes, and
 reference conformance compares it with the reference running that reading -- or says that
 the reference cannot run it."""
@@ -10,22 +10,22 @@ from pathlib import Path
 
 import pytest
 
-from ifgm_ref.convergence import time_bound
-from ifgm_ref.errors import ImplementationError, ParameterError
+from ifgm_ref.core.errors import ImplementationError, ParameterError
+from ifgm_ref.core.params import SimParams
+from ifgm_ref.io.scenarios import resolve_world
 from ifgm_ref.oracle.conformance import compare, divergence_message, reference_episode
 from ifgm_ref.oracle.implementation import Implementation, Promises, promises_of
 from ifgm_ref.oracle.runner import check_planner
-from ifgm_ref.params import SimParams
 from ifgm_ref.planners.ifgm import IFGMPlanner
-from ifgm_ref.planners.ifgm_readings import (
+from ifgm_ref.planners.ifgm.readings import (
     OPEN_READINGS,
     Readings,
     parse_readings,
     unrunnable,
 )
-from ifgm_ref.scenarios import resolve_world
-from ifgm_ref.world import World
-from ifgm_ref.worldgen.classes import random_world
+from ifgm_ref.sim.convergence import time_bound
+from ifgm_ref.sim.world import World
+from ifgm_ref.sim.worldgen.classes import random_world
 from tests.test_cli import run_cli
 
 #: For each reading other than ours, a world (built-in, or class-seed drawn) where it changes

@@ -13,8 +13,11 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from ifgm_ref.convergence import time_bound
-from ifgm_ref.errors import ImplementationError
+from ifgm_ref.core.errors import ImplementationError
+from ifgm_ref.core.params import SimParams
+from ifgm_ref.core.pose import Point, Pose
+from ifgm_ref.core.protocol import EpisodeParams
+from ifgm_ref.io.scenarios import BUILTIN_WORLDS, resolve_world
 from ifgm_ref.oracle import conformance
 from ifgm_ref.oracle.braking import with_dynamics
 from ifgm_ref.oracle.checks import checks_at
@@ -31,14 +34,11 @@ from ifgm_ref.oracle.mutants import MUTANTS
 from ifgm_ref.oracle.runner import check_planner
 from ifgm_ref.oracle.strategies import BARN_SAMPLES, SOLVABLE_CLASSES, reference_worlds
 from ifgm_ref.oracle.variants import VARIANTS
-from ifgm_ref.params import SimParams
-from ifgm_ref.planners.ifgm import IFGMPlanner, nearest_remembered
-from ifgm_ref.planners.ifgm_margins import DECISIONS, _tracking_margin
+from ifgm_ref.planners.ifgm.margins import DECISIONS, _tracking_margin
+from ifgm_ref.planners.ifgm.planner import IFGMPlanner, nearest_remembered
 from ifgm_ref.planners.sight import Body, BoundaryParams, Sight
-from ifgm_ref.pose import Point, Pose
-from ifgm_ref.protocol import EpisodeParams
-from ifgm_ref.scenarios import BUILTIN_WORLDS, resolve_world
-from ifgm_ref.worldgen.classes import random_world
+from ifgm_ref.sim.convergence import time_bound
+from ifgm_ref.sim.worldgen.classes import random_world
 
 #: Worlds that take IFGM through every branch of Figure 3 between them.
 WORLDS = ("u_trap", "h_block", "fig7a", "post", "wall_posts", "offset_box", "scenario1")

@@ -1,6 +1,6 @@
 """``ifgm-ref replay``: a robot's log fed to the reference, open loop, compared step by step.
 
-Logs come from two writers: this project's (``simulate --record``, :mod:`ifgm_ref.bags`) and
+Logs come from two writers: this project's (``simulate --record``, :mod:`ifgm_ref.io.bags`) and
 an independent one, ``mcap`` with ``mcap-ros2-support``, so that the reader is not only
 checked against its own writer.
 """
@@ -17,22 +17,22 @@ from typing import Any
 import numpy as np
 import pytest
 
-from ifgm_ref.bags.read import read_log
-from ifgm_ref.bags.replay import Tolerance, difference, replay_log, setting_of
-from ifgm_ref.bags.write import write_bag
-from ifgm_ref.bench import barn
-from ifgm_ref.cli import main
-from ifgm_ref.errors import BagError
-from ifgm_ref.noise import NoiseLevels
+from ifgm_ref.apps.cli import main
+from ifgm_ref.apps.replay import Tolerance, difference, replay_log, setting_of
+from ifgm_ref.core.errors import BagError
+from ifgm_ref.core.params import SimParams
+from ifgm_ref.core.pose import Point
+from ifgm_ref.core.protocol import Planner
+from ifgm_ref.core.recording import Recording, RecordingPlanner, replay
+from ifgm_ref.io import barn
+from ifgm_ref.io.bags.read import read_log
+from ifgm_ref.io.bags.write import write_bag
+from ifgm_ref.io.scenarios import resolve_world
 from ifgm_ref.oracle.mutants import MUTANTS
-from ifgm_ref.params import SimParams
 from ifgm_ref.planners import make_planner
-from ifgm_ref.pose import Point
-from ifgm_ref.protocol import Planner
-from ifgm_ref.recording import Recording, RecordingPlanner, replay
-from ifgm_ref.scenarios import resolve_world
-from ifgm_ref.simulator import Run, simulate
-from ifgm_ref.world import World
+from ifgm_ref.sim.noise import NoiseLevels
+from ifgm_ref.sim.simulator import Run, simulate
+from ifgm_ref.sim.world import World
 from tests.test_cli import run_cli
 
 mcap_writer = pytest.importorskip("mcap_ros2.writer")
@@ -167,7 +167,7 @@ def test_motion_and_branch_differences_are_counted_apart(tmp_path: Path, capsys:
 
 def test_replay_help_states_every_rule() -> None:
     """``replay --help`` names both tolerances and states the branch rule."""
-    from ifgm_ref.bags.replay import BRANCH_RULE
+    from ifgm_ref.apps.replay import BRANCH_RULE
 
     shown = " ".join(run_cli("replay", "--help").stdout.split())
     assert "--heading-tolerance and the speeds within --speed-tolerance" in shown

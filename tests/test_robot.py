@@ -1,4 +1,4 @@
-"""Unicycle kinematics (ifgm_ref.robot): straight motion and the turn-rate limit."""
+"""Unicycle kinematics (ifgm_ref.sim.robot): straight motion and the turn-rate limit."""
 
 from __future__ import annotations
 
@@ -7,10 +7,10 @@ import math
 from hypothesis import given
 from hypothesis import strategies as st
 
-from ifgm_ref.params import RobotParams
-from ifgm_ref.pose import Pose, wrap_angle
-from ifgm_ref.protocol import Command
-from ifgm_ref.robot import advance
+from ifgm_ref.core.params import RobotParams
+from ifgm_ref.core.pose import Pose, wrap_angle
+from ifgm_ref.core.protocol import Command
+from ifgm_ref.sim.robot import advance
 
 angles = st.floats(-math.pi, math.pi, allow_nan=False)
 speeds = st.floats(0.1, 10.0)

@@ -1,8 +1,8 @@
-"""Unchanged ROS 1 nodes under the rospy stand-in (``ifgm_ref.ros``, ``docs/ros-nodes.md``).
+"""Unchanged ROS 1 nodes under the rospy stand-in (``ifgm_ref.io.ros``, ``docs/ros-nodes.md``).
 
 The message classes against rosbags' definitions, tf's quaternions, graph names and time in
 process; then nodes in their own processes (``tests/ros_nodes/``) stepped by a
-:class:`~ifgm_ref.ros.bridge.RosPlanner`: the ``/cmd_vel`` hold rule, ``/ifgm_ref/stop`` and a
+:class:`~ifgm_ref.io.ros.bridge.RosPlanner`: the ``/cmd_vel`` hold rule, ``/ifgm_ref/stop`` and a
 node's end, a crash, services between two nodes, remapping, the goal's delivery; and the
 reference IFGM behind a rospy node driving as the reference does, and passing the oracle.
 """
@@ -21,25 +21,25 @@ import numpy as np
 import pytest
 from rosbags.typesys import Stores, get_typestore
 
-from ifgm_ref.bags import messages as bags
-from ifgm_ref.errors import ImplementationError
-from ifgm_ref.laserscan import LaserScan
+from ifgm_ref.core.errors import ImplementationError
+from ifgm_ref.core.laserscan import LaserScan
+from ifgm_ref.core.pose import Point, Pose
+from ifgm_ref.core.protocol import Command, EpisodeParams, Observation
+from ifgm_ref.io.bags import messages as bags
+from ifgm_ref.io.ros import tf
+from ifgm_ref.io.ros.bridge import RosFactory, RosPlanner
+from ifgm_ref.io.ros.messages import from_wire, message_class, package_namespace, to_wire
+from ifgm_ref.io.ros.names import parse_remap, resolve, split_argv
+from ifgm_ref.io.ros.process import SHIMS
+from ifgm_ref.io.ros.rostime import Duration, Time
+from ifgm_ref.io.scenarios import resolve_world
 from ifgm_ref.oracle.check_types import Level
 from ifgm_ref.oracle.checks import CHECKS
 from ifgm_ref.oracle.implementation import Implementation, promises_of
 from ifgm_ref.oracle.suite.run import run_cases
 from ifgm_ref.oracle.suite.versions import load_suite
 from ifgm_ref.planners.ifgm import IFGMPlanner
-from ifgm_ref.pose import Point, Pose
-from ifgm_ref.protocol import Command, EpisodeParams, Observation
-from ifgm_ref.ros import tf
-from ifgm_ref.ros.bridge import RosFactory, RosPlanner
-from ifgm_ref.ros.messages import from_wire, message_class, package_namespace, to_wire
-from ifgm_ref.ros.names import parse_remap, resolve, split_argv
-from ifgm_ref.ros.process import SHIMS
-from ifgm_ref.ros.rostime import Duration, Time
-from ifgm_ref.scenarios import resolve_world
-from ifgm_ref.simulator import simulate
+from ifgm_ref.sim.simulator import simulate
 
 NODES = Path(__file__).resolve().parent / "ros_nodes"
 BUG2 = NODES / "bug2"

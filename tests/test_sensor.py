@@ -1,7 +1,7 @@
-"""The simulated IR sensor (ifgm_ref.sensor): scans of worlds against shapely's exact geometry.
+"""The simulated IR sensor (ifgm_ref.sim.sensor): scans of worlds against shapely's exact geometry.
 
 The paper's sensor (section 4, Figure 2) sweeps 135 degrees in three 45-degree beams; here it is
-a fan of exact rays reported as a ``sensor_msgs/LaserScan`` (ifgm_ref.laserscan).
+a fan of exact rays reported as a ``sensor_msgs/LaserScan`` (ifgm_ref.core.laserscan).
 
 Oracle and tolerances as in ``tests/test_raycast.py``: polygons by shapely intersection, circles
 by the textbook root; distances to ``TOL = 1e-9`` ft (float64 rounding here is ~1e-14 ft), and
@@ -21,11 +21,11 @@ from hypothesis import given, note
 from hypothesis import strategies as st
 from numpy.typing import NDArray
 
-from ifgm_ref.laserscan import LaserScan
-from ifgm_ref.params import SensorParams
-from ifgm_ref.pose import Point, Pose
-from ifgm_ref.sensor import IRSensor
-from ifgm_ref.world import Circle, Obstacle, Polygon, World
+from ifgm_ref.core.laserscan import LaserScan
+from ifgm_ref.core.params import SensorParams
+from ifgm_ref.core.pose import Point, Pose
+from ifgm_ref.sim.sensor import IRSensor
+from ifgm_ref.sim.world import Circle, Obstacle, Polygon, World
 
 #: Distance tolerance, ft (module docstring).
 TOL = 1e-9
@@ -425,10 +425,10 @@ def test_default_beams_split_the_rays_25_26_25_with_the_borders_in_front() -> No
     """76 rays 1.8 degrees apart: rays 25 and 50 lie on the +-22.5 degree borders (front)."""
     from collections import Counter
 
-    from ifgm_ref.laserscan import Beam
-    from ifgm_ref.pose import Point, Pose
-    from ifgm_ref.sensor import IRSensor
-    from ifgm_ref.world import World
+    from ifgm_ref.core.laserscan import Beam
+    from ifgm_ref.core.pose import Point, Pose
+    from ifgm_ref.sim.sensor import IRSensor
+    from ifgm_ref.sim.world import World
 
     scan = IRSensor(World(start=Pose(0.0, 0.0, 0.0), goal=Point(5.0, 0.0))).scan(
         Pose(0.0, 0.0, 0.0)
@@ -440,10 +440,10 @@ def test_default_beams_split_the_rays_25_26_25_with_the_borders_in_front() -> No
 
 
 def test_beam_mask_agrees_with_beam_of_on_every_ray() -> None:
-    from ifgm_ref.laserscan import Beam
-    from ifgm_ref.pose import Point, Pose
-    from ifgm_ref.sensor import IRSensor
-    from ifgm_ref.world import World
+    from ifgm_ref.core.laserscan import Beam
+    from ifgm_ref.core.pose import Point, Pose
+    from ifgm_ref.sim.sensor import IRSensor
+    from ifgm_ref.sim.world import World
 
     scan = IRSensor(World(start=Pose(0.0, 0.0, 0.0), goal=Point(5.0, 0.0))).scan(
         Pose(0.0, 0.0, 0.0)

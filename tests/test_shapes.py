@@ -1,4 +1,4 @@
-"""Tests of :mod:`ifgm_ref.shapes`: valid simple polygons, documented areas and openings.
+"""Tests of :mod:`ifgm_ref.sim.shapes`: valid simple polygons, documented areas and openings.
 
 Expected areas are computed from the parameters (rectangles, strips, the regular polygon's
 triangle fan), never from the returned vertices.
@@ -16,9 +16,9 @@ import shapely
 from hypothesis import given
 from hypothesis import strategies as st
 
-from ifgm_ref.errors import ParameterError
-from ifgm_ref.shapes import circle, h_shape, rectangle, regular_polygon, u_shape
-from ifgm_ref.world import Circle, Polygon
+from ifgm_ref.core.errors import ParameterError
+from ifgm_ref.sim.shapes import circle, h_shape, rectangle, regular_polygon, u_shape
+from ifgm_ref.sim.world import Circle, Polygon
 
 centers = st.tuples(st.floats(-100.0, 100.0), st.floats(-100.0, 100.0))
 lengths = st.floats(0.5, 50.0)

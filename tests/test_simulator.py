@@ -1,4 +1,4 @@
-"""The simulator (ifgm_ref.simulator): stop reasons, the stall rule, result figures, trace,
+"""The simulator (ifgm_ref.sim.simulator): stop reasons, the stall rule, result figures, trace,
 determinism."""
 
 from __future__ import annotations
@@ -10,19 +10,19 @@ import math
 
 import pytest
 
-from ifgm_ref.errors import ParameterError
+from ifgm_ref.core.errors import ParameterError
+from ifgm_ref.core.params import PAPER_FREE_DISTANCE_FT, PAPER_FREE_TIME_S, RobotParams, SimParams
+from ifgm_ref.core.pose import Point, Pose, distance
+from ifgm_ref.core.protocol import Command, EpisodeParams, Observation, PlannerStop
+from ifgm_ref.io.scenarios import resolve_world
 from ifgm_ref.oracle.metamorphic import scale_sim, scale_world
-from ifgm_ref.params import PAPER_FREE_DISTANCE_FT, PAPER_FREE_TIME_S, RobotParams, SimParams
 from ifgm_ref.planners.bug1 import Bug1Planner
 from ifgm_ref.planners.fgm import FGMPlanner
 from ifgm_ref.planners.ifgm import IFGMPlanner
 from ifgm_ref.planners.straight import StraightPlanner
-from ifgm_ref.pose import Point, Pose, distance
-from ifgm_ref.protocol import Command, EpisodeParams, Observation, PlannerStop
-from ifgm_ref.scenarios import resolve_world
-from ifgm_ref.shapes import rectangle
-from ifgm_ref.simulator import TRACE_FIELDS, StopReason, TraceStep, simulate, stall_steps
-from ifgm_ref.world import Bounds, Polygon, World
+from ifgm_ref.sim.shapes import rectangle
+from ifgm_ref.sim.simulator import TRACE_FIELDS, StopReason, TraceStep, simulate, stall_steps
+from ifgm_ref.sim.world import Bounds, Polygon, World
 
 FREE = World(start=Pose(0.0, 0.0, 0.0), goal=Point(PAPER_FREE_DISTANCE_FT, 0.0), name="free")
 WALL = Polygon(((20.0, -5.0), (22.0, -5.0), (22.0, 5.0), (20.0, 5.0)))

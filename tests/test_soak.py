@@ -4,7 +4,7 @@ and ``benchmarks/bench_soak.py`` (loaded from its path: ``benchmarks/`` is not a
 
 The soaks here are small: two worlds per class, with ``straight`` (it never avoids, so it
 collides) and FGM (it stalls in some U traps). What each episode should give is computed
-independently, by :func:`ifgm_ref.simulator.simulate` on ``random_world(class, seed)`` to its
+independently, by :func:`ifgm_ref.sim.simulator.simulate` on ``random_world(class, seed)`` to its
 time bound, never hard-coded.
 """
 
@@ -21,8 +21,8 @@ from types import ModuleType
 
 import pytest
 
-from ifgm_ref.bench.runner import map_tasks
-from ifgm_ref.bench.soak import (
+from ifgm_ref.apps.bench.runner import map_tasks
+from ifgm_ref.apps.bench.soak import (
     SOAK_CLASSES,
     SoakRow,
     read_rows,
@@ -32,16 +32,16 @@ from ifgm_ref.bench.soak import (
     world_name,
     write_rows,
 )
-from ifgm_ref.bench.soak_report import ALL, Tally, describe, failure_report, summarise
-from ifgm_ref.bench.tasks import ERROR
-from ifgm_ref.convergence import time_bound
-from ifgm_ref.errors import ParameterError, WorldError
-from ifgm_ref.params import SimParams
+from ifgm_ref.apps.bench.soak_report import ALL, Tally, describe, failure_report, summarise
+from ifgm_ref.apps.bench.tasks import ERROR
+from ifgm_ref.core.errors import ParameterError, WorldError
+from ifgm_ref.core.params import SimParams
+from ifgm_ref.core.stats import wilson_interval
+from ifgm_ref.io.worldfile import load_world, save_world
 from ifgm_ref.planners import make_planner
-from ifgm_ref.simulator import Result, simulate
-from ifgm_ref.stats import wilson_interval
-from ifgm_ref.worldfile import load_world, save_world
-from ifgm_ref.worldgen.classes import random_world
+from ifgm_ref.sim.convergence import time_bound
+from ifgm_ref.sim.simulator import Result, simulate
+from ifgm_ref.sim.worldgen.classes import random_world
 from tests.planner_doubles import CRASHES
 from tests.test_cli import run_cli
 

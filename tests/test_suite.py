@@ -15,8 +15,11 @@ from pathlib import Path
 
 import pytest
 
-from ifgm_ref.cli import main
-from ifgm_ref.errors import ImplementationError
+from ifgm_ref.apps.cli import main
+from ifgm_ref.core.errors import ImplementationError
+from ifgm_ref.io.scenarios import resolve_world
+from ifgm_ref.io.transport.wire import PROTOCOL_VERSION
+from ifgm_ref.io.worldfile import save_world
 from ifgm_ref.oracle.checks import CHECKS
 from ifgm_ref.oracle.conformance import HEADING_TOL, POINT_TIE, SPEED_TOL, TIE, reference_episode
 from ifgm_ref.oracle.implementation import Implementation
@@ -27,9 +30,6 @@ from ifgm_ref.oracle.suite.run import reference_of, run_case, run_cases
 from ifgm_ref.oracle.suite.tiers import broken_implementations, kills_in_runs, quick_cover
 from ifgm_ref.oracle.suite.versions import load_suite, versions
 from ifgm_ref.planners import make_planner
-from ifgm_ref.scenarios import resolve_world
-from ifgm_ref.transport.wire import PROTOCOL_VERSION
-from ifgm_ref.worldfile import save_world
 
 V1 = load_suite("v1")
 
@@ -227,11 +227,11 @@ def test_a_counterexample_is_promoted_into_the_next_version(tmp_path: Path) -> N
 def test_v1s_vectors_still_hold_for_the_reference() -> None:
     """Each version ships the equation vectors and traces it was built with, in the file
     ``ifgm-ref vectors`` writes: the reference still meets them all."""
-    import ifgm_ref.equations
+    import ifgm_ref.paper.equations
     from ifgm_ref.oracle.vectors import check_vectors, replay_traces
 
     vectors = json.loads((V1.folder / "vectors.json").read_text())
-    assert vectors["traces"] and check_vectors(vectors, ifgm_ref.equations) == []
+    assert vectors["traces"] and check_vectors(vectors, ifgm_ref.paper.equations) == []
     for planner in ("ifgm", "iba"):
         assert replay_traces(vectors, lambda p=planner: make_planner(p), planner=planner) == []
 

@@ -17,7 +17,7 @@ import shutil
 from pathlib import Path
 from urllib.parse import unquote
 
-from ifgm_ref.cli import main
+from ifgm_ref.apps.cli import main
 from ifgm_ref.oracle.implementation import Implementation
 from ifgm_ref.oracle.suite.run import run_cases
 from ifgm_ref.oracle.suite.versions import load_suite

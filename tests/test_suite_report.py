@@ -10,8 +10,8 @@ from typing import Any
 
 import pytest
 
-from ifgm_ref.cli import main
-from ifgm_ref.errors import ParameterError
+from ifgm_ref.apps.cli import main
+from ifgm_ref.core.errors import ParameterError
 from ifgm_ref.oracle.suite.report import (
     case_groups,
     render_html,

@@ -8,9 +8,14 @@ from pathlib import Path
 
 import pytest
 
-from ifgm_ref.errors import ParameterError
-from ifgm_ref.paper import ELEMENTS, traces
-from ifgm_ref.traceability import build_matrix, marked_c_sources, marked_tests, render_markdown
+from ifgm_ref.core.elements import ELEMENTS, traces
+from ifgm_ref.core.errors import ParameterError
+from ifgm_ref.paper.traceability import (
+    build_matrix,
+    marked_c_sources,
+    marked_tests,
+    render_markdown,
+)
 from tests.test_cli import run_cli
 
 ROOT = Path(__file__).resolve().parent.parent

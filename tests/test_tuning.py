@@ -10,14 +10,14 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from ifgm_ref.errors import ParameterError
-from ifgm_ref.formulas import Scale, Unit, formula_expr
-from ifgm_ref.params import RobotParams, SensorParams
+from ifgm_ref.core.errors import ParameterError
+from ifgm_ref.core.formulas import Scale, Unit, formula_expr
+from ifgm_ref.core.params import RobotParams, SensorParams
+from ifgm_ref.core.pose import Point, Pose
+from ifgm_ref.core.protocol import EpisodeParams
 from ifgm_ref.planners import PLANNERS, make_planner, parameters_markdown
 from ifgm_ref.planners.ifgm import IFGMParams
 from ifgm_ref.planners.tuning import derived, episode_values
-from ifgm_ref.pose import Point, Pose
-from ifgm_ref.protocol import EpisodeParams
 
 #: The defaults every planner had as absolute numbers for the paper's 1 ft robot before the
 #: model: the formulas give them back, d_th too (``2 r + 1 ft`` then, ``3 r`` now: 3 ft).

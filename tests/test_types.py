@@ -5,7 +5,7 @@
 printing them all.
 
 ``test_planner_protocol`` checks, with the same configuration, that a class with a
-``name: ClassVar[str]``, ``reset`` and ``step`` is a :class:`~ifgm_ref.protocol.Planner` to
+``name: ClassVar[str]``, ``reset`` and ``step`` is a :class:`~ifgm_ref.core.protocol.Planner` to
 mypy and that one without ``step`` is not.
 
 Time on the 2-core machine: 7 to 12 s cold (no ``.mypy_cache``, as in CI's fresh clone; about
@@ -58,8 +58,8 @@ PROTOCOL_CHECK = """\
 from collections.abc import Callable
 from typing import ClassVar
 
-from ifgm_ref.pose import Point, Pose
-from ifgm_ref.protocol import Command, EpisodeParams, Observation, Planner
+from ifgm_ref.core.pose import Point, Pose
+from ifgm_ref.core.protocol import Command, EpisodeParams, Observation, Planner
 
 
 class WithClassVar:

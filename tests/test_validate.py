@@ -1,4 +1,4 @@
-"""The one validator (ifgm_ref.validate): its rule, and that the configuration path words every
+"""The one validator (ifgm_ref.core.validate): its rule, and that the configuration path words every
 refusal of a number through it."""
 
 from __future__ import annotations
@@ -11,8 +11,8 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from ifgm_ref.errors import ParameterError, ProtocolError
-from ifgm_ref.validate import NON_NEGATIVE, POSITIVE, REAL, Domain, require, violation
+from ifgm_ref.core.errors import ParameterError, ProtocolError
+from ifgm_ref.core.validate import NON_NEGATIVE, POSITIVE, REAL, Domain, require, violation
 
 PACKAGE = Path(__file__).resolve().parent.parent / "ifgm_ref"
 
@@ -65,11 +65,11 @@ def test_require_names_the_value_and_raises_the_callers_error() -> None:
 #: The modules that still word a refusal of a number themselves, and why.
 OWN_WORDING = {
     # numpy arrays of radii and coordinates, checked whole inside the ray-casting kernel
-    "raycast.py",
+    "sim/raycast.py",
     # a scan range may also be null (no return): "must be a finite number or null"
-    "transport/wire.py",
+    "io/transport/wire.py",
     # equations (1)-(4)'s messages are in the conformance vectors, whose bytes stay put
-    "equations.py",
+    "paper/equations.py",
 }
 
 #: The wordings of a refused number.
@@ -95,7 +95,7 @@ def _strings_outside_docstrings(tree: ast.AST) -> list[str]:
 
 
 def test_every_refusal_of_a_number_is_worded_by_the_validator() -> None:
-    """Issue 29: one validator. No module but :mod:`ifgm_ref.validate` (and the listed
+    """Issue 29: one validator. No module but :mod:`ifgm_ref.core.validate` (and the listed
     exceptions) writes "must be finite", "must be > 0" and the like itself."""
     found = {
         str(path.relative_to(PACKAGE))

@@ -23,9 +23,10 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from ifgm_ref import equations
-from ifgm_ref.errors import ParameterError
-from ifgm_ref.flowchart import Branch
+from ifgm_ref.core.errors import ParameterError
+from ifgm_ref.core.pose import Pose
+from ifgm_ref.core.protocol import Command, Observation
+from ifgm_ref.io.transport.wire import observe_message, parse_observe
 from ifgm_ref.oracle.vectors import (
     FORMAT_NAME,
     FORMAT_VERSION,
@@ -39,11 +40,10 @@ from ifgm_ref.oracle.vectors import (
     summarize,
     write_vectors,
 )
-from ifgm_ref.percepts.clusters import Gap
+from ifgm_ref.paper import equations
+from ifgm_ref.paper.flowchart import Branch
+from ifgm_ref.paper.percepts.clusters import Gap
 from ifgm_ref.planners import IBAPlanner, IFGMPlanner
-from ifgm_ref.pose import Pose
-from ifgm_ref.protocol import Command, Observation
-from ifgm_ref.transport.wire import observe_message, parse_observe
 from tests.test_cli import run_cli
 
 #: Errata rows (docs/errata.md) that touch equations (1)-(4) and FGM's gap centre angle.

@@ -15,8 +15,7 @@ from typing import Any
 
 import pytest
 
-from ifgm_ref import equations
-from ifgm_ref.errors import ParameterError
+from ifgm_ref.core.errors import ParameterError
 from ifgm_ref.oracle.vectors import (
     VectorsDocument,
     build_document,
@@ -25,6 +24,7 @@ from ifgm_ref.oracle.vectors import (
     dumps_vectors,
     replay_traces,
 )
+from ifgm_ref.paper import equations
 from ifgm_ref.planners import IBAPlanner
 
 

@@ -7,13 +7,13 @@ import math
 import numpy as np
 import pytest
 
-from ifgm_ref.params import SimParams
+from ifgm_ref.core.params import SimParams
+from ifgm_ref.core.pose import Point, Pose
+from ifgm_ref.core.protocol import Command, EpisodeParams, Observation
+from ifgm_ref.core.velocity import VelocityPlanner
+from ifgm_ref.io.scenarios import resolve_world
 from ifgm_ref.planners import make_planner
-from ifgm_ref.pose import Point, Pose
-from ifgm_ref.protocol import Command, EpisodeParams, Observation
-from ifgm_ref.scenarios import resolve_world
-from ifgm_ref.simulator import simulate
-from ifgm_ref.velocity import VelocityPlanner
+from ifgm_ref.sim.simulator import simulate
 
 
 @pytest.mark.parametrize("world", ["u_trap", "fig7a"])

@@ -8,14 +8,14 @@ import math
 import numpy as np
 import pytest
 
-from ifgm_ref.errors import ParameterError
-from ifgm_ref.laserscan import Beam, LaserScan
-from ifgm_ref.params import SensorParams, jackal_lidar, paper_ir
+from ifgm_ref.core.errors import ParameterError
+from ifgm_ref.core.laserscan import Beam, LaserScan
+from ifgm_ref.core.params import SensorParams, jackal_lidar, paper_ir
+from ifgm_ref.core.pose import Point, Pose
+from ifgm_ref.core.protocol import EpisodeParams, Observation
+from ifgm_ref.io.scenarios import resolve_world
 from ifgm_ref.planners import make_planner
-from ifgm_ref.pose import Point, Pose
-from ifgm_ref.protocol import EpisodeParams, Observation
-from ifgm_ref.scenarios import resolve_world
-from ifgm_ref.simulator import simulate
+from ifgm_ref.sim.simulator import simulate
 
 
 def _scan(sensor: SensorParams) -> LaserScan:

@@ -1,4 +1,4 @@
-"""The JSON-lines codec (``ifgm_ref.transport.wire``): exact round trips and clear rejections."""
+"""The JSON-lines codec (``ifgm_ref.io.transport.wire``): exact round trips and clear rejections."""
 
 from __future__ import annotations
 
@@ -12,12 +12,12 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from ifgm_ref.errors import ProtocolError
-from ifgm_ref.laserscan import LaserScan
-from ifgm_ref.params import RobotParams, SensorParams
-from ifgm_ref.pose import Point, Pose
-from ifgm_ref.protocol import Behaviour, Command, EpisodeParams, Observation
-from ifgm_ref.transport.wire import (
+from ifgm_ref.core.errors import ProtocolError
+from ifgm_ref.core.laserscan import LaserScan
+from ifgm_ref.core.params import RobotParams, SensorParams
+from ifgm_ref.core.pose import Point, Pose
+from ifgm_ref.core.protocol import Behaviour, Command, EpisodeParams, Observation
+from ifgm_ref.io.transport.wire import (
     QUOTE_LIMIT,
     MessageType,
     Reset,

@@ -1,4 +1,4 @@
-"""Tests of :mod:`ifgm_ref.world`: coercion, validation messages and exact distances."""
+"""Tests of :mod:`ifgm_ref.sim.world`: coercion, validation messages and exact distances."""
 
 from __future__ import annotations
 
@@ -13,10 +13,10 @@ import shapely
 from hypothesis import given
 from hypothesis import strategies as st
 
-from ifgm_ref.errors import WorldError
-from ifgm_ref.params import RobotParams, SensorParams
-from ifgm_ref.pose import Point, Pose
-from ifgm_ref.world import Bounds, Circle, Polygon, World
+from ifgm_ref.core.errors import WorldError
+from ifgm_ref.core.params import RobotParams, SensorParams
+from ifgm_ref.core.pose import Point, Pose
+from ifgm_ref.sim.world import Bounds, Circle, Polygon, World
 
 SQUARE = Polygon(((0.0, 0.0), (4.0, 0.0), (4.0, 4.0), (0.0, 4.0)))
 PILLAR = Circle((10.0, 0.0), 2.0)

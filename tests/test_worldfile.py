@@ -1,4 +1,4 @@
-"""Tests of :mod:`ifgm_ref.worldfile`: exact round trips, canonical text, every error message."""
+"""Tests of :mod:`ifgm_ref.io.worldfile`: exact round trips, canonical text, every error message."""
 
 from __future__ import annotations
 
@@ -11,11 +11,9 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from ifgm_ref.errors import WorldError
-from ifgm_ref.params import RobotParams, SensorParams
-from ifgm_ref.shapes import circle, h_shape, rectangle, regular_polygon, u_shape
-from ifgm_ref.world import Bounds, Circle, Obstacle, Polygon, World
-from ifgm_ref.worldfile import (
+from ifgm_ref.core.errors import WorldError
+from ifgm_ref.core.params import RobotParams, SensorParams
+from ifgm_ref.io.worldfile import (
     dumps_world,
     load_world,
     loads_world,
@@ -23,6 +21,8 @@ from ifgm_ref.worldfile import (
     world_from_dict,
     world_to_dict,
 )
+from ifgm_ref.sim.shapes import circle, h_shape, rectangle, regular_polygon, u_shape
+from ifgm_ref.sim.world import Bounds, Circle, Obstacle, Polygon, World
 
 DOC = Path(__file__).resolve().parent.parent / "docs" / "world-format.md"
 
@@ -39,7 +39,8 @@ fractions = st.floats(0.05, 0.95)
 
 @st.composite
 def obstacles(draw: st.DrawFn) -> Obstacle:
-    """One obstacle of any kind the format holds, through the :mod:`ifgm_ref.shapes` builders."""
+    """One obstacle of any kind the format holds, through the :mod:`ifgm_ref.sim.shapes`
+    builders."""
     kind = draw(st.sampled_from(["circle", "rectangle", "regular", "u", "h"]), label="kind")
     at = draw(places, label="center")
     if kind == "circle":

@@ -54,8 +54,8 @@ PROOFS = {
 #: Modules of ifgm_ref left out of the API reference: entry points and a pytest test module.
 API_SKIP = ("__main__", "ifgm_ref.oracle.test_conformance")
 #: Packages of ifgm_ref on one page each, their modules listed there, not a page a module:
-#: the stand-ins for ROS's packages that a ROS node imports (``ifgm_ref/ros/process.py``).
-API_SHIMS = ("ifgm_ref.ros.shims", "ifgm_ref.ros.shims2")
+#: the stand-ins for ROS's packages that a ROS node imports (``ifgm_ref/io/ros/process.py``).
+API_SHIMS = ("ifgm_ref.io.ros.shims", "ifgm_ref.io.ros.shims2")
 GENERATED = "docs/_generated"
 
 
@@ -149,8 +149,8 @@ def _shim_modules(package: str) -> str:
         "(../../ros-nodes.md#how-nodes-are-run)). They are listed here with their docstrings, "
         "not given a page each, for they hold next to no code of their own: a message "
         "module's classes are made when it is imported, from rosbags' message definitions "
-        "(`ifgm_ref/ros/messages.py`), and the others re-export the stand-in documented on "
-        "the pages of `ifgm_ref.ros` or, as their docstrings say, accept what it does not "
+        "(`ifgm_ref/io/ros/messages.py`), and the others re-export the stand-in documented on "
+        "the pages of `ifgm_ref.io.ros` or, as their docstrings say, accept what it does not "
         "act on.\n\n```{eval-rst}\n" + "\n\n".join(entries) + "\n```\n"
     )
 
@@ -169,7 +169,7 @@ def _api_index(names: list[str]) -> str:
         "# API reference\n\n"
         "Every module of `ifgm_ref`, from its docstrings (numpydoc; sphinx.ext.autodoc and "
         "napoleon), but the modules of the stand-in ROS packages a ROS node imports, "
-        "listed on their package's page (`ifgm_ref/ros/shims/`, `ifgm_ref/ros/shims2/`). "
+        "listed on their package's page (`ifgm_ref/io/ros/shims/`, `ifgm_ref/io/ros/shims2/`). "
         "The module docstrings open with the paper's reference and map each "
         "parameter to its symbol.\n\n" + tocs
     )

@@ -6,14 +6,13 @@ Run it under ifgm-ref's rospy stand-in (no ROS install needed):
     ifgm-ref simulate u_trap --ros-node "python3 examples/ros/ifgm_node.py" --plot u.png
     ifgm-ref oracle --ros-node "python3 examples/ros/ifgm_node.py" --profile quick
 
-The planner is ifgm_ref.planners.ifgm.IFGMPlanner, unchanged; the node only translates. It
+The planner is ifgm_ref.planners.ifgm.planner.IFGMPlanner, unchanged; the node only translates. It
 reads the goal from its private parameters ~goal_x and ~goal_y (metres, odom frame), and the
-robot and the sensor from /ifgm_ref/robot and /ifgm_ref/sensor (docs/ros-nodes.md). It decides
-once per scan, in the scan's callback, from the latest odometry, and publishes the decision as
-a Twist, with its behaviour on /ifgm_ref/behaviour (and its Figure 3 branch on
-/ifgm_ref/branch, given _report_branch:=true); a stop the planner asks for goes to
-/ifgm_ref/stop. Everything is in metres: the
-planner derives its lengths from the robot and the sensor, so it runs in any unit.
+robot and the sensor from /ifgm_ref/robot and /ifgm_ref/sensor (docs/ros-nodes.md). It
+decides once per scan, in the scan's callback, from the latest odometry, and publishes the decision
+as a Twist, with its behaviour on /ifgm_ref/behaviour (and its Figure 3 branch on /ifgm_ref/branch,
+given _report_branch:=true); a stop the planner asks for goes to /ifgm_ref/stop. Everything is in
+metres: the planner derives its lengths from the robot and the sensor, so it runs in any unit.
 """
 
 import math
@@ -26,11 +25,11 @@ from sensor_msgs.msg import LaserScan
 from std_msgs.msg import String
 from tf.transformations import euler_from_quaternion
 
-from ifgm_ref.laserscan import LaserScan as Scan
-from ifgm_ref.params import RobotParams, SensorParams
+from ifgm_ref.core.laserscan import LaserScan as Scan
+from ifgm_ref.core.params import RobotParams, SensorParams
+from ifgm_ref.core.pose import Point, Pose
+from ifgm_ref.core.protocol import EpisodeParams, Observation
 from ifgm_ref.planners.ifgm import IFGMPlanner
-from ifgm_ref.pose import Point, Pose
-from ifgm_ref.protocol import EpisodeParams, Observation
 
 
 def episode_params():

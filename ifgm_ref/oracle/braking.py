@@ -28,13 +28,13 @@ from dataclasses import replace
 
 from hypothesis import strategies as st
 
+from ifgm_ref.core.recording import Recording, RecordingPlanner
 from ifgm_ref.oracle.check_types import Check, CheckFailed, Kind, Recorder
 from ifgm_ref.oracle.episodes import MOVING, episode, place_of
 from ifgm_ref.oracle.implementation import Implementation
 from ifgm_ref.oracle.strategies import any_solvable_worlds
 from ifgm_ref.planners.governor import GovernorState, Limits, admissible, next_state
-from ifgm_ref.recording import Recording, RecordingPlanner
-from ifgm_ref.world import World
+from ifgm_ref.sim.world import World
 
 __all__ = ["ACCELERATIONS", "RESPONSES", "STOPS", "TOLERANCE", "late_step", "stops_in_time"]
 

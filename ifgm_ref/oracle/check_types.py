@@ -16,17 +16,17 @@ from dataclasses import dataclass, field, replace
 from enum import StrEnum
 from typing import TYPE_CHECKING, Any
 
-from ifgm_ref.convergence import time_bound
-from ifgm_ref.errors import IfgmRefError, ImplementationError
+from ifgm_ref.core.errors import IfgmRefError, ImplementationError
+from ifgm_ref.core.params import SensorParams, SimParams
 from ifgm_ref.oracle.implementation import Implementation
-from ifgm_ref.params import SensorParams, SimParams
-from ifgm_ref.simulator import Run
-from ifgm_ref.world import World
+from ifgm_ref.sim.convergence import time_bound
+from ifgm_ref.sim.simulator import Run
+from ifgm_ref.sim.world import World
 
 if TYPE_CHECKING:
     from hypothesis import strategies as st
 
-    from ifgm_ref.worldgen.draws import Draw
+    from ifgm_ref.sim.worldgen.draws import Draw
 
 __all__ = [
     "Check",
@@ -121,7 +121,7 @@ class Recorder:
 
     def sim_for(self, world: World) -> SimParams:
         """The settings of an episode in ``world``: :attr:`sim` stopped at the world's
-        :func:`~ifgm_ref.convergence.time_bound`."""
+        :func:`~ifgm_ref.sim.convergence.time_bound`."""
         return replace(self.sim, max_time=time_bound(world))
 
 
@@ -153,7 +153,7 @@ class Check:
     it applies to an implementation.
 
     Under noise, ``sample`` (if any) makes the check statistical: it builds one example from
-    seeded draws (a world generator of :mod:`ifgm_ref.worldgen.classes`). ``level`` says
+    seeded draws (a world generator of :mod:`ifgm_ref.sim.worldgen.classes`). ``level`` says
     which level of conformance it belongs to; a run checks the paper's level unless asked
     for the reference's too. ``explicit`` gives examples run every time, before the drawn
     ones (noise-free runs only). ``meets`` says what the check must meet to have tested

@@ -17,7 +17,7 @@ its property; ``docs/oracle.md``, "The properties", says each in full with whom 
 
 Every simulation check runs with the simulator's defaults (``dt`` 0.1 s, goal tolerance 0.5 ft)
 on the profile's engine (``Recorder.sim``; kinematic by default, ``docs/oracle.md``, "On the
-physical robot") and stops an episode at :func:`ifgm_ref.convergence.time_bound` of its world.
+physical robot") and stops an episode at :func:`ifgm_ref.sim.convergence.time_bound` of its world.
 A planner that raises, or answers an invalid command, fails the check it was running.
 """
 
@@ -34,9 +34,11 @@ from hypothesis import currently_in_test_context, note
 from hypothesis import strategies as st
 from numpy.typing import NDArray
 
-from ifgm_ref.convergence import time_bound
-from ifgm_ref.errors import present
-from ifgm_ref.flowchart import Branch
+from ifgm_ref.core.elements import traces
+from ifgm_ref.core.errors import present
+from ifgm_ref.core.protocol import Command
+from ifgm_ref.core.recording import RecordingPlanner, replay
+from ifgm_ref.io.scenarios import resolve_world
 from ifgm_ref.oracle.braking import stops_in_time
 from ifgm_ref.oracle.check_types import (
     Check,
@@ -83,16 +85,14 @@ from ifgm_ref.oracle.strategies import (
     placements,
     reference_worlds,
 )
-from ifgm_ref.paper import traces
-from ifgm_ref.planners.ifgm_readings import Readings, unrunnable
+from ifgm_ref.paper.flowchart import Branch
+from ifgm_ref.planners.ifgm.readings import Readings, unrunnable
 from ifgm_ref.planners.tuning import ParamInfo
-from ifgm_ref.protocol import Command
-from ifgm_ref.recording import RecordingPlanner, replay
-from ifgm_ref.scenarios import resolve_world
-from ifgm_ref.shapes import circle
-from ifgm_ref.simulator import Run, TraceStep
-from ifgm_ref.world import Polygon, World
-from ifgm_ref.worldgen.classes import GENERATORS, enclosed_world, gap_wall, placed
+from ifgm_ref.sim.convergence import time_bound
+from ifgm_ref.sim.shapes import circle
+from ifgm_ref.sim.simulator import Run, TraceStep
+from ifgm_ref.sim.world import Polygon, World
+from ifgm_ref.sim.worldgen.classes import GENERATORS, enclosed_world, gap_wall, placed
 
 __all__ = ["CHECKS", "FIRST_TURN", "agrees_with", "checks_at", "scale_test"]
 

@@ -6,12 +6,12 @@ reference IFGM saw in an episode, in order and open loop (its answers move nothi
 answers every step with the reference's command -- the heading within :data:`HEADING_TOL`
 and the speed within :data:`SPEED_TOL` (above a float32 port's rounding, below another
 ray's or gap's heading), and, where it reports one, the same branch (``dead_end_turn`` is
-accepted for the dead end's later phases: :func:`~ifgm_ref.flowchart.same_branch`).
+accepted for the dead end's later phases: :func:`~ifgm_ref.paper.flowchart.same_branch`).
 
 A step where the two differ is a **tie** when some decision the reference consulted there,
 or in the :data:`LOOKBACK` steps before, lay within its bound (:func:`tie_bound`: :data:`TIE`,
 or :data:`POINT_TIE` for the followed point) of flipping
-(:func:`~ifgm_ref.planners.ifgm_margins.margins`): a port's rounding may decide it the other
+(:func:`~ifgm_ref.planners.ifgm.margins.margins`): a port's rounding may decide it the other
 way, and after that the two planners' states are no longer comparable, so the comparison
 ends there with the reason recorded. Anywhere else the step is the **first divergence**,
 and the check fails with it: the observation, both commands and the margins.
@@ -22,18 +22,18 @@ from __future__ import annotations
 from collections.abc import Mapping
 from dataclasses import dataclass
 
-from ifgm_ref.errors import present
-from ifgm_ref.flowchart import Atoms, same_branch
+from ifgm_ref.core.errors import present
+from ifgm_ref.core.params import SimParams
+from ifgm_ref.core.protocol import Command, EpisodeParams, Observation
+from ifgm_ref.core.recording import Recording, RecordingPlanner
 from ifgm_ref.oracle.implementation import Implementation
 from ifgm_ref.oracle.invariance import AnswerError, answer_errors
-from ifgm_ref.params import SimParams
+from ifgm_ref.paper.flowchart import Atoms, same_branch
 from ifgm_ref.planners.ifgm import IFGMPlanner
-from ifgm_ref.planners.ifgm_margins import margins
-from ifgm_ref.planners.ifgm_readings import Readings
-from ifgm_ref.protocol import Command, EpisodeParams, Observation
-from ifgm_ref.recording import Recording, RecordingPlanner
-from ifgm_ref.simulator import Run, simulate
-from ifgm_ref.world import World
+from ifgm_ref.planners.ifgm.margins import margins
+from ifgm_ref.planners.ifgm.readings import Readings
+from ifgm_ref.sim.simulator import Run, simulate
+from ifgm_ref.sim.world import World
 
 __all__ = [
     "HEADING_TOL",
@@ -78,7 +78,7 @@ LOOKBACK = 2
 @dataclass(frozen=True)
 class ReferenceEpisode:
     """The reference IFGM's episode: what it saw and answered, the margins of its decisions
-    at every step (:func:`~ifgm_ref.planners.ifgm_margins.margins`), and the run."""
+    at every step (:func:`~ifgm_ref.planners.ifgm.margins.margins`), and the run."""
 
     recording: Recording
     margins: tuple[Mapping[str, float], ...]
@@ -88,7 +88,7 @@ class ReferenceEpisode:
 
 def tie_bound(decision: str) -> float:
     """How near its threshold ``decision`` (a name of
-    :data:`~ifgm_ref.planners.ifgm_margins.DECISIONS`) must be to count as a tie."""
+    :data:`~ifgm_ref.planners.ifgm.margins.DECISIONS`) must be to count as a tie."""
     return POINT_TIE if decision == "nearest_point" else TIE
 
 

@@ -11,11 +11,11 @@ import re
 from pathlib import Path
 from typing import Any
 
+from ifgm_ref.core.outputs import written
+from ifgm_ref.core.params import DT, GOAL_TOLERANCE, SimParams
+from ifgm_ref.io.worldfile import save_world
 from ifgm_ref.oracle.check_types import Check, Evidence
 from ifgm_ref.oracle.implementation import Implementation
-from ifgm_ref.outputs import written
-from ifgm_ref.params import DT, GOAL_TOLERANCE, SimParams
-from ifgm_ref.worldfile import save_world
 
 __all__ = ["slug", "write_evidence"]
 
@@ -69,7 +69,7 @@ def write_evidence(
 
 
 def _plot(world: Any, run: Any, path: Path, mark: int | None, engine: str) -> None:
-    from ifgm_ref.plotting import finest_colouring, plot_run, save_figure
+    from ifgm_ref.sim.plotting import finest_colouring, plot_run, save_figure
 
     colour_by = finest_colouring(run.trace)
     figure = plot_run(world, run.trace, run.result, colour_by=colour_by, mark=mark, engine=engine)

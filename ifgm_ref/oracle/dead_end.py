@@ -19,9 +19,9 @@ from __future__ import annotations
 import math
 from collections.abc import Iterator, Sequence
 
-from ifgm_ref.flowchart import Branch
-from ifgm_ref.pose import wrap_angle
-from ifgm_ref.simulator import TraceStep
+from ifgm_ref.core.pose import wrap_angle
+from ifgm_ref.paper.flowchart import Branch
+from ifgm_ref.sim.simulator import TraceStep
 
 __all__ = ["STEP", "STEPS", "dead_end_turns", "part_errors", "turn_errors"]
 

@@ -1,6 +1,6 @@
 """The input domains of equations (1)-(4): every argument defined once, with its reasons.
 
-Three things draw inputs for the functions of :mod:`ifgm_ref.equations`: the oracle's equation
+Three things draw inputs for the functions of :mod:`ifgm_ref.paper.equations`: the oracle's equation
 checks (:mod:`ifgm_ref.oracle.equation_checks`), the property tests of
 ``tests/test_equations.py`` and the seeded random cases of the conformance vectors
 (:mod:`ifgm_ref.oracle.vectors`). They take their intervals from here. Each :class:`Argument`
@@ -12,7 +12,7 @@ holds two, each with its reason:
     equation's own domain (``docs/errata.md`` row 9: weights finite, ``>= 0`` and not both 0,
     ``d_th > 0``; row 13: the printed forms' divisions by zero) bounded so that floats stay
     normal: coordinates within 1000 ft (a world a few times the paper's 197 ft run), sensor
-    distances 0.1-15 ft (:class:`~ifgm_ref.params.SensorParams`), weights in ``{0}`` or
+    distances 0.1-15 ft (:class:`~ifgm_ref.core.params.SensorParams`), weights in ``{0}`` or
     ``[1e-3, 1e3]``. Magnitudes below ``smallest`` are left out (0 itself stays in): products
     with weights and scale factors near 1e-308 would go subnormal and lose relative precision.
 ``vectors``
@@ -23,7 +23,7 @@ holds two, each with its reason:
     FGM's border angles at least :data:`FGM_MIN_WIDTH` apart). These bounds are frozen: the
     committed vectors file is drawn from them, and moving one changes its bytes.
 
-The paper's symbols for every argument are in the table of :mod:`ifgm_ref.equations`.
+The paper's symbols for every argument are in the table of :mod:`ifgm_ref.paper.equations`.
 
 Examples
 --------
@@ -43,7 +43,7 @@ from typing import Any
 
 from hypothesis import strategies as st
 
-from ifgm_ref.validate import NON_NEGATIVE, require
+from ifgm_ref.core.validate import NON_NEGATIVE, require
 
 __all__ = [
     "DOMAINS",
@@ -110,7 +110,7 @@ class EquationDomain:
     """The arguments of one equation (its interpreted function's name), in call order.
 
     ``singular`` names the points of the domain where the reference raises anyway
-    (:class:`~ifgm_ref.errors.ParameterError`); a drawn input may hit one, and every user of
+    (:class:`~ifgm_ref.core.errors.ParameterError`); a drawn input may hit one, and every user of
     the domain skips it.
     """
 

@@ -1,7 +1,7 @@
 """One example's episode, as every simulation check runs it, and how a failure says where.
 
 A check runs a fresh planner of the implementation in the example's world on the check's
-engine, up to the world's time bound (:func:`ifgm_ref.convergence.time_bound`), keeping the
+engine, up to the world's time bound (:func:`ifgm_ref.sim.convergence.time_bound`), keeping the
 evidence for a failure report; a planner that raises or answers an invalid command fails the
 example (:class:`~ifgm_ref.oracle.check_types.PlannerFault`). Every episode is counted in the
 check's tally by what it met (:data:`MOVED`, :data:`NEAR`), for the checks that pass vacuously
@@ -15,13 +15,13 @@ from collections.abc import Sequence
 
 from hypothesis import currently_in_test_context, note
 
-from ifgm_ref.errors import ImplementationError
+from ifgm_ref.core.errors import ImplementationError
+from ifgm_ref.core.params import SimParams
+from ifgm_ref.core.protocol import Planner
 from ifgm_ref.oracle.check_types import CheckFailed, Evidence, Meets, PlannerFault, Recorder
 from ifgm_ref.oracle.implementation import Implementation
-from ifgm_ref.params import SimParams
-from ifgm_ref.protocol import Planner
-from ifgm_ref.simulator import Run, StopReason, simulate
-from ifgm_ref.world import World
+from ifgm_ref.sim.simulator import Run, StopReason, simulate
+from ifgm_ref.sim.world import World
 
 __all__ = ["MOVED", "MOVING", "NEAR", "ending", "episode", "place_of"]
 
@@ -82,7 +82,7 @@ def place_of(impl: Implementation, world: World) -> str:
 
 def ending(run: Run) -> str:
     """How an episode ended, for a failure message: its stop reason, the rule that fired for
-    a stall (:attr:`~ifgm_ref.simulator.Result.detail`), the time, and the least clearance
+    a stall (:attr:`~ifgm_ref.sim.simulator.Result.detail`), the time, and the least clearance
     (none in a world with no obstacle)."""
     result = run.result
     rule = f" ({result.detail})" if result.stop_reason == StopReason.STALLED else ""

@@ -16,13 +16,13 @@ from typing import Any
 
 from hypothesis import strategies as st
 
-from ifgm_ref import equations as reference
-from ifgm_ref.errors import IfgmRefError, ImplementationError
+from ifgm_ref.core.elements import traces
+from ifgm_ref.core.errors import IfgmRefError, ImplementationError
+from ifgm_ref.io.transport.loading import resolve
 from ifgm_ref.oracle.check_types import Check, CheckFailed, Evidence, Kind, Recorder
 from ifgm_ref.oracle.domains import inputs
 from ifgm_ref.oracle.implementation import Implementation
-from ifgm_ref.paper import traces
-from ifgm_ref.transport.loading import resolve
+from ifgm_ref.paper import equations as reference
 
 __all__ = [
     "EQUATION_TOL",
@@ -148,7 +148,7 @@ _CHECKED: tuple[tuple[str, str, str, tuple[str, ...] | None, bool], ...] = (
 
 @traces("eq1", "eq2", "eq3", "eq4")
 def equation_checks() -> list[Check]:
-    """The equation checks, one per function of :mod:`ifgm_ref.equations` they cover (FGM's
+    """The equation checks, one per function of :mod:`ifgm_ref.paper.equations` they cover (FGM's
     two forms are not among them)."""
     return [
         _equation_check(name, sentence, inputs(equation, args), angle=angle)
@@ -160,21 +160,21 @@ def load_equations(spec: str) -> object:
     """The equations under test: the module ``spec`` names, or ``module:attribute``.
 
     It must expose at least one of the functions the oracle's equation checks compare with
-    :mod:`ifgm_ref.equations` (``eq1_gap_midpoint`` ... ``eq4_final_heading_literal``, the
+    :mod:`ifgm_ref.paper.equations` (``eq1_gap_midpoint`` ... ``eq4_final_heading_literal``, the
     names of the checks), with the reference's signatures.
 
-    >>> load_equations("ifgm_ref.equations").__name__
-    'ifgm_ref.equations'
+    >>> load_equations("ifgm_ref.paper.equations").__name__
+    'ifgm_ref.paper.equations'
     >>> load_equations("math")  # doctest: +ELLIPSIS
     Traceback (most recent call last):
     ...
-    ifgm_ref.errors.ImplementationError: 'math' has none of the equation functions eq1_gap_...
+    ifgm_ref.core.errors.ImplementationError: 'math' has none of the equation functions eq1_gap_...
     """
     target = resolve(spec)
     names = [check.name for check in equation_checks()]
     if not any(callable(getattr(target, name, None)) for name in names):
         raise ImplementationError(
             f"{spec!r} has none of the equation functions {', '.join(names)} "
-            "(see ifgm_ref.equations)"
+            "(see ifgm_ref.paper.equations)"
         )
     return target

@@ -15,20 +15,20 @@ import shlex
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field, replace
 
-from ifgm_ref.errors import ImplementationError, ParameterError
-from ifgm_ref.noise import NoiseLevels
+from ifgm_ref.core.errors import ImplementationError, ParameterError
+from ifgm_ref.core.pose import Point, Pose
+from ifgm_ref.core.protocol import EpisodeParams, Planner
+from ifgm_ref.io.transport.external import TIMEOUT
+from ifgm_ref.io.transport.loading import load_planner_factory
 from ifgm_ref.planners import PLANNERS
-from ifgm_ref.planners.ifgm_readings import known_names
-from ifgm_ref.pose import Point, Pose
-from ifgm_ref.protocol import EpisodeParams, Planner
-from ifgm_ref.transport.external import TIMEOUT
-from ifgm_ref.transport.loading import load_planner_factory
+from ifgm_ref.planners.ifgm.readings import known_names
+from ifgm_ref.sim.noise import NoiseLevels
 
 #: Every solvable world class of :mod:`ifgm_ref.oracle.strategies`.
 ALL_CLASSES = frozenset({"open", "u", "h", "symmetric", "mixed"})
 #: The noise levels the reference planners promise: Gaussian range noise of 2 % of the range,
 #: 5 % of the rays dropping out, odometry drifting by 1 % of the distance
-#: (:mod:`ifgm_ref.noise`). Measured, with the history of these levels: ``docs/oracle.md``,
+#: (:mod:`ifgm_ref.sim.noise`). Measured, with the history of these levels: ``docs/oracle.md``,
 #: "Robustness".
 REFERENCE_NOISE = NoiseLevels(range=0.02, dropout=0.05, odometry=0.01)
 
@@ -57,7 +57,7 @@ class Promises:
         check; :mod:`ifgm_ref.oracle.metamorphic`). Every planner here promises it: their
         parameters are formulas in the robot and the sensor (:mod:`ifgm_ref.planners.tuning`).
     noise : NoiseLevels or None, default None
-        The noise levels (:mod:`ifgm_ref.noise`) at which it keeps these promises: never
+        The noise levels (:mod:`ifgm_ref.sim.noise`) at which it keeps these promises: never
         collides, and reaches the goal in at least
         :data:`~ifgm_ref.oracle.robust.SUCCESS_THRESHOLD` of the worlds of each class it
         converges in, with 95 % confidence. The robust profile checks these levels; ``None``
@@ -70,7 +70,7 @@ class Promises:
         one with the margins that tell a tie from a fault) makes the reference level's
         ``agrees_with_reference`` check apply (:mod:`ifgm_ref.oracle.conformance`).
     stops_in_time : bool, default False
-        Whether it honours the robot's dynamics (:class:`~ifgm_ref.params.RobotParams`
+        Whether it honours the robot's dynamics (:class:`~ifgm_ref.core.params.RobotParams`
         ``braking``, ``acceleration`` and ``response``): on a robot that cannot stop at once,
         every command leaves it room to stop before what it sees (the braking governor's
         condition, :mod:`ifgm_ref.planners.governor`), which the ``stops_in_time`` check
@@ -78,7 +78,7 @@ class Promises:
         dynamic window.
     readings : mapping of str to str, default {}
         The readings it takes of the paper's open choices, where they are not ours
-        (:data:`~ifgm_ref.planners.ifgm_readings.OPEN_READINGS`: ``{"dead_end_side":
+        (:data:`~ifgm_ref.planners.ifgm.readings.OPEN_READINGS`: ``{"dead_end_side":
         "left"}``, say): the reference runs the same readings to compare with it, or the
         check says it cannot.
     """
@@ -137,7 +137,7 @@ PROMISES: dict[str, Promises] = {
 
 
 #: The equations a built-in planner is checked with when none are given: the reference's.
-REFERENCE_EQUATIONS = "ifgm_ref.equations"
+REFERENCE_EQUATIONS = "ifgm_ref.paper.equations"
 
 
 def default_equations(spec: str) -> str | None:
@@ -148,7 +148,7 @@ def default_equations(spec: str) -> str | None:
     anything else, whose equation checks are then not applicable, saying how to give them.
 
     >>> default_equations("fgm"), default_equations("mypkg.module:make_planner")
-    ('ifgm_ref.equations', None)
+    ('ifgm_ref.paper.equations', None)
     """
     return REFERENCE_EQUATIONS if spec in PLANNERS else None
 
@@ -234,9 +234,9 @@ class Implementation:
     @property
     def is_program(self) -> bool:
         """Whether it is a program run through the JSON-lines protocol (``from_command``) or
-        ROS nodes (``--ros-node``, :class:`~ifgm_ref.ros.bridge.RosFactory`)."""
-        from ifgm_ref.ros.bridge import RosFactory
-        from ifgm_ref.transport.external import ExternalFactory
+        ROS nodes (``--ros-node``, :class:`~ifgm_ref.io.ros.bridge.RosFactory`)."""
+        from ifgm_ref.io.ros.bridge import RosFactory
+        from ifgm_ref.io.transport.external import ExternalFactory
 
         return isinstance(self.factory, ExternalFactory | RosFactory)
 
@@ -281,10 +281,10 @@ class Implementation:
         ``timeout`` is the wait for each reply, ``startup_timeout`` for the first reply of
         each start of the program and its exit (default: 60 s, or ``timeout`` if longer), in
         s; see
-        :class:`~ifgm_ref.transport.external.ExternalPlanner`. A timeout that is not a finite
-        number > 0 is a :class:`~ifgm_ref.errors.ParameterError` here.
+        :class:`~ifgm_ref.io.transport.external.ExternalPlanner`. A timeout that is not a finite
+        number > 0 is a :class:`~ifgm_ref.core.errors.ParameterError` here.
         """
-        from ifgm_ref.transport.external import ExternalFactory
+        from ifgm_ref.io.transport.external import ExternalFactory
 
         if not isinstance(promises, Promises):
             promises = promises_of(promises or "ifgm")

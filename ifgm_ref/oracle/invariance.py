@@ -3,7 +3,7 @@
 ``rigid_motion_invariant`` and ``scale_invariant`` (:mod:`ifgm_ref.oracle.checks`) ask one
 question: handed the moved (or scaled) problem, does the planner answer with the moved (or
 scaled) answers? Each runs the original problem once, recording what the planner was handed
-and what it answered (:class:`~ifgm_ref.recording.RecordingPlanner`), transforms that
+and what it answered (:class:`~ifgm_ref.core.recording.RecordingPlanner`), transforms that
 exchange (:func:`~ifgm_ref.oracle.metamorphic.moved_recording`,
 :func:`~ifgm_ref.oracle.metamorphic.scaled_recording`), hands the transformed observations,
 in order, to a fresh planner (open loop: its answers move nothing), and compares each answer
@@ -28,13 +28,13 @@ from collections.abc import Iterator
 from dataclasses import replace
 from typing import NamedTuple
 
-from ifgm_ref.errors import ImplementationError
+from ifgm_ref.core.errors import ImplementationError
+from ifgm_ref.core.pose import Point, Pose, wrap_angle
+from ifgm_ref.core.protocol import Command, Observation
+from ifgm_ref.core.recording import Recording, replay
 from ifgm_ref.oracle.check_types import CheckFailed, PlannerFault, Recorder
 from ifgm_ref.oracle.implementation import Implementation
-from ifgm_ref.pose import Point, Pose, wrap_angle
-from ifgm_ref.protocol import Command, Observation
-from ifgm_ref.recording import Recording, replay
-from ifgm_ref.world import World
+from ifgm_ref.sim.world import World
 
 __all__ = [
     "EXACT_SCALES",

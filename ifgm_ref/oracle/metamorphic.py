@@ -18,14 +18,14 @@ absolute length constant (a ``1.0`` margin, a ``1e-6`` ft epsilon) breaks that.
 
 The planner's half of a relation (:func:`moved_recording`, :func:`scaled_recording`): what a
 planner was handed in one run and what it answered (a
-:class:`~ifgm_ref.recording.Recording`), transformed into what it must be handed and
+:class:`~ifgm_ref.core.recording.Recording`), transformed into what it must be handed and
 answer in the moved or scaled problem. In exact arithmetic the simulator hands the planner
 exactly these observations in the transformed problem (a scan is taken in the robot's frame,
 so a rigid motion leaves it as it is); the oracle replays them open loop
 (:mod:`ifgm_ref.oracle.invariance`).
 
-Sources: the units of the parameters, :class:`ifgm_ref.formulas.Unit`; the world's
-blocks, :mod:`ifgm_ref.world` and :mod:`ifgm_ref.params`.
+Sources: the units of the parameters, :class:`ifgm_ref.core.formulas.Unit`; the world's
+blocks, :mod:`ifgm_ref.sim.world` and :mod:`ifgm_ref.core.params`.
 """
 
 from __future__ import annotations
@@ -34,15 +34,15 @@ import math
 from collections.abc import Callable, Iterable, Mapping
 from dataclasses import replace
 
-from ifgm_ref.errors import ParameterError
-from ifgm_ref.params import RobotParams, SensorParams, SimParams
+from ifgm_ref.core.errors import ParameterError
+from ifgm_ref.core.params import RobotParams, SensorParams, SimParams
+from ifgm_ref.core.pose import Point, Pose
+from ifgm_ref.core.protocol import Command, EpisodeParams, Observation
+from ifgm_ref.core.recording import Recording
+from ifgm_ref.core.validate import POSITIVE, violation
 from ifgm_ref.planners.tuning import ParamInfo
-from ifgm_ref.pose import Point, Pose
-from ifgm_ref.protocol import Command, EpisodeParams, Observation
-from ifgm_ref.recording import Recording
-from ifgm_ref.validate import POSITIVE, violation
-from ifgm_ref.world import Bounds, Circle, Obstacle, Polygon, World
-from ifgm_ref.worldgen.classes import placed_point, placed_pose
+from ifgm_ref.sim.world import Bounds, Circle, Obstacle, Polygon, World
+from ifgm_ref.sim.worldgen.classes import placed_point, placed_pose
 
 __all__ = [
     "is_power_of_two",
@@ -159,7 +159,7 @@ def scale_params(
 
     A name the planner does not declare has no known unit: :class:`ParameterError`.
 
-    >>> from ifgm_ref.formulas import Unit
+    >>> from ifgm_ref.core.formulas import Unit
     >>> infos = [ParamInfo("d_th", "3*r", Unit.LENGTH), ParamInfo("w_g", "9", Unit.NUMBER),
     ...          ParamInfo("eta", "50*r**4", Unit.LENGTH4)]
     >>> scale_params({"d_th": 3.0, "w_g": 9.0, "eta": 1.0}, infos, 2.0)
@@ -184,15 +184,15 @@ def scale_params(
 
 def moved_recording(recording: Recording, angle: float, shift: tuple[float, float]) -> Recording:
     """The exchange of ``recording``'s problem rotated by ``angle`` about the origin and shifted
-    by ``shift`` (ft), as :func:`~ifgm_ref.worldgen.classes.placed` moves a world.
+    by ``shift`` (ft), as :func:`~ifgm_ref.sim.worldgen.classes.placed` moves a world.
 
     Moved: the start, the goal, and every pose and goal handed to the planner
-    (:func:`~ifgm_ref.worldgen.classes.placed_pose`, ``placed_point``); every heading it
+    (:func:`~ifgm_ref.sim.worldgen.classes.placed_pose`, ``placed_point``); every heading it
     answered turned by ``angle``. Kept: times, scans (taken in the robot's frame), the episode
     parameters, and every speed, behaviour, branch and stop it answered.
 
-    >>> from ifgm_ref.laserscan import LaserScan
-    >>> from ifgm_ref.protocol import EpisodeParams
+    >>> from ifgm_ref.core.laserscan import LaserScan
+    >>> from ifgm_ref.core.protocol import EpisodeParams
     >>> scan = LaserScan(-1.0, 1.0, 1.0, 0.0, 10.0, [3.0, 4.0, 5.0])
     >>> seen = Observation(0.0, Pose(1.0, 0.0, 0.0), Point(5.0, 0.0), scan)
     >>> was = Recording(Pose(1.0, 0.0, 0.0), Point(5.0, 0.0), EpisodeParams(),
@@ -230,8 +230,8 @@ def scaled_recording(
     behaviour, branch and stop it answered. ``params`` are the planner parameters in the
     scaled unit (:func:`scale_params`); by default the recorded ones, kept.
 
-    >>> from ifgm_ref.laserscan import LaserScan
-    >>> from ifgm_ref.protocol import EpisodeParams
+    >>> from ifgm_ref.core.laserscan import LaserScan
+    >>> from ifgm_ref.core.protocol import EpisodeParams
     >>> scan = LaserScan(-1.0, 1.0, 1.0, 0.0, 10.0, [3.0, 4.0, float("inf")])
     >>> seen = Observation(0.5, Pose(1.0, 2.0, 0.3), Point(5.0, 0.0), scan)
     >>> was = Recording(Pose(1.0, 2.0, 0.3), Point(5.0, 0.0), EpisodeParams(),

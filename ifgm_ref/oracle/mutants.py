@@ -11,14 +11,14 @@ from __future__ import annotations
 import math
 from dataclasses import replace
 
-from ifgm_ref.equations import eq3_goal_angle_literal
-from ifgm_ref.paper import traces
-from ifgm_ref.percepts.clusters import Gap
+from ifgm_ref.core.elements import traces
+from ifgm_ref.core.pose import Point, Pose
+from ifgm_ref.core.protocol import Behaviour, Command, EpisodeParams
+from ifgm_ref.paper.equations import eq3_goal_angle_literal
+from ifgm_ref.paper.percepts.clusters import Gap
 from ifgm_ref.planners.ifgm import IFGMPlanner
-from ifgm_ref.planners.ifgm_atoms import IFGMState, Percepts
+from ifgm_ref.planners.ifgm.atoms import IFGMState, Percepts
 from ifgm_ref.planners.sight import Sight
-from ifgm_ref.pose import Point, Pose
-from ifgm_ref.protocol import Behaviour, Command, EpisodeParams
 
 
 class GapAngleSignFlipped(IFGMPlanner):

@@ -2,8 +2,8 @@
 
 The world classes of :mod:`ifgm_ref.oracle.strategies` test a planner through whole episodes.
 These strategies test its *decisions*: they draw what one step of a planner sees -- an
-:class:`~ifgm_ref.protocol.Observation` (time, pose, goal and a
-:class:`~ifgm_ref.laserscan.LaserScan` in the ROS convention) -- without any world behind it,
+:class:`~ifgm_ref.core.protocol.Observation` (time, pose, goal and a
+:class:`~ifgm_ref.core.laserscan.LaserScan` in the ROS convention) -- without any world behind it,
 so that every branch of the reconstructed Figure 3 (section 4 of the paper: Case-1, Case-2,
 Case-3, the dead-end rule; section 4.1: IBA) can be reached directly and its post-condition
 checked (``tests/test_flowchart_properties.py``).
@@ -26,7 +26,7 @@ strategy                       draws
                                obstacles, some nearer (Case-3)
 =============================  ===============================================================
 
-Scans use the default sensor (:class:`~ifgm_ref.params.SensorParams`: 135 degrees, 76 rays
+Scans use the default sensor (:class:`~ifgm_ref.core.params.SensorParams`: 135 degrees, 76 rays
 1.8 degrees apart, ``range_max`` 15 ft) unless another is passed. Ranges follow REP 117:
 ``+inf`` no return, ``-inf`` a return nearer than ``range_min`` (drawn only with
 ``too_near=True``). Lengths are in ft, angles in radians; bands of ranges named below (near,
@@ -47,10 +47,10 @@ from hypothesis import assume
 from hypothesis import strategies as st
 from numpy.typing import NDArray
 
-from ifgm_ref.laserscan import LaserScan
-from ifgm_ref.params import SensorParams
-from ifgm_ref.pose import Point, Pose, wrap_angle
-from ifgm_ref.protocol import Observation
+from ifgm_ref.core.laserscan import LaserScan
+from ifgm_ref.core.params import SensorParams
+from ifgm_ref.core.pose import Point, Pose, wrap_angle
+from ifgm_ref.core.protocol import Observation
 
 #: The paper's sensor with the reference's defaults (section 4, Figure 2).
 DEFAULT_SENSOR = SensorParams()

@@ -4,7 +4,7 @@
 noise-free; ``robust`` runs the quick profile's 50 under the noise levels the implementation
 promises (:attr:`~ifgm_ref.oracle.implementation.Promises.noise`), and :func:`with_noise` puts
 given levels on any profile: a robustness run (:mod:`ifgm_ref.oracle.robust`).
-:func:`on_engine` runs any profile's simulations on another engine (:mod:`ifgm_ref.engine`):
+:func:`on_engine` runs any profile's simulations on another engine (:mod:`ifgm_ref.sim.engine`):
 the robot with mass of ``mujoco`` (``docs/oracle.md``, "On the physical robot").
 """
 
@@ -14,12 +14,12 @@ from dataclasses import dataclass, replace
 
 from hypothesis import HealthCheck, Phase, settings
 
-from ifgm_ref.engine import require_physics
-from ifgm_ref.errors import ImplementationError
-from ifgm_ref.noise import NoiseLevels
+from ifgm_ref.core.errors import ImplementationError
+from ifgm_ref.core.params import DT, ENGINES, GOAL_TOLERANCE, SensorParams, SimParams
 from ifgm_ref.oracle.implementation import Promises
-from ifgm_ref.params import DT, ENGINES, GOAL_TOLERANCE, SensorParams, SimParams
-from ifgm_ref.physics.bodies import BODIES
+from ifgm_ref.sim.engine import require_physics
+from ifgm_ref.sim.noise import NoiseLevels
+from ifgm_ref.sim.physics.bodies import BODIES
 
 __all__ = [
     "PROFILES",
@@ -46,10 +46,10 @@ class Profile:
     robustness run (:mod:`ifgm_ref.oracle.robust`).
 
     ``engine`` senses and moves the robot in every episode the checks simulate
-    (:data:`ifgm_ref.params.ENGINES`: ``kinematic``, the default, or ``mujoco``), with the
+    (:data:`ifgm_ref.core.params.ENGINES`: ``kinematic``, the default, or ``mujoco``), with the
     ``mujoco`` engine's ``body`` (``None``: the robot's default). It changes no draw: the
     same examples run on either engine. ``robot`` changes these fields of the robot of every
-    world drawn (``--robot``, ``--speed``: :func:`~ifgm_ref.params.changed_robot`), as pairs.
+    world drawn (``--robot``, ``--speed``: :func:`~ifgm_ref.core.params.changed_robot`), as pairs.
     ``sensor`` (``None``: each world's own) replaces the sensor of every world drawn, and
     every episode runs at ``dt`` and ends as reached within ``goal_tolerance``: what an
     implementation declares in its specification (:mod:`ifgm_ref.oracle.specification`).
@@ -161,7 +161,7 @@ def profile_named(name: str) -> Profile:
     >>> profile_named("fast")  # doctest: +ELLIPSIS
     Traceback (most recent call last):
     ...
-    ifgm_ref.errors.ImplementationError: unknown profile 'fast'; known: quick, standard, ...
+    ifgm_ref.core.errors.ImplementationError: unknown profile 'fast'; known: quick, standard, ...
     """
     try:
         return PROFILES[PROFILE_ALIASES.get(name, name)]
@@ -172,14 +172,14 @@ def profile_named(name: str) -> Profile:
 
 def with_noise(profile: Profile | str, noise: NoiseLevels | str | None) -> Profile:
     """``profile`` (or the one named) checking at the noise levels ``noise``, if given
-    (``"KIND=LEVEL,..."`` as :meth:`~ifgm_ref.noise.NoiseLevels.parse` reads it).
+    (``"KIND=LEVEL,..."`` as :meth:`~ifgm_ref.sim.noise.NoiseLevels.parse` reads it).
 
     >>> with_noise("quick", "dropout=0.1").noise.tags()
     'dropout=0.1'
     >>> with_noise("quick", "none")
     Traceback (most recent call last):
     ...
-    ifgm_ref.errors.ImplementationError: noise 'none' turns no noise on: leave it out
+    ifgm_ref.core.errors.ImplementationError: noise 'none' turns no noise on: leave it out
     """
     profile = profile_named(profile) if isinstance(profile, str) else profile
     if noise is None:
@@ -193,14 +193,14 @@ def with_noise(profile: Profile | str, noise: NoiseLevels | str | None) -> Profi
 def on_engine(profile: Profile | str, engine: str | None, body: str | None = None) -> Profile:
     """``profile`` (or the one named) simulating on ``engine`` with ``body`` (``None``: as it
     is). The ``mujoco`` engine needs MuJoCo installed: a
-    :class:`~ifgm_ref.errors.ParameterError` says what to install otherwise.
+    :class:`~ifgm_ref.core.errors.ParameterError` says what to install otherwise.
 
     >>> on_engine("quick", "mujoco", "jackal").sim().engine
     'mujoco'
     >>> on_engine("quick", "kinematic", "jackal")  # doctest: +ELLIPSIS
     Traceback (most recent call last):
     ...
-    ifgm_ref.errors.ImplementationError: `body` must be one of jackal, jackal-disc, paper with ...
+    ifgm_ref.core.errors.ImplementationError: `body` must be one of jackal, jackal-disc, paper ...
     """
     profile = profile_named(profile) if isinstance(profile, str) else profile
     if engine is None and body is None:
@@ -222,7 +222,7 @@ def engine_tag(profile: Profile) -> str:
 
 def noise_tags(profile: Profile, promises: Promises) -> tuple[str | None, str]:
     """The noise levels ``profile`` checks an implementation of ``promises`` at (``None`` in
-    a noise-free run) and those it promises, as :meth:`~ifgm_ref.noise.NoiseLevels.tags`.
+    a noise-free run) and those it promises, as :meth:`~ifgm_ref.sim.noise.NoiseLevels.tags`.
 
     >>> noise_tags(PROFILES["robust"], Promises())
     ('none', 'none')

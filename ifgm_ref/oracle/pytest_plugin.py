@@ -35,7 +35,9 @@ from typing import Any
 
 import pytest
 
-from ifgm_ref.errors import IfgmRefError
+from ifgm_ref.core.errors import IfgmRefError
+from ifgm_ref.core.params import ENGINES
+from ifgm_ref.io.transport.external import STARTUP_TIMEOUT, TIMEOUT
 from ifgm_ref.oracle.check_types import Kind, Level, levels_up_to
 from ifgm_ref.oracle.checks import CHECKS
 from ifgm_ref.oracle.equation_checks import load_equations
@@ -65,10 +67,8 @@ from ifgm_ref.oracle.specification import (
 from ifgm_ref.oracle.suite.cases import TIERS, Case
 from ifgm_ref.oracle.suite.run import CaseResult, run_case
 from ifgm_ref.oracle.suite.versions import load_suite
-from ifgm_ref.params import ENGINES
-from ifgm_ref.physics.bodies import BODIES
-from ifgm_ref.planners.ifgm_readings import parse_readings
-from ifgm_ref.transport.external import STARTUP_TIMEOUT, TIMEOUT
+from ifgm_ref.planners.ifgm.readings import parse_readings
+from ifgm_ref.sim.physics.bodies import BODIES
 
 #: The test module whose items need an implementation.
 SUITE = "test_conformance.py"
@@ -116,7 +116,7 @@ def pytest_addoption(parser: pytest.Parser) -> None:
         "--ifgm-equations",
         metavar="MODULE",
         help="a module (or module:attribute) exposing eq1_gap_midpoint ... eq4_final_heading "
-        "to check eqs. (1)-(4) (default: ifgm_ref.equations for a built-in --ifgm-impl, none "
+        "to check eqs. (1)-(4) (default: ifgm_ref.paper.equations for a built-in --ifgm-impl, none "
         "for any other)",
     )
     group.addoption(
@@ -188,7 +188,7 @@ def _add_engine_options(group: pytest.OptionGroup) -> None:
 
 def _add_timeout_options(group: pytest.OptionGroup) -> None:
     """``--ifgm-timeout`` and ``--ifgm-startup-timeout``: how long a program may take to reply
-    (:class:`~ifgm_ref.transport.external.ExternalPlanner`); checked when the session starts."""
+    (:class:`~ifgm_ref.io.transport.external.ExternalPlanner`); checked when the session starts."""
     group.addoption(
         "--ifgm-timeout",
         type=float,

@@ -1,6 +1,6 @@
 """The oracle under noise: safety stays absolute, convergence becomes statistical (issue 17).
 
-A robustness run checks the same properties with noise (:mod:`ifgm_ref.noise`) in every world
+A robustness run checks the same properties with noise (:mod:`ifgm_ref.sim.noise`) in every world
 it simulates: the ``robust`` profile at the levels the implementation promises
 (:attr:`~ifgm_ref.oracle.implementation.Promises.noise`), or any profile at the levels given
 (``noise=`` of :func:`~ifgm_ref.oracle.runner.check_planner`, ``--noise`` of ``ifgm-ref
@@ -35,8 +35,8 @@ The absolute checks draw through Hypothesis as without noise, each world with it
 and shrinks it; a success *rate* needs every example run and counted. Its draws are also
 deliberately not a sample: it tries the simplest world first, then boundary values, and never
 the same choices twice. The Wilson bound assumes independent draws from one distribution, so
-these checks draw from the world generators of :mod:`ifgm_ref.worldgen.classes` directly,
-uniformly (:class:`~ifgm_ref.worldgen.draws.RandomDraw`), as the benchmark does: example ``k``
+these checks draw from the world generators of :mod:`ifgm_ref.sim.worldgen.classes` directly,
+uniformly (:class:`~ifgm_ref.sim.worldgen.draws.RandomDraw`), as the benchmark does: example ``k``
 is the ``k``-th world and noise seed of ``numpy.random.default_rng(seed)`` (``seed``: the
 profile's, else 0), the same on every machine and for any number of jobs.
 
@@ -66,13 +66,13 @@ from typing import Any
 import numpy as np
 from hypothesis import strategies as st
 
-from ifgm_ref.noise import NoiseLevels
+from ifgm_ref.core.stats import wilson_interval
 from ifgm_ref.oracle.check_types import Check, CheckFailed, Evidence, PlannerFault, Recorder
 from ifgm_ref.oracle.implementation import Implementation
-from ifgm_ref.simulator import Run, StopReason
-from ifgm_ref.stats import wilson_interval
-from ifgm_ref.world import World
-from ifgm_ref.worldgen.draws import RandomDraw
+from ifgm_ref.sim.noise import NoiseLevels
+from ifgm_ref.sim.simulator import Run, StopReason
+from ifgm_ref.sim.world import World
+from ifgm_ref.sim.worldgen.draws import RandomDraw
 
 __all__ = [
     "CONFIDENCE_Z",
@@ -85,7 +85,7 @@ __all__ = [
 ]
 
 #: The normal quantile of the statistical checks' two-sided 95 % Wilson score interval
-#: (1.95996, as :mod:`ifgm_ref.stats` computes it).
+#: (1.95996, as :mod:`ifgm_ref.core.stats` computes it).
 CONFIDENCE_Z = NormalDist().inv_cdf(0.975)
 #: A statistical check passes when the Wilson lower bound of its success rate reaches this.
 #: 0.85: with the quick profile's 50 worlds a planner may miss 2 (``L(48/50) = 0.865``) but not
@@ -99,7 +99,7 @@ NOISE_SEEDS = 2**32
 
 def wilson_lower(successes: int, n: int) -> float:
     """The Wilson score lower bound of a success proportion: ``successes`` of ``n`` trials
-    (the lower end of :func:`ifgm_ref.stats.wilson_interval`'s 95 % interval; 0 without a
+    (the lower end of :func:`ifgm_ref.core.stats.wilson_interval`'s 95 % interval; 0 without a
     trial).
 
     Examples

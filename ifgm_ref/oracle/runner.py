@@ -29,8 +29,8 @@ from typing import Any
 from hypothesis import example, given, seed
 from hypothesis.errors import Flaky
 
-from ifgm_ref.errors import ImplementationError
-from ifgm_ref.noise import NoiseLevels
+from ifgm_ref.core.errors import ImplementationError
+from ifgm_ref.core.protocol import Planner
 from ifgm_ref.oracle.check_types import (
     Check,
     CheckFailed,
@@ -54,7 +54,7 @@ from ifgm_ref.oracle.robust import noisy_examples, run_statistical, with_world
 from ifgm_ref.oracle.specification import Specification, declared, in_feet
 from ifgm_ref.oracle.stable_draws import global_constants_only
 from ifgm_ref.oracle.workers import worker_pool
-from ifgm_ref.protocol import Planner
+from ifgm_ref.sim.noise import NoiseLevels
 
 
 class Status(StrEnum):
@@ -123,7 +123,7 @@ class Report:
     """Every check's result for one implementation under one profile.
 
     A robustness run also says which noise levels it checked (``noise``, as
-    :meth:`~ifgm_ref.noise.NoiseLevels.tags` writes them: ``"none"`` when the implementation
+    :meth:`~ifgm_ref.sim.noise.NoiseLevels.tags` writes them: ``"none"`` when the implementation
     promised none) and which the implementation promises (``promised``); ``noise`` is ``None``
     for a noise-free run. ``engine`` names the engine the simulations ran on, and its body if
     one was chosen (:func:`engine_tag`). ``held_to`` says what a declared specification held

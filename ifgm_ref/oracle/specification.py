@@ -12,7 +12,7 @@ The file states its length unit (``unit = "ft"`` or ``"m"``); the oracle's world
 feet, so every length is converted to feet on reading (:data:`FEET_PER`). Every key, its unit,
 default and meaning: ``docs/oracle.md``, "Declaring your implementation's specification".
 Anything wrong in the file (an unknown key, a wrong type, a value out of range) is one
-:class:`~ifgm_ref.errors.ParameterError` naming the file and the key.
+:class:`~ifgm_ref.core.errors.ParameterError` naming the file and the key.
 
 >>> spec = Specification.parse({"unit": "m", "goal_tolerance": 0.3}, "port.toml")
 >>> round(spec.goal_tolerance, 4), spec.dt
@@ -20,7 +20,7 @@ Anything wrong in the file (an unknown key, a wrong type, a value out of range) 
 >>> Specification.parse({"unit": "m", "goal_tolerence": 0.3}, "port.toml")
 Traceback (most recent call last):
 ...
-ifgm_ref.errors.ParameterError: port.toml: goal_tolerence: unknown key; known: dt, \
+ifgm_ref.core.errors.ParameterError: port.toml: goal_tolerence: unknown key; known: dt, \
 goal_tolerance, level, promises, readings, robot, sensor, unit
 """
 
@@ -33,17 +33,8 @@ from dataclasses import dataclass, field, fields, replace
 from pathlib import Path
 from typing import Any
 
-from ifgm_ref.errors import IfgmRefError, ParameterError
-from ifgm_ref.noise import NoiseLevels
-from ifgm_ref.oracle.implementation import (
-    ALL_CLASSES,
-    PROMISES,
-    Implementation,
-    Promises,
-    promises_of,
-)
-from ifgm_ref.oracle.profiles import Profile, profile_named
-from ifgm_ref.params import (
+from ifgm_ref.core.errors import IfgmRefError, ParameterError
+from ifgm_ref.core.params import (
     DT,
     GOAL_TOLERANCE,
     ROBOT_OPTIONS,
@@ -53,9 +44,18 @@ from ifgm_ref.params import (
     SensorParams,
     changed_robot,
 )
-from ifgm_ref.planners.ifgm_readings import OPEN_READINGS
-from ifgm_ref.validate import NON_NEGATIVE, POSITIVE, Domain, require
-from ifgm_ref.world import World
+from ifgm_ref.core.validate import NON_NEGATIVE, POSITIVE, Domain, require
+from ifgm_ref.oracle.implementation import (
+    ALL_CLASSES,
+    PROMISES,
+    Implementation,
+    Promises,
+    promises_of,
+)
+from ifgm_ref.oracle.profiles import Profile, profile_named
+from ifgm_ref.planners.ifgm.readings import OPEN_READINGS
+from ifgm_ref.sim.noise import NoiseLevels
+from ifgm_ref.sim.world import World
 
 __all__ = [
     "FEET_PER",
@@ -112,7 +112,7 @@ class Specification:
     sensor_from : str
         The preset it started from (``paper_ir``, ``jackal_lidar``, ``lidar_180``).
     robot : tuple of (str, float)
-        Changes to the robot of every world drawn (:data:`~ifgm_ref.params.ROBOT_OPTIONS`,
+        Changes to the robot of every world drawn (:data:`~ifgm_ref.core.params.ROBOT_OPTIONS`,
         in ft, s and rad), as :attr:`~ifgm_ref.oracle.profiles.Profile.robot` holds them.
     promises : Promises
         What it promises, its readings included.
@@ -287,7 +287,7 @@ def refuse_options(source: str, given: Mapping[str, object]) -> None:
     >>> refuse_options("port.toml", {"--robot": "speed=2"})
     Traceback (most recent call last):
     ...
-    ifgm_ref.errors.ParameterError: port.toml: --robot speed=2 given with the specification, \
+    ifgm_ref.core.errors.ParameterError: port.toml: --robot speed=2 given with the specification, \
 which declares it ([robot]): change the file, or leave out the option
     """
     for option, value in given.items():

@@ -45,7 +45,7 @@ from typing import Any
 import hypothesis
 from hypothesis.version import __version_info__ as HYPOTHESIS_VERSION
 
-from ifgm_ref.errors import IfgmRefError
+from ifgm_ref.core.errors import IfgmRefError
 
 __all__ = ["FIRST_WITH_LOCAL_CONSTANTS", "HypothesisChanged", "global_constants_only"]
 

@@ -14,7 +14,7 @@ asserts that no check fails (serve any of them with
 * :class:`OppositeTies`: the other choice wherever the reference breaks an exact tie
   (left or right round a symmetric obstacle, the first or the last of equal gaps);
 * :func:`Twist`: every command answered as a velocity command, ``(v, w)`` as a ROS node
-  publishes it (:class:`~ifgm_ref.velocity.VelocityPlanner`), the same motion within
+  publishes it (:class:`~ifgm_ref.core.velocity.VelocityPlanner`), the same motion within
   rounding.
 """
 
@@ -26,11 +26,11 @@ from dataclasses import replace
 
 import numpy as np
 
-from ifgm_ref.laserscan import LaserScan
+from ifgm_ref.core.laserscan import LaserScan
+from ifgm_ref.core.pose import Point, Pose
+from ifgm_ref.core.protocol import Command, EpisodeParams, Observation, Planner
+from ifgm_ref.core.velocity import VelocityPlanner
 from ifgm_ref.planners.ifgm import IFGMPlanner
-from ifgm_ref.pose import Point, Pose
-from ifgm_ref.protocol import Command, EpisodeParams, Observation, Planner
-from ifgm_ref.velocity import VelocityPlanner
 
 #: :class:`HeadingWobble`'s largest heading error, rad (1 degree).
 WOBBLE = math.radians(1.0)

@@ -2,7 +2,7 @@
 
 A worker ignores Ctrl-C, which a terminal sends to the whole process group, and ends at
 SIGTERM whatever handler it inherited: the parent, interrupted (Ctrl-C, or SIGTERM made an
-interruption by :mod:`ifgm_ref.cli.interrupt`), cancels what is queued and terminates the
+interruption by :mod:`ifgm_ref.apps.cli.interrupt`), cancels what is queued and terminates the
 workers at once, instead of waiting for their checks, and no worker prints a traceback.
 """
 

@@ -1,6 +1,6 @@
 """The planners, by the names the command line uses.
 
-Planners see only what :class:`ifgm_ref.protocol.Observation` carries (pose, goal, scan): no
+Planners see only what :class:`ifgm_ref.core.protocol.Observation` carries (pose, goal, scan): no
 module in this package imports the world, the sensor or the simulator (section 3 of the paper:
 "No priori information or map of the environment is required"); a test enforces it.
 """
@@ -10,8 +10,9 @@ from __future__ import annotations
 from collections.abc import Callable
 from dataclasses import dataclass
 
-from ifgm_ref.errors import PlannerError
-from ifgm_ref.formulas import Scale
+from ifgm_ref.core.errors import PlannerError
+from ifgm_ref.core.formulas import Scale
+from ifgm_ref.core.protocol import Planner
 from ifgm_ref.planners.apf import APFPlanner
 from ifgm_ref.planners.bug1 import Bug1Planner
 from ifgm_ref.planners.bug2 import Bug2Planner
@@ -22,7 +23,6 @@ from ifgm_ref.planners.iba import IBAPlanner
 from ifgm_ref.planners.ifgm import IFGMPlanner
 from ifgm_ref.planners.straight import StraightPlanner
 from ifgm_ref.planners.tuning import ParamInfo, Tuning, parameter_infos
-from ifgm_ref.protocol import Planner
 
 
 @dataclass(frozen=True)

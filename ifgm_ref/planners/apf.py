@@ -56,16 +56,16 @@ from typing import ClassVar
 import numpy as np
 from numpy.typing import NDArray
 
-from ifgm_ref.formulas import Unit
-from ifgm_ref.laserscan import LaserScan
-from ifgm_ref.paper import traces
-from ifgm_ref.percepts.corridor import free_length
-from ifgm_ref.percepts.points import scan_points
+from ifgm_ref.core.elements import traces
+from ifgm_ref.core.formulas import Unit
+from ifgm_ref.core.laserscan import LaserScan
+from ifgm_ref.core.pose import Point, Pose, wrap_angle
+from ifgm_ref.core.protocol import Behaviour, Command, EpisodeParams, Observation
+from ifgm_ref.paper.percepts.corridor import free_length
+from ifgm_ref.paper.percepts.points import scan_points
 from ifgm_ref.planners.edge_following import turn_speed
 from ifgm_ref.planners.governor import BrakingGovernor
 from ifgm_ref.planners.tuning import Tuning, check_names, derived, parameter_names
-from ifgm_ref.pose import Point, Pose, wrap_angle
-from ifgm_ref.protocol import Behaviour, Command, EpisodeParams, Observation
 
 __all__ = [
     "APFBranch",
@@ -239,7 +239,7 @@ class APFPlanner:
         """Whether a return lies in the robot's path for this step, within the stop distance.
 
         The robot first turns by at most ``max_turn_rate * dt`` towards the heading, then
-        drives along its new heading (:mod:`ifgm_ref.robot`); that is the corridor tested.
+        drives along its new heading (:mod:`ifgm_ref.sim.robot`); that is the corridor tested.
         """
         direction = max(-self.max_turn, min(self.max_turn, relative))
         reach = self.radius + self.tuning.stop_margin

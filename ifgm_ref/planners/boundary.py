@@ -31,17 +31,17 @@ from collections.abc import Callable
 from dataclasses import replace
 from typing import ClassVar
 
-from ifgm_ref.laserscan import LaserScan
-from ifgm_ref.paper import traces
-from ifgm_ref.percepts.corridor import disc_travel
-from ifgm_ref.percepts.memory import PerceptMemory
+from ifgm_ref.core.elements import traces
+from ifgm_ref.core.laserscan import LaserScan
+from ifgm_ref.core.pose import Point, Pose, wrap_angle
+from ifgm_ref.core.protocol import Behaviour, Command, EpisodeParams, Observation, PlannerStop
+from ifgm_ref.paper.percepts.corridor import disc_travel
+from ifgm_ref.paper.percepts.memory import PerceptMemory
 from ifgm_ref.planners.circuit import Circuit
 from ifgm_ref.planners.edge_following import FollowSide, follow_heading, turn_speed
 from ifgm_ref.planners.governor import BrakingGovernor
 from ifgm_ref.planners.sight import Body, BoundaryParams, Sight, goal_bearing
 from ifgm_ref.planners.tuning import Tuning, check_names, parameter_names
-from ifgm_ref.pose import Point, Pose, wrap_angle
-from ifgm_ref.protocol import Behaviour, Command, EpisodeParams, Observation, PlannerStop
 
 __all__ = [
     "GOAL_UNREACHABLE",
@@ -152,7 +152,7 @@ def keep_clear(command: Command, sight: Sight) -> Command:
     remembered obstacle point (``sight.points``) than the corridor margin during this step.
 
     The robot turns by at most ``max_turn_rate * dt`` and then drives
-    (:mod:`ifgm_ref.robot`), so the disc of the corridor's half-width is swept along the
+    (:mod:`ifgm_ref.sim.robot`), so the disc of the corridor's half-width is swept along the
     heading it will have. Headings are tried in :data:`CLEAR_STEP` steps either side of the
     commanded one, up to a right angle; if none is free the robot turns in place towards the
     command. The paper's robot, keeping ``standoff_margin`` from edges at 0.13 ft a step,

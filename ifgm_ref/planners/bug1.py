@@ -27,7 +27,7 @@ from __future__ import annotations
 
 from typing import ClassVar
 
-from ifgm_ref.paper import traces
+from ifgm_ref.core.elements import traces
 from ifgm_ref.planners.boundary import BoundaryPlanner, LeaveRule
 from ifgm_ref.planners.sight import BoundaryParams
 from ifgm_ref.planners.tuning import Tuning, parameter_names
@@ -38,14 +38,14 @@ class Bug1Planner(BoundaryPlanner):
     """Lumelsky and Stepanov's Bug1: the boundary-following skeleton with no earlier leaving
     rule than Bug1's round of the obstacle (:mod:`~ifgm_ref.planners.circuit`).
 
-    Tunables (``params`` mapping of :func:`ifgm_ref.simulator.simulate`) are those of
+    Tunables (``params`` mapping of :func:`ifgm_ref.sim.simulator.simulate`) are those of
     :class:`~ifgm_ref.planners.sight.BoundaryParams`; ``return_radius`` doubles as the
     radius within which Q counts as reached.
 
     Examples
     --------
-    >>> from ifgm_ref.scenarios import resolve_world
-    >>> from ifgm_ref.simulator import simulate
+    >>> from ifgm_ref.io.scenarios import resolve_world
+    >>> from ifgm_ref.sim.simulator import simulate
     >>> run = simulate(resolve_world("box"), Bug1Planner())
     >>> run.result.stop_reason, run.result.collided
     ('goal_reached', False)

@@ -36,13 +36,13 @@ import math
 from dataclasses import dataclass
 from typing import ClassVar
 
-from ifgm_ref.formulas import Unit
-from ifgm_ref.paper import traces
+from ifgm_ref.core.elements import traces
+from ifgm_ref.core.formulas import Unit
+from ifgm_ref.core.pose import Point, Pose, distance
+from ifgm_ref.core.protocol import EpisodeParams
 from ifgm_ref.planners.boundary import BoundaryPlanner, EdgeFollower, LeaveRule
 from ifgm_ref.planners.sight import BoundaryParams, Sight
 from ifgm_ref.planners.tuning import Tuning, derived, parameter_names
-from ifgm_ref.pose import Point, Pose, distance
-from ifgm_ref.protocol import EpisodeParams
 
 
 def signed_distance(point: tuple[float, float], start: Point, goal: Point) -> float:
@@ -148,13 +148,13 @@ class Bug2Rule(LeaveRule):
 class Bug2Planner(BoundaryPlanner):
     """Lumelsky and Stepanov's Bug2: the boundary-following skeleton with :class:`Bug2Rule`.
 
-    Parameters (``params`` mapping of :func:`ifgm_ref.simulator.simulate`): those of
+    Parameters (``params`` mapping of :func:`ifgm_ref.sim.simulator.simulate`): those of
     :class:`~ifgm_ref.planners.sight.BoundaryParams` and :class:`Bug2Params`.
 
     Examples
     --------
-    >>> from ifgm_ref.scenarios import resolve_world
-    >>> from ifgm_ref.simulator import simulate
+    >>> from ifgm_ref.io.scenarios import resolve_world
+    >>> from ifgm_ref.sim.simulator import simulate
     >>> run = simulate(resolve_world("box"), Bug2Planner())
     >>> run.result.stop_reason, run.result.collided
     ('goal_reached', False)
@@ -163,7 +163,7 @@ class Bug2Planner(BoundaryPlanner):
     >>> simulate(resolve_world("box"), Bug2Planner(), params={"m_line_tolerance": 0})
     Traceback (most recent call last):
     ...
-    ifgm_ref.errors.ParameterError: `m_line_tolerance` must be a finite number > 0, got 0
+    ifgm_ref.core.errors.ParameterError: `m_line_tolerance` must be a finite number > 0, got 0
     """
 
     name: ClassVar[str] = "bug2"

@@ -37,7 +37,7 @@ follower here runs Bug1's round beside its own rule (errata row 34):
 
 A follower whose own rule leaves earlier never gets to step 2. The class here holds the
 bookkeeping; :class:`~ifgm_ref.planners.boundary.BoundaryPlanner` and
-:class:`~ifgm_ref.planners.ifgm.IFGMPlanner` drive it.
+:class:`~ifgm_ref.planners.ifgm.planner.IFGMPlanner` drive it.
 """
 
 from __future__ import annotations
@@ -48,9 +48,9 @@ from enum import StrEnum
 import numpy as np
 from numpy.typing import NDArray
 
+from ifgm_ref.core.pose import Point, distance
 from ifgm_ref.planners.edge_following import FollowSide
 from ifgm_ref.planners.sight import Sight
-from ifgm_ref.pose import Point, distance
 
 __all__ = ["SAME_WAY", "TRAIL_SPACING_FRACTION", "Circuit", "CircuitPhase", "encloses"]
 

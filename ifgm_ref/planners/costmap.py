@@ -32,8 +32,8 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from ifgm_ref.laserscan import LaserScan
-from ifgm_ref.pose import Point, Pose
+from ifgm_ref.core.laserscan import LaserScan
+from ifgm_ref.core.pose import Point, Pose
 
 __all__ = ["FREE", "INSCRIBED", "LETHAL", "Costmap", "CostmapSettings", "inflation_costs"]
 

@@ -52,13 +52,13 @@ import math
 from dataclasses import dataclass
 from typing import ClassVar
 
-from ifgm_ref.formulas import Unit
-from ifgm_ref.paper import traces
+from ifgm_ref.core.elements import traces
+from ifgm_ref.core.formulas import Unit
+from ifgm_ref.core.pose import Point, Pose, distance
+from ifgm_ref.core.protocol import EpisodeParams
 from ifgm_ref.planners.boundary import BoundaryPlanner, EdgeFollower, LeaveRule
 from ifgm_ref.planners.sight import BoundaryParams, Sight
 from ifgm_ref.planners.tuning import Tuning, derived, parameter_names
-from ifgm_ref.pose import Point, Pose, distance
-from ifgm_ref.protocol import EpisodeParams
 
 
 @dataclass(frozen=True)
@@ -143,13 +143,13 @@ def makes_progress(sight: Sight, d_min: float, step_length: float) -> bool:
 class DistBugPlanner(BoundaryPlanner):
     """Kamon and Rivlin's DistBug: the boundary-following skeleton with :class:`DistBugRule`.
 
-    Parameters (``params`` mapping of :func:`ifgm_ref.simulator.simulate`): those of
+    Parameters (``params`` mapping of :func:`ifgm_ref.sim.simulator.simulate`): those of
     :class:`~ifgm_ref.planners.sight.BoundaryParams` and :class:`DistBugParams`.
 
     Examples
     --------
-    >>> from ifgm_ref.scenarios import resolve_world
-    >>> from ifgm_ref.simulator import simulate
+    >>> from ifgm_ref.io.scenarios import resolve_world
+    >>> from ifgm_ref.sim.simulator import simulate
     >>> run = simulate(resolve_world("box"), DistBugPlanner())
     >>> run.result.stop_reason, run.result.collided
     ('goal_reached', False)
@@ -158,12 +158,12 @@ class DistBugPlanner(BoundaryPlanner):
     >>> simulate(resolve_world("box"), DistBugPlanner(), params={"step_length": -1.0})
     Traceback (most recent call last):
     ...
-    ifgm_ref.errors.ParameterError: `step_length` must be a finite number > 0, got -1.0
+    ifgm_ref.core.errors.ParameterError: `step_length` must be a finite number > 0, got -1.0
     >>> simulate(resolve_world("box"), DistBugPlanner(), params={"step_lenght": 1.0})
     ... # doctest: +ELLIPSIS
     Traceback (most recent call last):
     ...
-    ifgm_ref.errors.ParameterError: distbug has no parameter `step_lenght`; it has: ...
+    ifgm_ref.core.errors.ParameterError: distbug has no parameter `step_lenght`; it has: ...
     """
 
     name: ClassVar[str] = "distbug"

@@ -7,7 +7,7 @@ Robotics & Automation Magazine* 4(1):23-33, 1997; the configuration is BARN's
 (``Daffan/the-barn-challenge``, ``jackal_helper/launch/move_base_DWA.launch`` and
 ``jackal_helper/configs/params/``: ``base_local_planner_params.yaml``,
 ``costmap_common_params.yaml``, ``move_base_params.yaml``; summed up in the README beside
-BARN's worlds, ``ifgm_ref/barn_worlds/README.md``).
+BARN's worlds, ``ifgm_ref/io/barn_worlds/README.md``).
 
 Unlike the paper's planners, which "decide from current percepts only" (section 3), this one
 keeps a map: a costmap built from its own scans (:mod:`ifgm_ref.planners.costmap`), in the
@@ -53,13 +53,13 @@ from typing import ClassVar
 import numpy as np
 from numpy.typing import NDArray
 
-from ifgm_ref.formulas import Unit
+from ifgm_ref.core.formulas import Unit
+from ifgm_ref.core.pose import Point, Pose, wrap_angle
+from ifgm_ref.core.protocol import Behaviour, Command, EpisodeParams, Observation
 from ifgm_ref.planners.costmap import Costmap, CostmapSettings
 from ifgm_ref.planners.dwa_rollout import Samples, Window, legal_costs, rollout, samples
 from ifgm_ref.planners.grid_path import blocked, plan_path, wavefront
 from ifgm_ref.planners.tuning import Tuning, check_names, derived, parameter_names
-from ifgm_ref.pose import Point, Pose, wrap_angle
-from ifgm_ref.protocol import Behaviour, Command, EpisodeParams, Observation
 
 __all__ = ["CostmapParams", "DWABranch", "DWAParams", "DWAPlanner", "choose"]
 
@@ -223,7 +223,7 @@ class DWAPlanner:
     --------
     In the open it drives straight at the goal at ``max_vel_x`` (half the robot's speed):
 
-    >>> from ifgm_ref.laserscan import LaserScan
+    >>> from ifgm_ref.core.laserscan import LaserScan
     >>> planner = DWAPlanner()
     >>> planner.reset(Pose(0.0, 0.0, 0.0), Point(10.0, 0.0), EpisodeParams())
     >>> empty = LaserScan(-1.0, 1.0, 1.0, 0.0, 15.0, [math.inf] * 3)

@@ -3,7 +3,7 @@
 The Bug family's *obstacle avoidance* behaviour (section 2.1: "the robot moves around the
 obstacle") and IBA's "edge detection" (section 4.1) both follow the boundary of the obstacle
 in the way. The follower here keeps the nearest remembered obstacle point (see
-:class:`ifgm_ref.percepts.memory.PerceptMemory`) at ``standoff`` ft on a chosen side: it
+:class:`ifgm_ref.paper.percepts.memory.PerceptMemory`) at ``standoff`` ft on a chosen side: it
 heads along the tangent to the circle of that radius round the point, turned towards the
 point when too far and away from it when too near. Round a convex corner the nearest point
 is the corner itself, so the robot circles it; at a concave corner the nearer wall takes
@@ -18,7 +18,7 @@ from enum import StrEnum
 import numpy as np
 from numpy.typing import NDArray
 
-from ifgm_ref.pose import wrap_angle
+from ifgm_ref.core.pose import wrap_angle
 
 #: Largest correction of the tangent heading towards or away from the edge, radians: at 60
 #: degrees the robot still makes headway along the edge while it regains the stand-off.

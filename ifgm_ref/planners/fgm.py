@@ -9,7 +9,7 @@ involves three main computations; calculation of the gap array and finding the m
 calculation of theta_g and finally determination of theta_f ... it assumes the robot and
 obstacles as circular objects. It also adds the robot's dimensions into the obstacle
 dimensions." The FGM paper itself is not in our store; the formulas are FGM's as secondary
-sources give them, implemented in :mod:`ifgm_ref.equations` (``fgm_gap_centre_angle``,
+sources give them, implemented in :mod:`ifgm_ref.paper.equations` (``fgm_gap_centre_angle``,
 ``eq4_final_heading_fgm``).
 
 FGM is a *local* method: it only knows the current scan. Table 1 of the IFGM paper: "The algo.
@@ -49,19 +49,19 @@ from typing import ClassVar
 import numpy as np
 from numpy.typing import NDArray
 
-from ifgm_ref.equations import eq4_final_heading_fgm, fgm_gap_centre_angle
-from ifgm_ref.errors import ParameterError
-from ifgm_ref.formulas import Unit
-from ifgm_ref.intervals import members
-from ifgm_ref.laserscan import LaserScan
-from ifgm_ref.paper import traces
-from ifgm_ref.percepts.points import scan_points
+from ifgm_ref.core.elements import traces
+from ifgm_ref.core.errors import ParameterError
+from ifgm_ref.core.formulas import Unit
+from ifgm_ref.core.intervals import members
+from ifgm_ref.core.laserscan import LaserScan
+from ifgm_ref.core.pose import Point, Pose, wrap_angle
+from ifgm_ref.core.protocol import Behaviour, Command, EpisodeParams, Observation
+from ifgm_ref.core.validate import NON_NEGATIVE, require
+from ifgm_ref.paper.equations import eq4_final_heading_fgm, fgm_gap_centre_angle
+from ifgm_ref.paper.percepts.points import scan_points
 from ifgm_ref.planners.edge_following import turn_speed
 from ifgm_ref.planners.governor import BrakingGovernor
 from ifgm_ref.planners.tuning import Tuning, check_names, derived, parameter_names
-from ifgm_ref.pose import Point, Pose, wrap_angle
-from ifgm_ref.protocol import Behaviour, Command, EpisodeParams, Observation
-from ifgm_ref.validate import NON_NEGATIVE, require
 
 __all__ = [
     "FGMBranch",
@@ -253,7 +253,7 @@ def _nearest_blocking(
 ) -> NDArray[np.float64]:
     """For each ray angle, the least range ``d[i]`` of a return at angle ``at[i]`` whose
     half-width ``half[i]`` covers it (``inf`` for none). A wide scan tests each return against
-    the rays near it only (:func:`ifgm_ref.intervals.members`), by the same comparison."""
+    the rays near it only (:func:`ifgm_ref.core.intervals.members`), by the same comparison."""
     if len(d) * len(angles) < PAIRS_FROM:
         # covers[i, j]: return i blocks ray j (a tolerance keeps exact borders blocked).
         covers = np.abs(angles[np.newaxis, :] - at[:, np.newaxis]) <= half[:, None] + BORDER
@@ -341,7 +341,7 @@ def fgm_decide(
     * No return in the scan: ``no_obstacle``, heading ``goal_angle``.
     * Some free ray: ``max_gap``; the heading is FGM's final heading
       ``((alpha / d_min) theta_gap_c + beta theta_goal) / (alpha / d_min + beta)``
-      (:func:`~ifgm_ref.equations.eq4_final_heading_fgm`) with the maximum gap's centre.
+      (:func:`~ifgm_ref.paper.equations.eq4_final_heading_fgm`) with the maximum gap's centre.
     * Every ray blocked: ``no_gap``, heading ``goal_angle`` -- FGM "cannot find theta_g and
       thus theta_f" (section 2.2).
 

@@ -50,7 +50,7 @@ with ``tau`` 0, a command faster than ``u + A eps`` gives (M) exactly. Here
   not from what the robot passes beside nor from what it already stands within half of that
   near: a stop a planner decides then ends about where the planner expects its robot.
 
-The robot's ``braking`` and ``acceleration`` are :class:`~ifgm_ref.params.RobotParams` fields;
+The robot's ``braking`` and ``acceleration`` are :class:`~ifgm_ref.core.params.RobotParams` fields;
 with ``braking`` infinite (the paper's robot) the governor changes nothing. It uses only what a
 planner is handed: the robot, the time step, the pose and the scan.
 """
@@ -64,10 +64,10 @@ from typing import ClassVar
 import numpy as np
 from numpy.typing import NDArray
 
-from ifgm_ref.paper import traces
-from ifgm_ref.percepts.points import scan_points
-from ifgm_ref.pose import Point, Pose, wrap_angle
-from ifgm_ref.protocol import Command, EpisodeParams, Observation, Planner
+from ifgm_ref.core.elements import traces
+from ifgm_ref.core.pose import Point, Pose, wrap_angle
+from ifgm_ref.core.protocol import Command, EpisodeParams, Observation, Planner
+from ifgm_ref.paper.percepts.points import scan_points
 
 __all__ = [
     "BrakingGovernor",
@@ -345,8 +345,8 @@ def govern(
     state (module docstring). A robot that stops at once, and a command that stops the
     episode, pass unchanged.
 
-    >>> from ifgm_ref.laserscan import LaserScan
-    >>> from ifgm_ref.pose import Point, Pose
+    >>> from ifgm_ref.core.laserscan import LaserScan
+    >>> from ifgm_ref.core.pose import Point, Pose
     >>> limits = Limits(radius=0.2, top_speed=2.0, braking=4.0, acceleration=2.0, period=0.1)
     >>> wall = LaserScan(-0.1, 0.1, 0.1, 0.0, 10.0, [0.45, 0.45, 0.45])  # 0.2 of room ahead
     >>> seen = Observation(0.0, Pose(0.0, 0.0, 0.0), Point(5.0, 0.0), wall)
@@ -418,7 +418,7 @@ def admissible(
 class BrakingGovernor:
     """A planner's governor for one episode: :func:`govern` with its state kept.
 
-    >>> from ifgm_ref.params import RobotParams
+    >>> from ifgm_ref.core.params import RobotParams
     >>> governor = BrakingGovernor()
     >>> governor.reset(EpisodeParams())  # the paper's robot stops at once: no change
     >>> governor.limits.stops_at_once
@@ -445,7 +445,7 @@ class StopsAtOnce:
     paper's planners are. For measuring what the governor changes on a robot with mass
     (``benchmarks/bench_ungoverned.py``, ``notebooks/06_physics.ipynb``).
 
-    >>> from ifgm_ref.params import RobotParams
+    >>> from ifgm_ref.core.params import RobotParams
     >>> from ifgm_ref.planners import make_planner
     >>> planner = StopsAtOnce(make_planner("ifgm"))
     >>> heavy = EpisodeParams(robot=RobotParams(braking=1.0, acceleration=1.0, response=0.1))

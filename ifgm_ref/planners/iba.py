@@ -37,14 +37,14 @@ from typing import ClassVar
 
 import numpy as np
 
-from ifgm_ref.laserscan import Beam, LaserScan
-from ifgm_ref.paper import traces
+from ifgm_ref.core.elements import traces
+from ifgm_ref.core.laserscan import Beam, LaserScan
+from ifgm_ref.core.pose import Point, Pose, distance, wrap_angle
 from ifgm_ref.planners.boundary import BoundaryPlanner, EdgeFollower
 from ifgm_ref.planners.distbug import DistBugParams, DistBugRule, makes_progress
 from ifgm_ref.planners.edge_following import FollowSide
 from ifgm_ref.planners.sight import BoundaryParams, Sight
 from ifgm_ref.planners.tuning import Tuning, parameter_names
-from ifgm_ref.pose import Point, Pose, distance, wrap_angle
 
 
 def beam_openness(scan: LaserScan, beam: Beam) -> float:

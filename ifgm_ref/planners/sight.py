@@ -16,13 +16,13 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from ifgm_ref.equations import eq3_goal_angle
-from ifgm_ref.formulas import Unit
-from ifgm_ref.laserscan import PAPER_HALF_FOV
-from ifgm_ref.percepts.corridor import Offsets, disc_travel, free_length, offsets
+from ifgm_ref.core.formulas import Unit
+from ifgm_ref.core.laserscan import PAPER_HALF_FOV
+from ifgm_ref.core.pose import Point, Pose, distance, wrap_angle
+from ifgm_ref.core.protocol import EpisodeParams
+from ifgm_ref.paper.equations import eq3_goal_angle
+from ifgm_ref.paper.percepts.corridor import Offsets, disc_travel, free_length, offsets
 from ifgm_ref.planners.tuning import Tuning, derived
-from ifgm_ref.pose import Point, Pose, distance, wrap_angle
-from ifgm_ref.protocol import EpisodeParams
 
 #: The goal counts as in view this far inside the view's edge, rad (:meth:`Sight.goal_in_view`).
 IN_VIEW_MARGIN = math.radians(10.0)
@@ -31,7 +31,7 @@ IN_VIEW_MARGIN = math.radians(10.0)
 @dataclass(frozen=True)
 class BoundaryParams(Tuning):
     """Tuning shared by the boundary followers; every default is a formula in the robot's
-    radius ``r`` (and the other symbols of :mod:`ifgm_ref.formulas`).
+    radius ``r`` (and the other symbols of :mod:`ifgm_ref.core.formulas`).
 
     Parameters
     ----------
@@ -135,7 +135,7 @@ class Body:
 
 def goal_bearing(pose: Pose, goal: Point) -> float:
     """The destination angle theta_d of eq. (3), world frame (the reading we run,
-    :func:`~ifgm_ref.equations.eq3_goal_angle`); at the goal itself, where eq. (3) has no
+    :func:`~ifgm_ref.paper.equations.eq3_goal_angle`); at the goal itself, where eq. (3) has no
     direction, the robot's heading.
 
     >>> goal_bearing(Pose(0.0, 0.0, 0.5), Point(0.0, 2.0)) == math.pi / 2
@@ -160,7 +160,7 @@ class Sight:
     body : Body
         The robot and its episode.
     points : (n, 2) array
-        The remembered obstacle points (:class:`~ifgm_ref.percepts.memory.PerceptMemory`).
+        The remembered obstacle points (:class:`~ifgm_ref.paper.percepts.memory.PerceptMemory`).
     bearing : float
         The world-frame direction to the goal (the planner's reading of it), rad.
 

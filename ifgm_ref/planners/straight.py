@@ -9,9 +9,9 @@ from __future__ import annotations
 
 import math
 
+from ifgm_ref.core.pose import Point, Pose
+from ifgm_ref.core.protocol import Behaviour, Command, EpisodeParams, Observation
 from ifgm_ref.planners.tuning import check_names
-from ifgm_ref.pose import Point, Pose
-from ifgm_ref.protocol import Behaviour, Command, EpisodeParams, Observation
 
 
 class StraightPlanner:

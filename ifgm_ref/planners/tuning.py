@@ -2,9 +2,9 @@
 
 A planner holds no absolute length. Each of its parameters is a field of a frozen dataclass
 that mixes in :class:`Tuning`, declared with :func:`derived`: a *formula* in the quantities
-of the robot, the time step and the sensor, and a *unit* (:mod:`ifgm_ref.formulas`: the
+of the robot, the time step and the sensor, and a *unit* (:mod:`ifgm_ref.core.formulas`: the
 symbols, the units and how a formula is evaluated). The formula gives the default; a value
-set by name in :attr:`EpisodeParams.params <ifgm_ref.protocol.EpisodeParams>` (or with
+set by name in :attr:`EpisodeParams.params <ifgm_ref.core.protocol.EpisodeParams>` (or with
 ``--param NAME=VALUE``) replaces it. ``ifgm-ref planners`` prints every formula and its value
 for the paper's robot; ``proofs/scale.py`` proves each scales with its unit, and the
 oracle's ``scale_invariant`` check tests the consequence on whole episodes.
@@ -16,12 +16,12 @@ from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field, fields
 from typing import TYPE_CHECKING, Any, Self
 
-from ifgm_ref.errors import ParameterError
-from ifgm_ref.formulas import Scale, Unit, evaluate, formula_expr
-from ifgm_ref.validate import NON_NEGATIVE, POSITIVE, require, violation
+from ifgm_ref.core.errors import ParameterError
+from ifgm_ref.core.formulas import Scale, Unit, evaluate, formula_expr
+from ifgm_ref.core.validate import NON_NEGATIVE, POSITIVE, require, violation
 
 if TYPE_CHECKING:
-    from ifgm_ref.protocol import EpisodeParams
+    from ifgm_ref.core.protocol import EpisodeParams
 
 
 def derived(formula: str, unit: Unit, *, zero: bool = False) -> Any:
@@ -101,7 +101,7 @@ class Tuning:
     @classmethod
     def paper(cls) -> Self:
         """The defaults for the paper's robot (:meth:`Scale.paper`), every field a number."""
-        from ifgm_ref.protocol import EpisodeParams
+        from ifgm_ref.core.protocol import EpisodeParams
 
         return cls.for_episode(EpisodeParams())
 
@@ -113,7 +113,7 @@ def check_names(params: Mapping[str, object], allowed: Iterable[str], planner: s
     >>> check_names({"dth": 3.0}, ("d_th", "d_obs"), "ifgm")
     Traceback (most recent call last):
     ...
-    ifgm_ref.errors.ParameterError: ifgm has no parameter `dth`; it has: d_th, d_obs
+    ifgm_ref.core.errors.ParameterError: ifgm has no parameter `dth`; it has: d_th, d_obs
     """
     allowed = tuple(allowed)
     unknown = [name for name in params if name not in allowed]

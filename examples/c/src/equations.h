@@ -1,5 +1,5 @@
 /* Equations (1)-(4) of the paper and FGM's gap centre angle, as printed and as read
- * (docs/errata.md rows 1-10; ifgm_ref/equations.py is the reference). Pure math: nothing
+ * (docs/errata.md rows 1-10; ifgm_ref/paper/equations.py is the reference). Pure math: nothing
  * here knows a planner.
  *
  * Each function returns 0 and writes its result, or returns IFGM_EQ_UNDEFINED where the

@@ -9,7 +9,7 @@
  *
  * Written from docs/flowchart.md (the reconstructed Figure 3: percepts, atoms, branches),
  * docs/errata.md (the readings) and docs/parameters.md (the defaults) and, where they were
- * silent, the reference (ifgm_ref/planners/ifgm.py, ifgm_atoms.py): docs/port-guide.md now
+ * silent, the reference (ifgm_ref/planners/ifgm/planner.py, ifgm_atoms.py): docs/port-guide.md now
  * states every rule a step needs.
  *
  * The paper calls IFGM computationally inexpensive and simpler than FGM (sections 3, 6):

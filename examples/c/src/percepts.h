@@ -1,7 +1,7 @@
 /* Percepts: what a planner makes of one scan and of the scans it has just seen (section 4
  * of the paper: returns "resolved into rectangular coordinates", obstacles as clusters of
- * them, the gaps between consecutive obstacles). The reference is ifgm_ref/percepts/ and
- * ifgm_ref/laserscan.py; docs/flowchart.md and docs/errata.md (rows 11, 16-20, 30) say
+ * them, the gaps between consecutive obstacles). The reference is ifgm_ref/paper/percepts/ and
+ * ifgm_ref/core/laserscan.py; docs/flowchart.md and docs/errata.md (rows 11, 16-20, 30) say
  * what each percept means. Nothing here knows the map, and nothing allocates: the caller
  * owns every struct (they are large: keep them in static storage, not on the stack).
  *

@@ -3,7 +3,7 @@
  * ifgm_observation, and a planner's ifgm_command written as a `command` line. ifgm_json
  * speaks the protocol with them; ifgm_vectors reads the vectors' recorded messages with them.
  *
- * The readers check what the port relies on, as ifgm_ref/transport/wire.py does, and name
+ * The readers check what the port relies on, as ifgm_ref/io/transport/wire.py does, and name
  * the offending field in their error ("reset.robot.radius: missing"): every field present
  * but the optional ones (the robot's dynamics `braking`, `acceleration`, `response` and its
  * `latency`: absent, the paper's robot), every number finite (but `braking` and

@@ -24,7 +24,10 @@ import hypothesis
 from hypothesis import HealthCheck, Phase, given, settings
 from hypothesis import seed as hypothesis_seed
 
-from ifgm_ref.errors import ImplementationError
+from ifgm_ref.core.errors import ImplementationError
+from ifgm_ref.core.params import SimParams
+from ifgm_ref.io.transport.wire import PROTOCOL_VERSION
+from ifgm_ref.io.worldfile import load_world
 from ifgm_ref.oracle.check_types import Check, CheckFailed, Kind, Recorder
 from ifgm_ref.oracle.checks import CHECKS
 from ifgm_ref.oracle.conformance import HEADING_TOL, POINT_TIE, SPEED_TOL, TIE
@@ -35,10 +38,7 @@ from ifgm_ref.oracle.suite.recorded import recorded
 from ifgm_ref.oracle.suite.tiers import broken_implementations, kill_matrix, quick_tier, with_tiers
 from ifgm_ref.oracle.suite.versions import SUITES, manifest_path, versions
 from ifgm_ref.oracle.vectors import write_vectors
-from ifgm_ref.params import SimParams
-from ifgm_ref.transport.wire import PROTOCOL_VERSION
-from ifgm_ref.world import World
-from ifgm_ref.worldfile import load_world
+from ifgm_ref.sim.world import World
 
 __all__ = ["CLASS_FLAGGED", "REFERENCES", "build_suite", "drawn_examples", "promote"]
 

@@ -16,10 +16,10 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from ifgm_ref.errors import ImplementationError
-from ifgm_ref.params import SimParams
-from ifgm_ref.world import Polygon, World
-from ifgm_ref.worldfile import world_from_dict, world_to_dict
+from ifgm_ref.core.errors import ImplementationError
+from ifgm_ref.core.params import SimParams
+from ifgm_ref.io.worldfile import world_from_dict, world_to_dict
+from ifgm_ref.sim.world import Polygon, World
 
 __all__ = [
     "TIERS",

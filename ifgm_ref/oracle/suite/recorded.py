@@ -2,7 +2,7 @@
 
 A reference-level case (``agrees_with_reference``) holds what the reference IFGM answered at
 every step of its episode in the case's world, as the JSON-lines protocol writes a command
-(:func:`~ifgm_ref.transport.wire.command_message`, without its ``type``), with the atoms it
+(:func:`~ifgm_ref.io.transport.wire.command_message`, without its ``type``), with the atoms it
 held and its nearest finite decisions' margins (:mod:`ifgm_ref.oracle.conformance`). The
 observations are not stored: driving the simulator with the recorded commands sees them
 again, exactly, because the simulator is deterministic; :func:`rebuilt` checks that the
@@ -15,16 +15,16 @@ import math
 from collections.abc import Mapping
 from typing import Any
 
-from ifgm_ref.errors import ImplementationError
-from ifgm_ref.flowchart import Atoms
+from ifgm_ref.core.errors import ImplementationError
+from ifgm_ref.core.params import SimParams
+from ifgm_ref.core.pose import Point, Pose
+from ifgm_ref.core.protocol import Command, EpisodeParams, Observation
+from ifgm_ref.core.recording import RecordingPlanner
+from ifgm_ref.io.transport.wire import command_message, parse_command
 from ifgm_ref.oracle.conformance import ReferenceEpisode, reference_episode, tie_bound
-from ifgm_ref.params import SimParams
-from ifgm_ref.pose import Point, Pose
-from ifgm_ref.protocol import Command, EpisodeParams, Observation
-from ifgm_ref.recording import RecordingPlanner
-from ifgm_ref.simulator import simulate
-from ifgm_ref.transport.wire import command_message, parse_command
-from ifgm_ref.world import World
+from ifgm_ref.paper.flowchart import Atoms
+from ifgm_ref.sim.simulator import simulate
+from ifgm_ref.sim.world import World
 
 __all__ = ["NEAREST", "rebuilt", "recorded"]
 

@@ -20,7 +20,7 @@ from html import escape
 from pathlib import Path
 from urllib.parse import quote
 
-from ifgm_ref.errors import ParameterError
+from ifgm_ref.core.errors import ParameterError
 from ifgm_ref.oracle.suite.cases import TIERS
 from ifgm_ref.oracle.suite.runfile import CaseLine, Comparison, Run, Verdict
 

@@ -28,7 +28,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from ifgm_ref.errors import ImplementationError
+from ifgm_ref.core.errors import ImplementationError
 from ifgm_ref.oracle.check_types import CheckFailed, Recorder
 from ifgm_ref.oracle.checks import CHECKS, agrees_with
 from ifgm_ref.oracle.conformance import ReferenceEpisode
@@ -37,7 +37,7 @@ from ifgm_ref.oracle.crash import crash
 from ifgm_ref.oracle.implementation import Implementation
 from ifgm_ref.oracle.suite.cases import Case
 from ifgm_ref.oracle.suite.recorded import rebuilt
-from ifgm_ref.planners.ifgm_readings import Readings
+from ifgm_ref.planners.ifgm.readings import Readings
 
 __all__ = ["VERDICTS", "CaseResult", "reference_of", "run_case", "run_cases", "summary"]
 

@@ -24,7 +24,7 @@ from enum import Enum
 from pathlib import Path
 from typing import Any
 
-from ifgm_ref.errors import ParameterError
+from ifgm_ref.core.errors import ParameterError
 
 __all__ = [
     "EVIDENCE_FILES",
@@ -218,7 +218,7 @@ def parse_run(lines: Iterable[str], path: str | Path) -> Run:
     >>> parse_run([case], "runs/a.jsonl")
     Traceback (most recent call last):
     ...
-    ifgm_ref.errors.ParameterError: runs/a.jsonl: no summary line: the run stopped before ...
+    ifgm_ref.core.errors.ParameterError: runs/a.jsonl: no summary line: the run stopped before ...
     """
     path = Path(path)
     numbered = ((n, line) for n, line in enumerate(lines, start=1) if line.strip())

@@ -14,7 +14,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from ifgm_ref.errors import ImplementationError
+from ifgm_ref.core.errors import ImplementationError
 from ifgm_ref.oracle.suite.cases import TIERS, Case, read_cases
 
 __all__ = ["SUITES", "Suite", "load_suite", "manifest_path", "versions"]

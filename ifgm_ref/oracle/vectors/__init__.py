@@ -3,13 +3,13 @@
 For implementations that cannot run Python -- a microcontroller C port, say -- the oracle's
 checks are written down as data: ``ifgm-ref vectors --out vectors.json`` writes
 
-* **equation vectors**: inputs of every function of :mod:`ifgm_ref.equations` with the output
+* **equation vectors**: inputs of every function of :mod:`ifgm_ref.paper.equations` with the output
   of the printed (*literal*) and of the interpreted form, or the error each raises: hand-picked
   cases for every errata row that touches an equation (``docs/errata.md``) and seeded random
   ones;
 * **reference traces**: short IFGM and IBA episodes in built-in worlds, each step's
-  observation exactly as the JSON-lines protocol sends it (:mod:`ifgm_ref.transport.wire`) with the
-  command the reference planner answered, together covering every branch of Figure 3.
+  observation exactly as the JSON-lines protocol sends it (:mod:`ifgm_ref.io.transport.wire`) with
+  the command the reference planner answered, together covering every branch of Figure 3.
 
 ``docs/vectors-format.md`` specifies the file. The same data checks Python implementations:
 :func:`check_vectors` runs any object with the equation functions' names against the vectors,

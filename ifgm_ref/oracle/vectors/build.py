@@ -17,8 +17,12 @@ from typing import Any
 
 import numpy as np
 
-from ifgm_ref import equations as reference
-from ifgm_ref.errors import ParameterError
+from ifgm_ref.core.errors import ParameterError
+from ifgm_ref.core.outputs import written
+from ifgm_ref.core.params import SimParams
+from ifgm_ref.core.protocol import EpisodeParams
+from ifgm_ref.core.recording import RecordingPlanner
+from ifgm_ref.io.scenarios import resolve_world
 from ifgm_ref.oracle.vectors.cases import (
     GROUPS,
     RANDOM_CASES,
@@ -38,14 +42,10 @@ from ifgm_ref.oracle.vectors.schema import (
     VectorsDocument,
 )
 from ifgm_ref.oracle.vectors.tolerances import QUANTITIES
-from ifgm_ref.outputs import written
-from ifgm_ref.params import SimParams
+from ifgm_ref.paper import equations as reference
 from ifgm_ref.planners import PLANNERS, make_planner
 from ifgm_ref.planners.tuning import episode_values
-from ifgm_ref.protocol import EpisodeParams
-from ifgm_ref.recording import RecordingPlanner
-from ifgm_ref.scenarios import resolve_world
-from ifgm_ref.simulator import episode_params, simulate
+from ifgm_ref.sim.simulator import episode_params, simulate
 
 __all__ = [
     "VectorsSummary",

@@ -1,6 +1,6 @@
 """What the vectors file holds: the equation groups with their cases, and the trace specs.
 
-Every function of :mod:`ifgm_ref.equations` belongs to one :class:`EquationGroup` (the printed
+Every function of :mod:`ifgm_ref.paper.equations` belongs to one :class:`EquationGroup` (the printed
 and the interpreted form of one equation together), with hand-picked cases -- one per errata
 row that touches the equation (``docs/errata.md``), each with its note -- and
 :data:`RANDOM_CASES` seeded random ones, drawn uniformly from the ``vectors`` sub-ranges of
@@ -23,10 +23,10 @@ from typing import Any
 
 import numpy as np
 
+from ifgm_ref.core.pose import Pose
 from ifgm_ref.oracle.domains import DOMAINS, EQ3_MIN_DISTANCE, FGM_MIN_WIDTH, HALF_FOV, Argument
 from ifgm_ref.oracle.vectors.schema import Form, Value
-from ifgm_ref.pose import Pose
-from ifgm_ref.worldgen.draws import Draw, RandomDraw
+from ifgm_ref.sim.worldgen.draws import Draw, RandomDraw
 
 __all__ = ["GROUPS", "RANDOM_CASES", "TRACES", "Case", "EquationGroup", "TraceSpec"]
 

@@ -2,7 +2,7 @@
 
 :func:`check_vectors` runs any object with the equation functions' names against the equation
 cases; :func:`replay_traces` steps a planner through the reference traces
-(:func:`ifgm_ref.recording.replay`). Both read the document through its schema
+(:func:`ifgm_ref.core.recording.replay`). Both read the document through its schema
 (:mod:`ifgm_ref.oracle.vectors.schema`) and answer a list of mismatches in the oracle's
 ``quantity = actual, but should be expected [where]`` style.
 """
@@ -15,7 +15,8 @@ import warnings
 from collections.abc import Callable, Mapping
 from typing import Any
 
-from ifgm_ref.flowchart import same_branch
+from ifgm_ref.core.protocol import Command, Planner
+from ifgm_ref.core.recording import replay
 from ifgm_ref.oracle.vectors.schema import (
     CaseRecord,
     Failure,
@@ -32,8 +33,7 @@ from ifgm_ref.oracle.vectors.schema import (
     parse_tolerances,
     parse_traces,
 )
-from ifgm_ref.protocol import Command, Planner
-from ifgm_ref.recording import replay
+from ifgm_ref.paper.flowchart import same_branch
 
 __all__ = ["check_vectors", "replay_traces"]
 
@@ -161,7 +161,7 @@ def check_vectors(
     Examples
     --------
     >>> import types
-    >>> from ifgm_ref import equations
+    >>> from ifgm_ref.paper import equations
     >>> from ifgm_ref.oracle.vectors import build_vectors
     >>> vectors = build_vectors()
     >>> check_vectors(vectors, equations)
@@ -308,7 +308,7 @@ def replay_traces(
     vectors : dict or VectorsDocument
         A vectors document.
     factory : callable
-        Makes a new planner (:class:`~ifgm_ref.protocol.Planner`); called once per trace.
+        Makes a new planner (:class:`~ifgm_ref.core.protocol.Planner`); called once per trace.
     planner : str, optional
         Which traces to replay, by their ``planner`` name; default: the new planner's ``name``.
     precision : {"double", "float32"}, default "double"

@@ -12,14 +12,14 @@ the whole document          :class:`VectorsDocument`
 ``equations.<group>``       :class:`GroupRecord`, its :class:`Form` s
 ``...cases[i]``             :class:`CaseRecord`; an expected error: :class:`Failure`
 ``traces[i]``               :class:`TraceRecord`, its
-                            :class:`~ifgm_ref.recording.Recording`
+                            :class:`~ifgm_ref.core.recording.Recording`
 ==========================  =====================================================
 
 A trace's ``reset``, ``observe`` and ``command`` objects are the JSON-lines protocol's
-messages, built and read by :mod:`ifgm_ref.transport.wire`. Floats are written with ``repr``
+messages, built and read by :mod:`ifgm_ref.io.transport.wire`. Floats are written with ``repr``
 and read back bit for bit, so ``from_json(x).to_json() == x``. A reader ignores keys it does
 not know (adding keys keeps the format version); a missing key or a value of the wrong type
-raises :class:`~ifgm_ref.errors.ParameterError` naming where it is.
+raises :class:`~ifgm_ref.core.errors.ParameterError` naming where it is.
 
 Examples
 --------
@@ -30,7 +30,7 @@ Form(function='eq2_gap_angle', args=('x_g', 'y_g'), quantity='direction')
 >>> Form.from_json({"function": "eq2_gap_angle", "args": "x_g", "quantity": "direction"})
 Traceback (most recent call last):
 ...
-ifgm_ref.errors.ParameterError: vectors form.args: must be an array, got 'x_g'
+ifgm_ref.core.errors.ParameterError: vectors form.args: must be an array, got 'x_g'
 """
 
 from __future__ import annotations
@@ -40,9 +40,9 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
-from ifgm_ref.errors import ParameterError, ProtocolError
-from ifgm_ref.recording import Recording
-from ifgm_ref.transport.wire import (
+from ifgm_ref.core.errors import ParameterError, ProtocolError
+from ifgm_ref.core.recording import Recording
+from ifgm_ref.io.transport.wire import (
     command_message,
     observe_message,
     parse_command,
@@ -354,7 +354,7 @@ class TraceRecord:
 
     @classmethod
     def from_json(cls, data: object, where: str) -> TraceRecord:
-        """Read a ``traces`` entry (its messages through :mod:`ifgm_ref.transport.wire`)."""
+        """Read a ``traces`` entry (its messages through :mod:`ifgm_ref.io.transport.wire`)."""
         branches = _array(_get(data, "branches", where), f"{where}.branches")
         return cls(
             id=_text(_get(data, "id", where), f"{where}.id"),

@@ -1,8 +1,0 @@
-"""``python -m ifgm_ref.cli`` runs the command line (as ``python -m ifgm_ref`` does)."""
-
-import sys
-
-from ifgm_ref.cli import main
-
-if __name__ == "__main__":
-    sys.exit(main())

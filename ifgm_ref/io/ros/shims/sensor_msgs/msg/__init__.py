@@ -1,0 +1,5 @@
+"""``sensor_msgs.msg`` under ifgm-ref: classes made from rosbags' ROS 1 Noetic definitions."""
+
+from ifgm_ref.io.ros.messages import package_namespace
+
+globals().update(package_namespace("sensor_msgs", "msg"))

@@ -1,0 +1,1 @@
+"""ROS 1 package std_msgs under ifgm-ref: its msg classes (:mod:`ifgm_ref.io.ros.messages`)."""

@@ -1,0 +1,1 @@
+"""ROS 2 package builtin_interfaces under ifgm-ref (:mod:`ifgm_ref.io.ros.messages`)."""

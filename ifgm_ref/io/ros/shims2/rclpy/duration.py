@@ -1,0 +1,3 @@
+"""``rclpy.duration`` under ifgm-ref."""
+
+from ifgm_ref.io.ros.rclpy_api import Duration as Duration

@@ -1,0 +1,5 @@
+"""``std_srvs.srv`` under ifgm-ref: classes made from rosbags' ROS 2 Humble definitions."""
+
+from ifgm_ref.io.ros.messages import package_namespace
+
+globals().update(package_namespace("std_srvs", "srv", "ros2"))

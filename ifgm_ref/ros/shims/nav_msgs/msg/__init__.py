@@ -1,5 +1,0 @@
-"""``nav_msgs.msg`` under ifgm-ref: classes made from rosbags' ROS 1 Noetic definitions."""
-
-from ifgm_ref.ros.messages import package_namespace
-
-globals().update(package_namespace("nav_msgs", "msg"))

@@ -1,5 +1,0 @@
-"""The ``tf`` a node imports under ifgm-ref: ``tf.transformations`` only."""
-
-from ifgm_ref.ros import tf as transformations
-
-__all__ = ["transformations"]

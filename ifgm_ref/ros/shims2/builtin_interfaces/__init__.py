@@ -1,1 +1,0 @@
-"""ROS 2 package builtin_interfaces under ifgm-ref (:mod:`ifgm_ref.ros.messages`)."""

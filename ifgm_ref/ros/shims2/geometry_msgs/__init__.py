@@ -1,1 +1,0 @@
-"""ROS 2 package geometry_msgs under ifgm-ref: its msg classes (:mod:`ifgm_ref.ros.messages`)."""

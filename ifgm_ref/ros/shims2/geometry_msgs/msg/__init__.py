@@ -1,5 +1,0 @@
-"""``geometry_msgs.msg`` under ifgm-ref: classes made from rosbags' ROS 2 Humble definitions."""
-
-from ifgm_ref.ros.messages import package_namespace
-
-globals().update(package_namespace("geometry_msgs", "msg", "ros2"))

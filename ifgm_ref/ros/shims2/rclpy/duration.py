@@ -1,3 +1,0 @@
-"""``rclpy.duration`` under ifgm-ref."""
-
-from ifgm_ref.ros.rclpy_api import Duration as Duration

@@ -1,5 +1,0 @@
-"""``std_msgs.msg`` under ifgm-ref: classes made from rosbags' ROS 2 Humble definitions."""
-
-from ifgm_ref.ros.messages import package_namespace
-
-globals().update(package_namespace("std_msgs", "msg", "ros2"))

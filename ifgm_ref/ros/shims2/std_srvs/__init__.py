@@ -1,1 +1,0 @@
-"""ROS 2 package std_srvs under ifgm-ref: its srv classes (:mod:`ifgm_ref.ros.messages`)."""
