@@ -1,39 +1,22 @@
 """The lap rule: a robot that keeps coming back to one place, no nearer the goal.
 
-The simulator's second stall rule (:mod:`ifgm_ref.sim.simulator` gives both rules, the reasons
-for the numbers and their measurement). The robot has *closed a lap* at a place when it
-comes back within ``rho`` of a position it had been at, after at least ``L`` of path,
-travelling the same way: its direction of travel there within 90 degrees of the direction it
-had then. The rule fires at step ``n`` when the robot's centre ``p_n`` is within ``rho`` of
-``K`` earlier positions ``p_i1, ..., p_iK`` (oldest first), each passed the way it travels
-now, that close ``K`` laps in a row -- each at least ``L`` of path after the one before, and
-``p_n`` at least ``L`` after ``p_iK`` -- and its best distance to the goal so far is no
-better than it was at ``p_i1`` by more than ``eps``:
+The simulator's second stall rule (:mod:`ifgm_ref.sim.simulator`). It fires at step ``n``
+when the robot's centre ``p_n`` is within ``rho`` of ``K`` earlier positions
+``p_i1, ..., p_iK`` (oldest first), each passed the same way (a positive dot product of the
+steps that reached them), that close ``K`` laps in a row -- each at least ``L`` of path after
+the one before, and ``p_n`` at least ``L`` after ``p_iK`` -- and its best distance to the goal
+is no better than at ``p_i1`` by more than ``eps``:
 
     ``best(n) >= best(i1) - eps``,  ``best(k) = min(|p_j - goal| for j <= k)``.
 
-So the robot has been round the same loop ``K`` times and the laps brought it no nearer the
-goal. The direction of travel at a position is the step that reached it (from the last
-position logged); "the same way" is a positive dot product of the two steps. The thresholds:
+``rho`` is :data:`LAP_RADIUS`, ``L`` :data:`LAP_LENGTH`, ``eps`` :data:`LAP_PROGRESS` and ``K``
+:attr:`SimParams.stall_laps <ifgm_ref.core.params.SimParams.stall_laps>` (2 by default). Why
+these thresholds: ``docs/oracle.md``, "Why the stall rules' numbers".
 
-* ``rho``, :data:`LAP_RADIUS`: the size of a place, the robot's radius (as for the disc rule);
-* ``L``, :data:`LAP_LENGTH`: the shortest lap, the circumference of the robot's disc: the
-  centre of a disc that goes round an obstacle keeps at least ``r`` from every point of it, so
-  any lap round an obstacle, even a point, is at least ``2 pi r`` long. Lengths between
-  visits shorter than that are one pass through the place, not a lap;
-* ``eps``, :data:`LAP_PROGRESS`: the progress that counts;
-* ``K``, :attr:`SimParams.stall_laps <ifgm_ref.core.params.SimParams.stall_laps>`, 2 by default.
-
-The direction keeps a way in and out of a dead end, passed again on the way back to a leaving
-point, from counting as laps: into a narrow slot and out again passes its places both ways,
-where a robot going round and round passes them one way each time.
-
-Positions are kept in a grid hash of cells of side ``rho`` (:class:`LapLog`): the positions
-within ``rho`` of a point lie in the 3 x 3 cells around its own, so one step costs the
-positions logged there, not the whole path. Every comparison is of lengths derived from the
-robot (``rho``, ``L``, ``eps``), squared distances, path lengths and the sign of a dot
-product of steps: with every length scaled by a power of two every comparison comes out the
-same, and the rule fires at the same step.
+Positions are kept in a grid hash of cells of side ``rho`` (:class:`LapLog`), so one step
+costs the positions in the 3 x 3 cells around it. Every comparison is of squared distances,
+path lengths and signs of dot products: scaled by a power of two, the rule fires at the
+same step.
 """
 
 from __future__ import annotations
@@ -57,7 +40,7 @@ LAP_PROGRESS = "v*dt"
 
 @dataclass(frozen=True)
 class LapRule:
-    """The thresholds of the lap rule (see the module docstring).
+    """The thresholds of the lap rule (the module docstring's symbols).
 
     ``radius`` is ``rho``, ``length`` ``L`` and ``progress`` ``eps``, all in the world's
     length unit; ``laps`` is ``K``.

@@ -10,75 +10,19 @@ within ``goal_tolerance`` of the goal, the swept disc meets an obstacle, the rob
 leaves the world's bounds, the planner sends an invalid command or asks to stop, the robot
 stalls, or the time limit passes.
 
-The stall rules. There are two, the disc rule and the lap rule; either ends the episode with
-stop reason ``stalled`` (the result's ``detail`` says which).
+Two stall rules end an episode with stop reason ``stalled`` (the result's ``detail`` says
+which), both derived from the robot so they fire at the same step at any scale:
 
-The disc rule. A trapped robot makes no progress: FGM stands still at the base of a U, APF
-sits in a local minimum (Table 1), a port may turn in place for ever. Rather than wait for the
-time limit, the episode ends with stop reason ``stalled`` when the robot's centre has stayed
-within ``r``, the robot's radius, of where it was ``T`` seconds before, over all of those
-seconds. ``T`` is :attr:`SimParams.stall_time <ifgm_ref.core.params.SimParams.stall_time>`, by
-default the formula :data:`STALL_TIME` in the robot's radius ``r``, speed ``v`` and turn rate
-``w`` and the time step ``dt`` (the symbols of :mod:`ifgm_ref.core.formulas`):
+* the disc rule: the centre stays within ``r`` of where it was ``T`` seconds before, over all
+  of those seconds, with ``T`` = :attr:`SimParams.stall_time
+  <ifgm_ref.core.params.SimParams.stall_time>`, by default :data:`STALL_TIME`
+  (``Max(6*pi/w, 10*r/v, 20*dt)``);
+* the lap rule (:mod:`ifgm_ref.sim.laps`): ``K`` =
+  :attr:`SimParams.stall_laps <ifgm_ref.core.params.SimParams.stall_laps>` laps back to one
+  place without progress towards the goal.
 
-    ``T = Max(6*pi/w, 10*r/v, 20*dt)``, 12 s for the paper's robot, 6 s for BARN's.
-
-Both the disc and ``T`` are derived from the robot, never absolute, so the rule fires at the
-same step when every length is scaled (``proofs/scale.py`` proves ``T`` a time). Why these
-numbers:
-
-* The disc of radius ``r``: a robot that drives on leaves it within ``r/v`` s (0.76 s for the
-  paper's robot); one that only turns in place, or rocks to and fro over less than its own
-  diameter, stays within ``r`` of a point it keeps passing.
-* ``6*pi/w``, three full turns in place: the longest legitimate manoeuvre on the spot is
-  IFGM's dead-end rule (section 4, Case 3), at most 180 degrees (four 45-degree steps, ``pi/w``
-  s); three full turns allow six such sequences in a row, and a boundary follower's turns at
-  inner corners are shorter still.
-* ``10*r/v``: for a robot that turns so fast that three turns take less, ten times the time
-  to cross the disc at full speed.
-* ``20*dt``: at least twenty decisions, for a coarse time step.
-
-Edge following (Bug1 round a whole obstacle) does not bring the robot nearer the goal for a
-long time, but it drives, so the disc rule never fires there.
-
-The lap rule. A robot that goes round an obstacle for ever never stays within ``r`` of one
-point, and the disc rule lets it run to the time limit (IFGM lapping a post, issue 24). The
-lap rule (:mod:`ifgm_ref.sim.laps`) ends it when its centre is back within ``rho`` of a place for
-the third time, each visit at least ``L`` of path after the one before and travelling the
-same way (within 90 degrees), and its best distance to the goal is no better than at the
-first of those visits by more than ``eps``: ``K = 2`` laps without progress
-(:attr:`SimParams.stall_laps <ifgm_ref.core.params.SimParams.stall_laps>`), with
-
-    ``rho = r``, ``L = 2*pi*r``, ``eps = v*dt``: 1 ft, 6.28 ft and 0.13 ft for the paper's
-    robot; 0.22 m, 1.38 m and 0.05 m for BARN's.
-
-All three are lengths derived from the robot and the time step (``proofs/scale.py`` proves
-them lengths), compared as squared distances, path lengths and signs of dot products: with
-every length scaled by a power of two the rule fires at the same step. Why these numbers:
-
-* Two laps, not one. Bug1 goes once round from its hit point H, then on to the point Q
-  nearest the goal, and leaves there (section 2.1.1): on its way back to Q it passes where
-  its first lap went, no nearer the goal, so one lap without progress is what a correct
-  Bug1 does. A robot that laps for ever closes its second lap one lap later: the rule ends
-  it in its third, as it comes back within ``rho`` of where the first came nearest the goal.
-* The same way. Bug1's lap passes a place of the curve it follows once, and its return to
-  Q at most once more; a place passed both ways, in and out of a narrow dead end (or IFGM's
-  way into a U and out), is passed at most twice each way. So Bug1 passes no place a third
-  time the same way while it handles one obstacle; between two obstacles it leaves Q
-  straight towards the goal, and its best distance drops by that leg.
-* ``rho = r``: the centre of a robot that does not collide keeps ``r`` from every obstacle,
-  so its centres on the two sides of an obstacle are more than ``2 r`` apart and no place
-  lies within ``r`` of both.
-* ``L = 2*pi*r``: the centre keeps ``r`` from an obstacle, so the shortest lap round any
-  obstacle, even a point, is ``2 pi r`` long; a shorter return to a place is one pass
-  through it (a turn, a wiggle).
-* ``eps = v*dt``, one step's travel: a lap driven again need not repeat the last to the bit
-  (the samples fall elsewhere, the follower settles); less progress than a step does not
-  count.
-
-What each rule ends, and what it leaves alone (every arrival in the built-in, generated and
-BARN worlds, with and without noise), measured with ``benchmarks/bench_stall.py``:
-``docs/benchmark.md``, "The stall rules, measured".
+Why these numbers, and what each rule ends in the measured worlds: ``docs/oracle.md``, "Why
+the stall rules' numbers", and ``docs/benchmark.md``, "The stall rules, measured".
 """
 
 from __future__ import annotations
@@ -119,8 +63,8 @@ class StopReason(StrEnum):
     STALLED = "stalled"
 
 
-#: The default stall time, s: a formula in the robot and the time step (the module docstring
-#: gives the reasons; :func:`ifgm_ref.core.formulas.evaluate` computes it).
+#: The default stall time, s: a formula in the robot and the time step (reasons:
+#: ``docs/oracle.md``; :func:`ifgm_ref.core.formulas.evaluate` computes it).
 STALL_TIME = "Max(6*pi/w, 10*r/v, 20*dt)"
 
 
