@@ -1,54 +1,22 @@
 """The braking governor: every planner's command, slowed so that a robot with mass stops in time.
 
-The paper's robot stops at once: its thresholds come from the robot's size, the time step and
-the sensor (section 4), and none of them knows how far the robot needs to stop (errata row
-36). A robot with mass brakes at a finite deceleration. The governor sits between a planner
-and the robot and lets through only commands from which the robot can still stop before every
-obstacle it sees.
-
-The condition is passive safety (Mitsch, Ghorbal, Vogelbacher & Platzer, "Formal verification
-of obstacle avoidance and navigation of ground robots", IJRR 36(12):1312-1340, 2017,
-Theorem 1): a robot that accelerates at most ``A``, is guaranteed to brake at ``b`` and decides
-every ``eps`` seconds may keep any control for the next period while the distance ``d`` to
-every obstacle it may sweep exceeds the distance it needs if it accelerates for the whole
-period and then brakes::
+The paper's thresholds do not know how far a robot needs to stop (errata row 36); the
+governor sits between a planner and the robot and lets through only commands from which the
+robot can still stop before every obstacle it sees: passive safety (Mitsch, Ghorbal,
+Vogelbacher & Platzer, "Formal verification of obstacle avoidance and navigation of ground
+robots", IJRR 36(12):1312-1340, 2017, Theorem 1)::
 
     d >= v^2 / (2 b) + (A/b + 1) (A eps^2 / 2 + eps v)                       (M)
 
-and must brake otherwise. Our robots are told a speed, not an acceleration, and never pass
-it; they follow a command within their response time ``tau``. The worst case is to move from
-the speed ``u`` they may have now, for ``tau``, towards the fastest command still in effect,
-then for one period towards the commanded ``c``, each as hard as allowed (up at ``A``, no
-faster than the command or the top speed; down at ``b``, no slower than the command), then to
-brake (:func:`stopping_distance`). A command is admissible when that fits in the room ``d``;
-with ``tau`` 0, a command faster than ``u + A eps`` gives (M) exactly. Here
-(``proofs/braking.py`` proves each step):
-
-* ``u`` is a bound on the robot's speed, kept from the governor's own commands
-  (:func:`next_state`), 0 at the start.
-* ``d`` is measured in the region the robot may sweep until it stops: its disc moved along any
-  path no longer than the stopping distance whose heading stays between the present one, the
-  command's and the last command's, all of which the heading controller turns towards the
-  short way round, and the present one turned on at the last period's rate for a response
-  time (a robot braking while it turns may carry its turn past the command: the MuJoCo
-  Jackal at 1.8 m/s did by 6 degrees, into a cylinder beside its fan) (:func:`fan_room`).
-  Straight ahead that is the robot-wide corridor; while turning, the fan of those headings.
-  ``b`` is what the robot is guaranteed on any curve.
-* The governor lets through the planner's heading and the largest speed up to the planner's
-  that is admissible (:func:`safe_speed`), so that the robot slows as obstacles come near,
-  and no more than ``A eps`` above the speed bound: a robot asked for more than it can reach
-  in a period only spins its wheels (the MuJoCo Jackal's odometry then drifts). Nor does it
-  ask for a sharper turn than the tyres hold sideways at the speed bound ``u``: the turn rate
-  within ``b / u`` (a centripetal acceleration no larger than the braking; a robot at 2 m/s
-  asked to turn at pi rad/s skids off its heading, out of the fan the room was counted in). If
-  even braking does not fit in the fan of the planner's heading, it brakes (speed 0) along the
-  last command's heading, whose fan the stop was checked in, until it stands; standing, it may
-  turn (a disc turning in place sweeps nothing). So a planner that decides to stop and turn
-  in place (IFGM's dead-end turn, Case-3's pre-emption) turns at once only where the stop
-  fits in the turn's fan, and otherwise slows down first.
-* The room keeps a quarter radius more (the planners' corridor margin) from what lies ahead,
-  not from what the robot passes beside nor from what it already stands within half of that
-  near: a stop a planner decides then ends about where the planner expects its robot.
+with ``A`` the largest acceleration, ``b`` the guaranteed braking, ``eps`` the decision
+period and ``d`` the room to every obstacle the robot may sweep. For a robot told a speed
+with response time ``tau``, the worst case is :func:`stopping_distance`; ``u`` is a bound on
+the speed, kept from the governor's own commands (:func:`next_state`); ``d`` is measured in
+the fan of headings the robot may take until it stops (:func:`fan_room`); the command keeps
+the planner's heading and the largest admissible speed (:func:`safe_speed`), at most
+``A eps`` above ``u``, and a turn rate within ``b / u``; where not even braking fits it brakes
+along the last command's heading, and turns once it stands. ``proofs/braking.py`` proves
+each step; the reasons for each piece: ``docs/physics.md``, "Braking in time".
 
 The robot's ``braking`` and ``acceleration`` are :class:`~ifgm_ref.core.params.RobotParams` fields;
 with ``braking`` infinite (the paper's robot) the governor changes nothing. It uses only what a
