@@ -27,14 +27,8 @@ a return nearer than ``radius + stop_margin`` plus one step's travel. The robot 
 turns towards the force; where the force keeps pointing into the obstacle it stays there, at
 the local minimum.
 
-Where it is trapped (measured with the defaults, robot and sensor): a wide obstacle across
-the start-goal line stops it. In front of the built-in ``box`` (4 x 10 ft, symmetric about
-the line) the push balances the pull 2.6 ft from the face; the force then points back, the
-robot turns in place, the turn moves part of the wall out of the 135-degree view and flips the
-force's side, and the robot turns to and fro there until the time limit -- Table 1's
-"symmetric obstacles". The same happened with the box 1 ft off the line for every ``eta``
-in 5-200 and ``d0`` in 2-8 ft tried, and with the defaults 3 ft off it; a post of radius
-1-1.5 ft, 0.5-2 ft off the line, is passed.
+A wide obstacle across the start-goal line traps it, as Table 1 says (where and why,
+measured: ``docs/benchmark.md``, "Measured").
 
 ==================  ===============  ============================================
 Khatib symbol       here             meaning

@@ -22,9 +22,8 @@ from ifgm_ref.core.pose import Pose
 from ifgm_ref.sim.world import World
 
 #: How far, in robot radii, a path may stray from the point the obstacle order was computed
-#: at before it is computed again (dimensionless). Larger means fewer rebuilds but more
-#: obstacles measured per step: over the traces of the corridor, Scenario 1, the U trap and a
-#: BARN world, 2 to 6 radii cost least per step (a third of what half a radius costs).
+#: at before it is computed again (dimensionless): fewer rebuilds against more obstacles
+#: measured per step (measured: ``docs/benchmark.md``, "The simulator's kernels").
 _REUSE = 4.0
 #: Relative slack of the pruning test (dimensionless, times the coordinates' magnitude): far
 #: above the few-ulp rounding of the distances it compares, far below any real gap.

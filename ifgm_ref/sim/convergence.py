@@ -1,10 +1,9 @@
 """The convergence bound: how long the oracle waits for a planner to reach the goal.
 
-Origin. Lumelsky and Stepanov's Bug1 reaches the goal after a path of at most
-``D + 1.5 * sum(p_i)`` (``D`` the start-goal distance, ``p_i`` the perimeters of the
-obstacles that cut the disc of radius ``D`` about the goal; paper section 2.1.1). Every
-planner of the paper that promises convergence (Bug1, Bug2, DistBug, IBA, IFGM) does at most
-what Bug1 does, so the oracle takes Bug1's bound as the budget, with slack for a real robot:
+Bug1 reaches the goal after a path of at most ``D + 1.5 * sum(p_i)`` (``D`` the start-goal
+distance, ``p_i`` the obstacles' perimeters; paper section 2.1.1), and every planner of the
+paper that promises convergence does at most what Bug1 does; the budget adds slack for a
+real robot:
 
 * ``p_i`` is measured round the obstacle *inflated by twice the robot radius*, the curve a
   disc robot follows at a stand-off of one radius (a planner's follow distance);
@@ -15,12 +14,8 @@ what Bug1 does, so the oracle takes Bug1's bound as the budget, with slack for a
 
 So ``time_bound = SLACK * (D + 1.5 * sum(p_i)) / v + TURN_ALLOWANCE * pi / w``, in seconds. It
 sums every obstacle of the world, not only those near the goal: generous, never tight. Every
-term scales with the robot, so the bound holds in any length unit.
-
-Margin. Where they reach the goal, the reference planners take at most 0.22 of the bound
-(IFGM 0.20, IBA 0.20; Bug1, which walks Bug1's path, 0.38), over 30 generated worlds per
-class, seed 0 (``python benchmarks/bench_bound_margin.py``): a port twice as slow as the
-reference still passes.
+term scales with the robot, so the bound holds in any length unit. The margin the reference
+planners leave, measured: ``docs/oracle.md``, "Time bound".
 """
 
 from __future__ import annotations

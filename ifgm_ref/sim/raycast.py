@@ -46,22 +46,11 @@ Choices at the boundary
 
 Cost
 ----
-Edges and circles that cannot come within ``max_range`` of the origin are dropped first, by a
-test on each element's bounding circle (``O(n)``); only the rest enter the ``elements x rays``
-pass, a handful of numpy operations with no Python loop. The edges' cull is cached: cast from
-near the last cull's origin (a robot moving a little between scans), it keeps the edges within
-reach of a disc of radius ``_REUSE * max_range`` round that origin, and only their vertices,
-and serves every cast from inside that disc. Extra edges out of reach change no reading (see
-``RayCaster._cull``), so a cast's result does not depend on the casts before it.
-:meth:`RayCaster.cast_fan` also reuses the turned ray directions while the heading and the
-fan stay the same.
-
-Circles in reach are tested against every ray while there are few (circle, ray) pairs. With
-many -- a 720-ray LiDAR among BARN's 200 to 360 cylinders, all within its 30 m -- each circle
-is tested only against the rays within its angular half-width ``asin(r / |c|)`` of its
-bearing (found by a binary search in the rays sorted by bearing), which are the only rays
-that can meet it, by the same operations: the ranges are the same to the bit, and a BARN scan
-costs about a twentieth (``benchmarks/bench_barn_scan.py``).
+Elements that cannot come within ``max_range`` are culled first (the edges' cull is cached
+round the last origin, ``_REUSE``), and circles are tested only against the rays within
+their angular half-width when there are many (circle, ray) pairs. Neither changes a reading:
+a cast's result is the same to the bit and does not depend on the casts before it. How each
+works and what it saves: ``docs/benchmark.md``, "The simulator's kernels".
 """
 
 from __future__ import annotations
@@ -91,9 +80,8 @@ _FACING_MARGIN = 1e-9
 _NEAR_CIRCLE = 0.99
 
 #: How far the origin may move before the edges are culled again, in ``max_range``\ s
-#: (dimensionless): a local cull keeps every edge within reach of that disc. Larger means
-#: fewer culls but more edges per cast: a tenth of the range keeps about a fifth more edges,
-#: and cast the fastest along the corridor, Scenario 1 and U-trap traces of 0.03 to 0.4.
+#: (dimensionless): a local cull keeps every edge within reach of that disc; fewer culls
+#: against more edges per cast (measured: ``docs/benchmark.md``, "The simulator's kernels").
 _REUSE = 0.1
 
 
