@@ -1,49 +1,24 @@
 """Less perfect worlds: the simulator's range, odometry and actuation noise.
 
-The paper's simulations are noise-free; real robots are not. McGuire et al. (2019) found that
-odometry noise and false detections are what separate bug algorithms in practice. Every model
-here is off by default, seeded, and relative to the robot and the sensor, so that a level
-means the same for the paper's 1 ft robot and BARN's 0.22 m one (errata row 29). Symbols: ``r``
-the robot radius, ``R`` the sensor's ``range_max``, ``d`` the distance the robot's centre moved
-in one step, ``N(0, s)`` a Gaussian draw of standard deviation ``s``, ``U(a, b)`` a uniform one.
+Every model is off by default, seeded, and relative to the robot and the sensor, so that a
+level means the same for the paper's 1 ft robot and BARN's 0.22 m one (errata row 29).
+Symbols: ``r`` the robot radius, ``R`` the sensor's ``range_max``, ``d`` the distance the
+robot's centre moved in one step, ``N(0, s)`` a Gaussian draw, ``U(a, b)`` a uniform one.
 
-**Range** (the sensor block, :class:`~ifgm_ref.core.params.SensorParams`), for each ray of true
-range ``rho`` (``+inf`` when nothing is within ``R``):
-
-* with probability ``dropout`` the ray reads no return (``+inf``, JSON ``null``);
-* else with probability ``spurious`` it reads a false short return ``U(range_min, min(rho, R))``
-  (something that is not there, nearer than what is);
-* else a return reads ``rho + N(0, sqrt(noise_std**2 + (noise_rel * rho)**2))``: constant
-  noise ``noise_std`` (a length) and noise proportional to the range ``noise_rel`` (a
-  fraction); no return stays no return.
-
-Then, as without noise, a reading below 0 is 0, one beyond ``R`` is no return and one below
-``range_min`` reads ``-inf``. Each kind draws from its own generator, a fixed number of numbers
-per scan whatever it sees, so one kind's level never changes another's draws.
-
-**Odometry** (the robot block, :class:`~ifgm_ref.core.params.RobotParams`, ``odometry_drift = k``):
-the pose the planner is told is the true pose plus an error ``(e_x, e_y, e_theta)`` that starts at 0
-and takes a random walk as the robot moves: at every step
-
-    e_x += N(0, k sqrt(r d)),   e_y += N(0, k sqrt(r d)),   e_theta += N(0, k sqrt(d / r)).
-
-Its variance grows with the distance travelled, not with time or the number of steps: over
-any stretch of length ``r`` the position error gains ``k r`` (``k = 0.01``: 1 % of the
-distance) and over a path of length ``D`` it reaches ``k sqrt(r D)`` per axis, and the heading's
-``k sqrt(D / r)`` rad. The world frame is the planner's too: its goal stays where it is, and
-it finds it by its believed pose. The robot's heading controller knows only the believed
-heading: a command to face ``psi`` turns the robot towards the true heading ``psi - e_theta``.
-Collisions, the goal and the stall rules are judged on the true pose; traces record both.
-
-**Actuation** (the robot block, ``actuation_noise = s``, ``latency = k``): the command executed
-at step ``n`` is the one decided at step ``n - k`` (before the first, the robot stands still),
-and the robot turns by its commanded turn (limited to ``max_turn_rate * dt``) times
-``1 + N(0, s)`` and drives at its commanded speed (at most its top speed) times
-``1 + N(0, s)``, never backwards.
+* **Range** (:class:`~ifgm_ref.core.params.SensorParams`): a ray of true range ``rho`` reads
+  no return with probability ``dropout``, else a false return ``U(range_min, min(rho, R))``
+  with probability ``spurious``, else ``rho + N(0, sqrt(noise_std**2 + (noise_rel *
+  rho)**2))``; each kind draws a fixed count of numbers per scan from its own generator.
+* **Odometry** (:class:`~ifgm_ref.core.params.RobotParams`, ``odometry_drift = k``): the
+  believed pose is the true pose plus a random walk, at every step
+  ``e_x, e_y += N(0, k sqrt(r d))``, ``e_theta += N(0, k sqrt(d / r))``; the heading
+  controller turns the *believed* heading to the command. Collisions, the goal and the stall
+  rules are judged on the true pose.
+* **Actuation** (``actuation_noise = s``, ``latency = k``): the command decided at step
+  ``n - k`` runs at step ``n``, its turn and speed each times ``1 + N(0, s)``, never backwards.
 
 The robot block's ``seed`` seeds odometry and actuation, the sensor block's the range noise:
-same seeds, same trace (also through the JSON-lines protocol, whose ``reset`` message carries
-both blocks).
+same seeds, same trace. The models in full, and the reasons: ``docs/noise.md``.
 """
 
 from __future__ import annotations

@@ -1,51 +1,19 @@
 """The two robot bodies of the MuJoCo engine: the paper's robot and a Jackal-like one.
 
 A body is a differential-drive robot: a chassis, a cylinder of the world's robot radius ``r``
-or a box (the only part that meets obstacles), two driven wheels
-on the chassis' diameter (so the robot turns about its centre, as the kinematic robot does),
-and a frictionless caster in front and one behind. Velocity actuators drive the wheels within
-a force limit; the heading controller's wheel speeds are limited to the body's linear and
-angular accelerations.
+or a box (the only part that meets obstacles), two driven wheels on the chassis' diameter
+(so the robot turns about its centre, as the kinematic robot does), and a frictionless caster
+in front and one behind. Velocity actuators drive the wheels within a force limit; the
+heading controller's wheel speeds are limited to the body's linear and angular accelerations.
+Lengths of the body are relative to ``r``, so one preset fits its robot at any size; masses
+are in kg, and the length unit is the world's, so gravity is given in that unit.
 
-Every number has its source (the dataclass fields say which). Lengths of the body are given
-relative to ``r``, so one preset fits its robot at any size; masses are in kg, and the
-length unit is the world's, so gravity is given in that unit.
-
-The Jackal (BARN's robot; ``ifgm_ref/io/barn_worlds/README.md``). From Clearpath's
-``jackal_description/urdf/jackal.urdf.xacro``: chassis 16.523 kg with ``izz = 0.4485`` kg m^2,
-four wheels of 0.477 kg, radius 0.098 m, track 0.37559 m, tyre friction 0.5 (its Gazebo
-``mu1``/``mu2``). From
-``jackal_control/config/control.yaml`` (the velocity controller BARN runs): at most 20 m/s^2
-and 25 rad/s^2. The Jackal is skid-steered on four wheels; here its two wheels of a side are
-one wheel of twice the mass, and the casters carry the rest: a differential drive. Its chassis
-is BARN's footprint, a 0.42 x 0.33 m box (``costmap_common_params.yaml`` of BARN's
-``jackal_helper``), built on BARN's robot (``ifgm_ref.io.barn.ROBOT``, radius 0.22 m); the
-planners are told the disc that circumscribes it (radius 0.267 m), so that keeping their disc
-clear keeps the box clear.
-
-The paper's robot. The paper gives no mass, size or motors beyond "cylindrical shaped robot"
-on stepper motors (section 4). We take a Pioneer 3-DX class platform, the usual indoor
-research robot of its time: 9 kg, wheels of 0.0975 m radius (Adept MobileRobots' datasheet),
-a chassis of the paper robot's 1 ft radius, in feet (gravity 32.174 ft/s^2). Its
-accelerations are our choice: full speed in a quarter of a second and full turn rate in a
-tenth, near the kinematic robot's instant response (the paper's motors step at once), so
-that what physics changes is mass, contact and integration, not a slow controller.
-
-Each body's dynamics, as the planners' braking governor needs them
-(:class:`~ifgm_ref.core.params.RobotParams` ``braking`` ``b`` and ``acceleration`` ``A``), follow
-from its parameters. ``A`` is the smaller of the controller's limit and what the tyres can push,
-``mu g``: an upper bound. ``b`` is the smaller of the controller's limit and what the tyres can
-brake once the braking has moved load off the driven wheels onto the frictionless front
-caster, ``mu g c / (c + mu h)`` (moments about the caster's contact: ``c`` the caster's
-distance from the axle, ``h`` the centre of mass's height, the axle's): a lower bound. The
-Jackal: ``A = min(20, 4.90) = 4.90`` m/s^2, ``b = 4.90 x 0.154 / (0.154 + 0.5 x 0.098) = 3.72``
-m/s^2. The paper's body: both its controller's ``v / 0.25 s`` (the tyres give more). Its
-``response`` is four time constants of the wheels' velocity servos (:data:`SERVO_TIME`,
-0.02 s), in which a first-order servo does 98 % of a change of speed: the fewest whole time
-constants under which every stop of either body, from a tenth of its top speed to twice it,
-straight or turning up to 180 degrees, fits the braking governor's worst case (three left the
-Jackal 3 mm short braking from 0.5 m/s while it turned 22.5 degrees, one wheel told to drive
-on; ``tests/test_physics.py`` measures the stops).
+The dynamics the planners' braking governor is told (:meth:`Body.told`) follow from the
+parameters: ``A = min(max_accel, mu g)``, an upper bound; ``b = min(max_accel,
+mu g c / (c + mu h))``, the tyres' braking with load moved onto the frictionless front caster
+(``c`` the caster's distance from the axle, ``h`` the centre of mass's height), a lower
+bound; the response time :data:`RESPONSE`. The source of every number, and how the response
+time was chosen: ``docs/physics.md``, "The two bodies" and "Braking in time".
 """
 
 from __future__ import annotations
@@ -61,8 +29,8 @@ CASTER_OFFSET = 0.7
 #: Time constant of the wheels' velocity servos, s: the motor reaches a commanded wheel speed
 #: within a few hundredths of a second, faster than any acceleration limit asks.
 SERVO_TIME = 0.02
-#: A body's response time, s: four servo time constants, 98 % of a change of wheel speed
-#: (module docstring).
+#: A body's response time, s: four servo time constants, 98 % of a change of wheel speed,
+#: the fewest under which every measured stop fits the governor's worst case (docs/physics.md).
 RESPONSE = 4 * SERVO_TIME
 #: Standard gravity, m/s^2 and ft/s^2 (9.80665 m/s^2 / 0.3048 m/ft).
 GRAVITY_M = 9.80665
@@ -71,7 +39,7 @@ GRAVITY_FT = GRAVITY_M / 0.3048
 
 @dataclass(frozen=True)
 class Body:
-    """A differential-drive body for a disc robot of radius ``r`` (see the module docstring).
+    """A differential-drive body for a disc robot of radius ``r`` (the module docstring).
 
     Parameters
     ----------
@@ -171,8 +139,8 @@ class Body:
         return replace(robot, radius=radius, braking=braking, acceleration=accel, response=response)
 
 
-#: BARN's Jackal (module docstring): the urdf's masses and wheels, control.yaml's limits, on
-#: BARN's 0.22 m disc.
+#: BARN's Jackal: the urdf's masses and wheels, control.yaml's limits, on BARN's 0.22 m disc
+#: (sources: docs/physics.md, "The two bodies").
 JACKAL = Body(
     name="jackal",
     chassis_mass=16.523,
@@ -187,8 +155,8 @@ JACKAL = Body(
     outline=(0.42 / 0.22, 0.33 / 0.22),
 )
 
-#: The paper's robot (module docstring): a 9 kg Pioneer 3-DX class body on the 1 ft disc, in
-#: feet. Accelerations: the default robot's speed in 0.25 s and turn rate in 0.1 s.
+#: The paper's robot: a 9 kg Pioneer 3-DX class body on the 1 ft disc, in feet (the paper
+#: gives none). Accelerations: the default robot's speed in 0.25 s and turn rate in 0.1 s.
 PAPER = Body(
     name="paper",
     chassis_mass=9.0 - 2 * 0.5,
