@@ -5,11 +5,10 @@ from __future__ import annotations
 import itertools
 import math
 import re
-from collections.abc import Iterator
 
+import numpy as np
 import pytest
 
-from ifgm_ref.core.errors import InvariantError
 from ifgm_ref.paper.flowchart import (
     DEAD_END_PHASES,
     DECIDED,
@@ -17,13 +16,21 @@ from ifgm_ref.paper.flowchart import (
     GUARDS,
     Atoms,
     Branch,
-    branch_of,
     decide,
     figure3,
     same_branch,
 )
 
 ALL_ATOMS = list(itertools.product([False, True], repeat=len(Atoms.names())))
+
+
+def guarded(values: tuple[bool, ...]) -> Branch:
+    """The one branch whose guard in :data:`GUARDS` holds for the atom ``values`` (numpy
+    booleans: ``~`` on ``bool`` is not negation); fails unless exactly one holds."""
+    atoms = Atoms(*(np.bool_(value) for value in values))
+    holding = [branch for branch, guard in GUARDS.items() if bool(guard(atoms))]
+    assert len(holding) == 1, f"guards hold for {holding}, but should for exactly one [{atoms}]"
+    return holding[0]
 
 
 def test_every_decided_branch_has_a_guard() -> None:
@@ -43,35 +50,15 @@ def test_a_former_label_names_the_phases_it_labelled_and_nothing_else() -> None:
 
 @pytest.mark.paper("fig3.partition")
 def test_guards_partition_every_combination_of_atoms() -> None:
-    """Exhaustive over all 2**10 atom values (the sympy proof is the general statement)."""
-    taken = {decide(Atoms(*values)) for values in ALL_ATOMS}
-    assert taken == set(DECIDED)
+    """Exhaustive over all 2**10 atom values (the sympy proof is the general statement):
+    exactly one guard holds for each, and each decided branch is reached."""
+    assert {guarded(values) for values in ALL_ATOMS} == set(DECIDED)
 
 
-@pytest.fixture
-def fresh_branches() -> Iterator[None]:
-    """:func:`decide` with an empty cache of checked atom combinations, emptied again after."""
-    branch_of.cache_clear()
-    yield
-    branch_of.cache_clear()
-
-
-@pytest.mark.usefixtures("fresh_branches")
-def test_decide_rejects_guards_that_overlap(monkeypatch: pytest.MonkeyPatch) -> None:
+def test_the_partition_check_rejects_guards_that_overlap(monkeypatch: pytest.MonkeyPatch) -> None:
     monkeypatch.setitem(GUARDS, Branch.CASE1_GAP, lambda a: a.blocked)  # overlaps Case-2
-    atoms = Atoms(**{**dict.fromkeys(Atoms.names(), False), "blocked": True})
-    with pytest.raises(InvariantError, match="exactly one"):
-        decide(atoms)
-
-
-@pytest.mark.usefixtures("fresh_branches")
-def test_decide_checks_each_combination_of_atoms_once() -> None:
-    """The guards are evaluated (and their partition checked) at the first sight of a
-    combination; a step that meets it again looks the branch up."""
-    atoms = Atoms(**{**dict.fromkeys(Atoms.names(), False), "blocked": True})
-    assert decide(atoms) is decide(atoms) is Branch.CASE2_NARROW_GAP
-    info = branch_of.cache_info()
-    assert (info.misses, info.hits) == (1, 1)
+    with pytest.raises(AssertionError, match="exactly one"):
+        test_guards_partition_every_combination_of_atoms()
 
 
 @pytest.mark.paper("fig3.both_conditions")
@@ -157,8 +144,8 @@ def test_the_dead_end_proof_rejects_other_turns(
 def test_the_decision_tree_picks_the_guards_branch_for_every_combination_of_atoms() -> None:
     """:func:`figure3`, the flowchart read as a tree, and :data:`GUARDS`, the form the proofs
     reason about, agree on all 2**10 combinations of atoms: one Figure 3 in two forms."""
-    for values in itertools.product([False, True], repeat=len(Atoms.names())):
-        assert figure3(Atoms(*values)) is branch_of(values), values
+    for values in ALL_ATOMS:
+        assert figure3(Atoms(*values)) is guarded(values), values
 
 
 def test_the_tree_comparison_has_teeth(monkeypatch: pytest.MonkeyPatch) -> None:
@@ -166,9 +153,13 @@ def test_the_tree_comparison_has_teeth(monkeypatch: pytest.MonkeyPatch) -> None:
     case1, narrow = GUARDS[Branch.CASE1_GAP], GUARDS[Branch.CASE2_NARROW_GAP]
     monkeypatch.setitem(GUARDS, Branch.CASE1_GAP, narrow)
     monkeypatch.setitem(GUARDS, Branch.CASE2_NARROW_GAP, case1)
-    branch_of.cache_clear()
-    try:
-        with pytest.raises(AssertionError):
-            test_the_decision_tree_picks_the_guards_branch_for_every_combination_of_atoms()
-    finally:
-        branch_of.cache_clear()
+    with pytest.raises(AssertionError):
+        test_the_decision_tree_picks_the_guards_branch_for_every_combination_of_atoms()
+
+
+def test_decide_is_the_decision_tree() -> None:
+    """What a planner runs (:func:`decide`) is the flowchart its reader reads
+    (:func:`figure3`), for plain and numpy booleans."""
+    for values in ALL_ATOMS[::7]:
+        branch = figure3(Atoms(*values))
+        assert decide(Atoms(*values)) is decide(Atoms(*map(np.bool_, values))) is branch

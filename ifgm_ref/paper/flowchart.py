@@ -1,43 +1,36 @@
-"""The decision function of IFGM: the paper's Figure 3 flowchart, reconstructed.
+"""The decision function of IFGM: the paper's Figure 3, reconstructed (errata row 18).
 
-Figure 3 itself is not in our copy of the paper; section 4 describes it: "After encountering
-the obstacles, if both conditions are true (refer to Figure 3), the robot is steered by FGM
-otherwise it is steered by IBA" -- the conditions being *max gap > d_th* and *distance to the
-nearest obstacle > d_obs* -- with Case-1 (steer through the gap, eqs. (1)-(4)), Case-2 (max
-gap <= d_th, or obstacles on one side only: IBA), Case-3 (an obstacle of more impact pre-empts
-the one being avoided; avoidance is recursive) and the dead-end rule for U and H shapes (turn
-in 45-degree steps until a free direction is found). After avoiding, "the robot regenerates
-the reference path and follows it until reaches to the destination."
-
-The flowchart is one function of boolean *atoms* computed from the percepts (:class:`Atoms`).
-Each :class:`Branch` has a guard, an expression over the atoms written with ``&``, ``|`` and
-``~`` only, so that the same guards evaluate on numpy booleans at run time and on sympy
-symbols in the proofs. The guards partition the atom space: exactly one holds for every
-percept. :func:`decide` checks that for each combination of atoms it meets (once: the
-branch is cached).
+:func:`decide` reads the flowchart top down (:func:`figure3`) over yes/no atoms
+(:class:`Atoms`). :data:`GUARDS`, the same flowchart as one guard a branch, is the form that
+``proofs/flowchart.py`` proves to partition the atoms and ``tests/test_flowchart.py`` checks
+against :func:`figure3`. The reconstruction and its choices: ``docs/flowchart.md``.
 """
 
 from __future__ import annotations
 
-import functools
-import operator
+import math
 from collections.abc import Callable
 from dataclasses import dataclass, fields
 from enum import StrEnum
-from typing import Any
-
-import numpy as np
+from typing import TYPE_CHECKING, Any, Generic
 
 from ifgm_ref.core.elements import traces
-from ifgm_ref.core.errors import InvariantError
+
+if TYPE_CHECKING:  # a default keeps a bare ``Atoms`` an ``Atoms[bool]`` (PEP 696; 3.13's typing)
+    from typing_extensions import TypeVar
+
+    L = TypeVar("L", covariant=True, default=bool)
+else:
+    from typing import TypeVar
+
+    L = TypeVar("L", covariant=True)
 
 
 class Branch(StrEnum):
-    """The branches of the reconstructed Figure 3, as they appear in traces.
+    """The branches of Figure 3, as traces label them.
 
-    The flowchart decides ``DEAD_END_TURN`` for the whole dead end; a step of it is labelled
-    with the phase it carries out (:data:`DEAD_END_PHASES`): turning in place, driving out,
-    or handing over to IBA.
+    The flowchart decides ``DEAD_END_TURN`` for the whole dead end; its steps are labelled
+    with the phase they carry out (:data:`DEAD_END_PHASES`, errata row 35).
     """
 
     GOAL_REACHED = "goal_reached"
@@ -57,6 +50,9 @@ class Branch(StrEnum):
 #: The dead end's phases, in order: turn in 45-degree steps, drive out the way found free,
 #: hand over to IBA at the end of the wall. Only the first is decided by the flowchart.
 DEAD_END_PHASES = (Branch.DEAD_END_TURN, Branch.DEAD_END_ESCAPE, Branch.DEAD_END_HANDOVER)
+
+#: The dead end's turn, rad: "it recursively turns in steps of 45 degrees" (section 4).
+DEAD_END_STEP = math.pi / 4
 
 #: The branches the flowchart decides between (:data:`GUARDS`): all but the dead end's
 #: later phases.
@@ -80,8 +76,9 @@ def same_branch(reported: str, reference: str) -> bool:
 
 
 @dataclass(frozen=True)
-class Atoms:
-    """The yes/no facts Figure 3 decides on, computed by the planner from its percepts.
+class Atoms(Generic[L]):
+    """The yes/no facts Figure 3 decides on, each of type ``L``: ``bool`` in a planner,
+    numpy or sympy booleans where :data:`GUARDS` are evaluated.
 
     Attributes
     ----------
@@ -97,21 +94,20 @@ class Atoms:
     one_sided : every obstacle point is on one side of the heading.
     dead_end : the front beam is blocked within the encounter distance and every ray of the
         field of view returns, with no gap wider than ``d_th``: nowhere to go ahead (inside a
-        U or an H). It is consulted only on encountering an obstacle, not while IBA follows
-        an edge.
+        U or an H). Consulted only on meeting an obstacle, not while IBA follows an edge.
     preempt : while avoiding, another obstacle nearer than the followed edge is sensed.
     """
 
-    at_goal: Any
-    turning: Any
-    avoiding: Any
-    blocked: Any
-    free: Any
-    close: Any
-    wide: Any
-    one_sided: Any
-    dead_end: Any
-    preempt: Any
+    at_goal: L
+    turning: L
+    avoiding: L
+    blocked: L
+    free: L
+    close: L
+    wide: L
+    one_sided: L
+    dead_end: L
+    preempt: L
 
     @classmethod
     def names(cls) -> tuple[str, ...]:
@@ -119,19 +115,22 @@ class Atoms:
         return tuple(f.name for f in fields(cls))
 
 
-Guard = Callable[[Atoms], Any]
+#: A guard: a formula over the atoms in ``&``, ``|`` and ``~`` only, so that it evaluates on
+#: numpy booleans and builds a sympy formula (never on ``bool``: ``~True`` is ``-2``).
+Guard = Callable[[Atoms[Any]], Any]
 
 
-def _in_avoidance(a: Atoms) -> Any:
+def _in_avoidance(a: Atoms[Any]) -> Any:
     return ~a.at_goal & ~a.turning & a.avoiding
 
 
-def _encountered(a: Atoms) -> Any:
+def _encountered(a: Atoms[Any]) -> Any:
     return ~a.at_goal & ~a.turning & ~a.avoiding & a.blocked & ~a.dead_end
 
 
-#: Figure 3 as guards: for every combination of atoms exactly one guard holds. One guard for
-#: each of the :data:`DECIDED` branches.
+#: Figure 3 as guards, one for each of the :data:`DECIDED` branches: for every combination of
+#: atoms exactly one holds (``proofs/flowchart.py``), the branch :func:`figure3` picks
+#: (``tests/test_flowchart.py``).
 GUARDS: dict[Branch, Guard] = {
     Branch.GOAL_REACHED: lambda a: a.at_goal,
     Branch.DEAD_END_TURN: lambda a: (
@@ -148,11 +147,22 @@ GUARDS: dict[Branch, Guard] = {
 }
 
 
-def figure3(atoms: Atoms) -> Branch:
-    """Figure 3 read top down as one decision tree: the same branch as :data:`GUARDS` for
-    every combination of atoms (``tests/test_flowchart.py`` checks all 1,024), in the order a
-    reader follows the flowchart -- and the order the C port decides in.
+def figure3(atoms: Atoms[object]) -> Branch:
+    """Read Figure 3 top down, in the order of ``docs/flowchart.md``'s diagram and of the C
+    port's ``decide``.
 
+    Parameters
+    ----------
+    atoms : Atoms
+        The atoms, of any type with a truth value (``bool``, numpy booleans).
+
+    Returns
+    -------
+    Branch
+        One of :data:`DECIDED`: the branch whose guard in :data:`GUARDS` holds.
+
+    Examples
+    --------
     >>> base = dict.fromkeys(Atoms.names(), False)
     >>> figure3(Atoms(**{**base, "blocked": True, "wide": True}))
     <Branch.CASE1_GAP: 'case1_gap'>
@@ -179,14 +189,21 @@ def figure3(atoms: Atoms) -> Branch:
 
 
 @traces("fig3.partition", "fig3.both_conditions")
-def decide(atoms: Atoms) -> Branch:
-    """The one Figure 3 branch whose guard holds for ``atoms`` (plain or numpy booleans).
+def decide(atoms: Atoms[object]) -> Branch:
+    """Choose the Figure 3 branch for ``atoms``: :func:`figure3`.
 
-    Raises :class:`~ifgm_ref.core.errors.InvariantError` if the guards do not hold for exactly
-    one branch -- the partition property, proved for all atom values in
-    ``proofs/flowchart.py``. The guards are evaluated, and the partition checked, once per
-    combination of atom values in a process (:func:`branch_of`): a planner's step looks the
-    branch up.
+    Parameters
+    ----------
+    atoms : Atoms
+        One step's atoms (``bool`` or numpy booleans).
+
+    Returns
+    -------
+    Branch
+        The one branch whose guard in :data:`GUARDS` holds. That exactly one holds for every
+        combination of atoms is not checked here, at every step, but proved once:
+        ``proofs/flowchart.py`` for all atom values, ``tests/test_flowchart.py`` for each of
+        the 1,024 combinations (a guard that overlaps another fails both).
 
     Examples
     --------
@@ -198,19 +215,4 @@ def decide(atoms: Atoms) -> Branch:
     >>> decide(Atoms(**{**base, "blocked": True, "wide": True, "close": True}))
     <Branch.TOO_CLOSE: 'too_close'>
     """
-    return branch_of(tuple(map(bool, _atom_values(atoms))))
-
-
-#: The atoms' values, in :meth:`Atoms.names` order.
-_atom_values = operator.attrgetter(*Atoms.names())
-
-
-@functools.cache
-def branch_of(values: tuple[bool, ...]) -> Branch:
-    """The one branch whose guard holds for the atom ``values`` (in :meth:`Atoms.names`
-    order), the guards evaluated on numpy booleans and checked to partition; cached."""
-    atoms = Atoms(*(np.bool_(value) for value in values))
-    holding = [branch for branch, guard in GUARDS.items() if bool(guard(atoms))]
-    if len(holding) != 1:
-        raise InvariantError(f"guards hold for {holding}, but should for exactly one [{atoms}]")
-    return holding[0]
+    return figure3(atoms)
