@@ -71,10 +71,9 @@ def eq1_gap_midpoint(p1: tuple[float, float], p2: tuple[float, float]) -> Point:
 
         (x_g, y_g = (x_1 + x_2)/2, (y_1 + y_2)/2)        (1)
 
-    The misplaced parenthesis is a typo; the reading is
-    ``(x_g, y_g) = ((x_1 + x_2)/2, (y_1 + y_2)/2)``. Literal and interpreted forms coincide,
-    so there is one function. The midpoint is the centre of the largest disc centred on the
-    gap segment that holds neither obstacle point (``proofs.eq1``).
+    The misplaced parenthesis is a typo (errata row 1): the two forms coincide, so there is
+    one function. The midpoint is the centre of the largest disc centred on the gap segment
+    that holds neither obstacle point (``proofs.eq1``).
 
     Parameters
     ----------
@@ -111,8 +110,8 @@ def eq2_gap_angle_literal(x_g: float, y_g: float) -> float:
 
         theta_g = y_g / x_g        (2)
 
-    This is ``tan(theta_g)``, not an angle (``proofs.eq2``); it is kept to show how far the
-    printed form is from the angle it names. Use :func:`eq2_gap_angle` to steer.
+    This is ``tan(theta_g)``, not an angle (errata row 2, ``proofs.eq2``); it is kept to show
+    how far the printed form is from the angle it names. Use :func:`eq2_gap_angle` to steer.
 
     Parameters
     ----------
@@ -157,14 +156,10 @@ def eq2_gap_angle_literal(x_g: float, y_g: float) -> float:
 def eq2_gap_angle(x_g: float, y_g: float) -> float:
     r"""Return the gap centre angle ``theta_g = atan2(y_g, x_g)``, equation (2) as run.
 
-    Printed (section 4, Case-1)::
-
-        theta_g = y_g / x_g        (2)
-
-    The printed ratio is ``tan(theta_g)``; the planner needs the angle itself, the direction of
-    the gap midpoint from the robot, counter-clockwise from the heading. ``atan2`` gives it in
-    ``[-pi, pi]`` for every midpoint; on the half-plane ``x_g > 0``, which holds for every gap
-    inside the 135-degree field of view, it equals ``atan(y_g / x_g)`` exactly (``proofs.eq2``).
+    The printed ratio (:func:`eq2_gap_angle_literal`) is ``tan(theta_g)``; the planner needs
+    the direction of the gap midpoint itself (errata row 2). On the half-plane ``x_g > 0``,
+    which holds for every gap in the 135-degree field of view, it equals ``atan(y_g / x_g)``
+    exactly (``proofs.eq2``).
 
     Parameters
     ----------
@@ -214,8 +209,8 @@ def fgm_gap_centre_angle(d1: float, phi1: float, d2: float, phi2: float) -> floa
 
     with border 1 at robot-frame angle ``-phi1`` (``phi1`` measured clockwise from the heading)
     and border 2 at ``+phi2`` (counter-clockwise), so that ``phi1 + phi2`` is the angular width
-    of the gap. ``proofs.eq2`` derives this symbolically and proves that it is the direction of
-    the eq. (1) midpoint of the two border points, i.e. ``eq2_gap_angle(*eq1_gap_midpoint(...))``.
+    of the gap. It is the direction of the eq. (1) midpoint of the two border points
+    (errata row 10, ``proofs.eq2``).
 
     Parameters
     ----------
@@ -296,9 +291,9 @@ def eq3_goal_angle_literal(current: tuple[float, float], destination: tuple[floa
 
         theta_d = tan^-1( (y_d - y_c) / (x_d - x_c) )        (3)
 
-    ``arctan`` only returns angles in ``(-pi/2, pi/2)``: when the destination is behind
-    (``x_d < x_c``) the printed form points exactly the wrong way, off by pi (``proofs.eq3``).
-    Use :func:`eq3_goal_angle` to steer.
+    ``arctan`` only returns angles in ``(-pi/2, pi/2)``: with the destination behind
+    (``x_d < x_c``) the printed form is off by pi (errata row 5, ``proofs.eq3``). Use
+    :func:`eq3_goal_angle` to steer.
 
     Parameters
     ----------
@@ -344,13 +339,9 @@ def eq3_goal_angle_literal(current: tuple[float, float], destination: tuple[floa
 def eq3_goal_angle(current: tuple[float, float], destination: tuple[float, float]) -> float:
     r"""Return the destination angle ``theta_d = atan2(y_d - y_c, x_d - x_c)``, eq. (3) as run.
 
-    Printed (section 4, Case-1)::
-
-        theta_d = tan^-1( (y_d - y_c) / (x_d - x_c) )        (3)
-
-    The two-argument arctangent keeps the quadrant, so the angle points at the destination in
-    every direction. It equals the printed form exactly when ``x_d > x_c`` and differs from it
-    by exactly pi when ``x_d < x_c`` (``proofs.eq3``).
+    The two-argument arctangent keeps the quadrant the printed form
+    (:func:`eq3_goal_angle_literal`) loses (errata row 5): equal to it when ``x_d > x_c``, pi
+    apart when ``x_d < x_c`` (``proofs.eq3``).
 
     Parameters
     ----------
@@ -427,10 +418,9 @@ def eq4_final_heading_literal(
 
         theta_f = ( (w_g / d_th) * theta_g + w_d * theta_d ) / ( w_g / d_th + w_d )        (4)
 
-    The angles are averaged as plain numbers, so the result depends on how each angle is
-    written: ``theta_d`` and ``theta_d + 2 pi`` give different headings, and two directions
-    either side of +-pi average to the opposite direction (``proofs.eq4``). Use
-    :func:`eq4_final_heading` to steer.
+    The angles are averaged as plain numbers, so ``theta_d`` and ``theta_d + 2 pi`` give
+    different headings and two directions either side of +-pi average to the opposite one
+    (errata row 6, ``proofs.eq4``). Use :func:`eq4_final_heading` to steer.
 
     Parameters
     ----------
@@ -493,18 +483,11 @@ def eq4_final_heading(
 ) -> float:
     r"""Return the final heading ``theta_f`` of equation (4), averaged in the robot frame.
 
-    Printed (section 4, Case-1)::
-
-        theta_f = ( (w_g / d_th) * theta_g + w_d * theta_d ) / ( w_g / d_th + w_d )        (4)
-
-    The weights are as printed (``w_g / d_th`` and ``w_d``). The angles are *directions*, so
-    they are first expressed relative to the robot's ``heading`` and wrapped to ``[-pi, pi)``,
-    then averaged with those weights, and the heading is added back. This is FGM's reading
-    (Sezer & Gokasan compute both angles in the robot frame): the mean of two directions is
-    then the direction between them on the side the robot faces, whatever multiple of 2 pi
-    either was written with. Gaps lie inside the 135-degree field of view, so ``theta_g``
-    relative to the heading never comes near +-pi; the literal mean of world-frame angles can
-    (``proofs.eq4``).
+    The printed weights (``w_g / d_th`` and ``w_d``, :func:`eq4_final_heading_literal`),
+    applied to the angles relative to ``heading``, each wrapped to ``[-pi, pi)``, and the
+    heading added back: FGM's robot-frame reading, so the mean of two directions lies between
+    them on the side the robot faces, whatever multiple of 2 pi either was written with
+    (errata row 6, ``proofs.eq4``).
 
     Parameters
     ----------
@@ -559,10 +542,8 @@ def eq4_final_heading_fgm(
         theta_final = ( (alpha / d_min) * theta_gap + beta * theta_goal ) / ( alpha / d_min + beta )
 
     where ``d_min`` is the distance to the nearest obstacle, so the gap weighs more as obstacles
-    come closer. The IFGM paper prints ``d_th``, a constant threshold, in its place; this
-    function is the FGM form, kept separate from :func:`eq4_final_heading` (rather than a mode
-    switch) because its parameters are different quantities with FGM's own names. It averages
-    in the robot frame exactly as :func:`eq4_final_heading` does.
+    come closer; the IFGM paper prints the constant ``d_th`` in its place (errata row 8). It
+    averages in the robot frame exactly as :func:`eq4_final_heading` does.
 
     Parameters
     ----------
