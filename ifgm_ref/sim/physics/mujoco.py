@@ -6,10 +6,9 @@ One episode step of ``dt`` seconds (the planner's decision period) is:
    physics substep: the turn wanted is the command's heading minus the odometry's, turned at
    ``w = e / dt`` within ``max_turn_rate`` (a velocity command's turn rate is taken as it
    is, within the same limit), and also within ``sqrt(2 alpha |e|)``, the fastest rate from
-   which the body's angular acceleration ``alpha`` can still stop the turn at the heading.
-   The kinematic robot stops turning at once and needs no such bound (``alpha`` infinite);
-   without it the heavy robot overshot every turn and wove about straight headings by
-   +-0.28 rad (BARN's world 4). The speed is the command's, within the robot's top speed
+   which the body's angular acceleration ``alpha`` can still stop the turn at the heading
+   (infinite for the kinematic robot; why: ``docs/physics.md``, "Why these choices"). The
+   speed is the command's, within the robot's top speed
    ``v``. The kinematic robot turns, then drives; a wheeled robot does both at once, along
    an arc.
 2. **Acceleration limits**: at every physics substep the commanded ``(v, w)`` moves towards
@@ -32,10 +31,8 @@ One episode step of ``dt`` seconds (the planner's decision period) is:
 ``ekf_localization`` fuses the wheels' velocities with the IMU's yaw): the heading is the
 IMU's, the chassis' true heading (an ideal gyro), and the position advances by the distance
 the wheels' encoders count, ``R (dphi_l + dphi_r) / 2`` per substep, along the mean heading
-of the substep. Tyre slip (the wheels spin up faster than the robot) makes the position
-drift from the truth; the heading does not drift. Wheel encoders alone drift in heading too:
-about half a degree per sharp 45-degree turn of the paper's body, which the fused odometry
-of real robots exists to avoid. **Sensing** casts the
+of the substep. Tyre slip makes the position drift from the truth; the heading does not
+drift (why not encoders alone: ``docs/physics.md``). **Sensing** casts the
 scan's rays with MuJoCo's ray function (``mj_multiRay``) from the sensor site at the robot's
 centre, horizontally along the chassis' heading, against the obstacles only; the ranges then
 go through the same noise and REP 117 encoding as the kinematic sensor
