@@ -9,7 +9,7 @@ REP 117: ``+inf`` means no return within ``range_max``, ``-inf`` a return nearer
 The paper (section 4, Figure 2) splits the 135-degree field of view into three 45-degree
 beams. Its text gives the *left* beam as "-67.5 to -22.5 degrees" and the *right* one as
 "22.5 to 67.5 degrees", i.e. with clockwise-positive angles; with REP-103 signs the left beam
-is the positive one. See the errata table.
+is the positive one (errata row 11).
 
 A sensor need not be the paper's. The beams keep the paper's angles on any scan: on a wider
 one (a 270-degree LiDAR) the rays beyond +-67.5 degrees belong to no beam, and

@@ -100,9 +100,8 @@ class FGMParams(Tuning):
     alpha : float, default ``8 r``
         Gap weight of the final heading (multiplied by ``1 / d_min``), >= 0, a length. At
         ``8 r`` the gap and the goal weigh the same when the nearest return is four robot
-        diameters away, and the gap dominates nearer than that. In the built-in ``box`` world
-        FGM passes the box for every ``alpha`` from 2 to 100 ft (clearance 0.2 ft at 2, 3.4 ft
-        at 8, 6.9 ft at 100); below that the goal term pulls the robot into the box's corner.
+        diameters away, and the gap dominates nearer than that (measured in the ``box``
+        world: ``docs/benchmark.md``, "Measured").
     beta : float, default 1
         Goal weight of the final heading, >= 0, a number; ``alpha`` and ``beta`` must not
         both be 0.
