@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Iterator
+from dataclasses import replace
 from itertools import pairwise
 
 import numpy as np
@@ -51,11 +52,10 @@ def walk(points: list[tuple[float, float]], step: float = 0.1) -> Iterator[Pose]
 
 def first_closure(points: list[tuple[float, float]], goal: Point) -> tuple[int, Pose] | None:
     """Drive a fresh round along ``points``: the first trail point it closes on, and where."""
-    circuit = Circuit()
-    circuit.on_hit()
+    circuit = Circuit().hit()
     for pose in walk(points):
         s = sight(pose, goal)
-        circuit.note(s)
+        circuit = circuit.noted(s)
         at = circuit.closing(s)
         if at is not None:
             return at, pose
@@ -98,13 +98,12 @@ def test_only_points_laid_while_following_close_a_loop() -> None:
     """IFGM lays its trail in every mode (errata row 34); driving towards the goal over a
     place and later following an edge over it the same way is no lap."""
     goal = Point(0.0, 30.0)
-    circuit = Circuit()
-    circuit.on_hit()
+    circuit = Circuit().hit()
     way = circle(3.0, 2.0)
     closed = []
     for k, pose in enumerate(walk(way)):
         s = sight(pose, goal)
-        circuit.note(s, following=k > 100)  # the first 10 ft driven, not following
+        circuit = circuit.noted(s, following=k > 100)  # the first 10 ft driven, not following
         closed.append(circuit.closing(s))
     # Back within return_radius of the first point laid following: a lap on from step 100,
     # less the return radius.
@@ -174,13 +173,34 @@ def test_bug1_retraces_its_trail_to_the_point_nearest_the_goal() -> None:
 
 
 def test_left_q_is_remembered_only_when_met_on_the_way_from_q() -> None:
-    circuit = Circuit()
-    circuit.on_hit()
+    circuit = Circuit().hit()
     assert circuit.left_q == math.inf
-    circuit.q_distance = 7.0
-    circuit.leave()
-    circuit.on_hit()
-    assert circuit.left_q == 7.0 and circuit.phase is CircuitPhase.FIRST_PASS
+    left = replace(circuit, q_distance=7.0).left_at_q()
+    assert left.hit().left_q == 7.0 and left.hit().phase is CircuitPhase.FIRST_PASS
+    assert replace(circuit, q_distance=7.0).hit().left_q == math.inf  # not left at Q
+
+
+def test_a_round_is_a_value_its_changes_return_a_new_one() -> None:
+    """Noting a step, closing the loop, moving on and leaving at Q return the changed round
+    and leave the one they were asked of as it was (IFGM keeps the round in its state)."""
+    goal = Point(-20.0, 0.0)  # Q half a lap on from where the loop closes
+    circuit = Circuit().hit()
+    rounds = [circuit]
+    for pose in walk(circle(3.0, 1.5)):
+        s = sight(pose, goal)
+        rounds.append(rounds[-1].noted(s))
+        if (at := rounds[-1].closing(s)) is not None:
+            break
+    assert at is not None and circuit.phase is CircuitPhase.FIRST_PASS
+    assert len(circuit.trail) == 0 and circuit.travelled == 0.0
+    laid = len(rounds[-2].trail)
+    closed, way_on = rounds[-1].closed(s, at, FollowSide.LEFT)
+    assert way_on and closed.returning and not rounds[-1].returning
+    assert closed.q_distance < math.inf == rounds[-1].q_distance
+    assert len(rounds[-2].trail) == laid  # the longer trail is a new array
+    onward = closed.advanced(sight(Pose(3.0, 0.0, math.pi / 2), goal))
+    assert onward.cursor > closed.cursor == at
+    assert onward.left_at_q().phase is CircuitPhase.LEFT_AT_Q and onward.returning
 
 
 # -- DistBug's free range: no farther than the planner remembers --------------------------------

@@ -213,6 +213,8 @@ class BoundaryPlanner:
     ----------
     follower : EdgeFollower
         The *obstacle avoidance* behaviour and its state.
+    circuit : Circuit
+        Bug1's round of the followed obstacle, a value replaced as the round goes on.
     memory : PerceptMemory
         The obstacle points of the last ``memory_horizon`` seconds.
     body : Body
@@ -229,7 +231,6 @@ class BoundaryPlanner:
         self.rule = rule if rule is not None else LeaveRule()
         self.choose_side = choose_side
         self.follower = EdgeFollower()
-        self.circuit = Circuit()
         self.governor = BrakingGovernor()
         self.reset(Pose(0.0, 0.0, 0.0), Point(0.0, 0.0), EpisodeParams())  # until reset
 
@@ -243,7 +244,7 @@ class BoundaryPlanner:
         self.memory = PerceptMemory(tuning.memory_horizon, params.dt)
         self.follower.reset()
         self.rule.reset(start, goal, params)
-        self.circuit.reset()
+        self.circuit = Circuit()
         self.governor.reset(params)
 
     def step(self, observation: Observation) -> Command:
@@ -257,7 +258,7 @@ class BoundaryPlanner:
         """Move to goal or follow the edge (see the module docstring), given this step's
         ``sight`` (:meth:`observe`): the rule's leaving point, or else Bug1's after a whole
         loop (:mod:`~ifgm_ref.planners.circuit`)."""
-        follower, rule, circuit = self.follower, self.rule, self.circuit
+        follower, rule = self.follower, self.rule
         here = observation.pose.position
         if not follower.following:
             if not sight.meets_obstacle():
@@ -265,24 +266,26 @@ class BoundaryPlanner:
             side = self.choose_side(observation.scan, sight.pose, sight.bearing)
             follower.start(here, side)
             rule.on_hit(sight, follower)
-            circuit.on_hit()
+            self.circuit = self.circuit.hit()
             return self.follow(sight, "follow_edge")
-        circuit.note(sight)
+        self.circuit = circuit = self.circuit.noted(sight)
         if rule.update(sight, follower):
             follower.following = False
             return self.move_to_goal(sight, rule.leave_branch)
         if circuit.returning:
-            heading = circuit.heading_to_q(sight)
+            self.circuit = circuit = circuit.advanced(sight)
             if not circuit.at_q(sight):
                 return steer(
-                    heading, sight.pose, self.body, Behaviour.OBSTACLE_AVOIDANCE, "follow_to_q"
-                )
-            circuit.leave()
+                    circuit.heading_to_q(sight), sight.pose, self.body,
+                    Behaviour.OBSTACLE_AVOIDANCE, "follow_to_q",
+                )  # fmt: skip
+            self.circuit = circuit.left_at_q()
             follower.following = False
             return self.move_to_goal(sight, "leave_at_q")
         back_at = circuit.closing(sight)
         if back_at is not None:
-            if not circuit.close(sight, back_at, follower.side):
+            self.circuit, way_on = circuit.closed(sight, back_at, follower.side)
+            if not way_on:
                 return unreachable(sight, "goal_enclosed")
             return self.follow(sight, "loop_closed")
         return self.follow(sight, "follow_edge")

@@ -43,6 +43,7 @@ bookkeeping; :class:`~ifgm_ref.planners.boundary.BoundaryPlanner` and
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass, field, replace
 from enum import StrEnum
 
 import numpy as np
@@ -106,9 +107,15 @@ class CircuitPhase(StrEnum):
 #: robot was following an edge (0 elsewhere).
 _X, _Y, _HEADING, _GOAL_DISTANCE, _TRAVELLED, _FOLLOWING = range(6)
 
+#: Q before the loop is closed.
+_NO_Q = Point(math.nan, math.nan)
 
+
+@dataclass(frozen=True, eq=False)
 class Circuit:
-    """Bug1's round of the followed obstacle (see the module docstring).
+    """Bug1's round of the followed obstacle (see the module docstring), one immutable value:
+    the methods that change the round return the changed round (:meth:`hit`, :meth:`noted`,
+    :meth:`closed`, :meth:`advanced`, :meth:`left_at_q`); the others only read it.
 
     Attributes
     ----------
@@ -121,60 +128,60 @@ class Circuit:
     left_q : float
         d(Q) of the round before, when the robot left it at Q and met this obstacle without
         leaving another by its own rule in between; ``inf`` otherwise.
+    trail : ndarray, shape (n, 6)
+        The trail laid on the first pass, one row a point: x, y, heading, distance to the
+        goal, distance driven, 1 where following an edge (never written: :meth:`noted`
+        returns a longer one).
+    travelled : float
+        The way driven on the first pass.
+    last : Point or None
+        Where the first pass was noted last (``None`` before).
+    cursor : int
+        On to Q: the trail point steered for.
+    q_index : int
+        Q's trail point.
     """
 
-    def __init__(self) -> None:
-        self.reset()
-
-    def _start(self) -> None:
-        self.q_point = Point(math.nan, math.nan)
-        self.q_distance = math.inf
-        self._trail = np.empty((64, 6))
-        self._laid = 0
-        self._travelled = 0.0  # the way driven since the round began
-        self._last: Point | None = None
-        self._next = 0  # on to Q: the trail point steered for
-        self._q_index = 0  # Q's trail point
+    phase: CircuitPhase = CircuitPhase.IDLE
+    q_point: Point = _NO_Q
+    q_distance: float = math.inf
+    left_q: float = math.inf
+    trail: NDArray[np.float64] = field(default_factory=lambda: np.empty((0, 6)))
+    travelled: float = 0.0
+    last: Point | None = None
+    cursor: int = 0
+    q_index: int = 0
 
     @property
     def returning(self) -> bool:
         """On the way to Q after a whole loop."""
         return self.phase is CircuitPhase.RETURN_TO_Q
 
-    def reset(self) -> None:
-        """A new episode: no obstacle met yet."""
-        self.phase = CircuitPhase.IDLE
-        self.left_q = math.inf
-        self._start()
+    def hit(self) -> Circuit:
+        """An obstacle met: a new first pass. Met on the way from Q, the round remembers d(Q)
+        in :attr:`left_q`."""
+        left_q = self.q_distance if self.phase is CircuitPhase.LEFT_AT_Q else math.inf
+        return Circuit(CircuitPhase.FIRST_PASS, left_q=left_q)
 
-    def on_hit(self) -> None:
-        """An obstacle met: start the first pass. Met on the way from Q, the round remembers
-        d(Q) in :attr:`left_q`."""
-        self.left_q = self.q_distance if self.phase is CircuitPhase.LEFT_AT_Q else math.inf
-        self.phase = CircuitPhase.FIRST_PASS
-        self._start()
-
-    def note(self, sight: Sight, following: bool = True) -> None:
-        """On the first pass, count the way driven since the last call and lay this step's
-        pose on the trail if it lies the trail's spacing beyond the last point laid;
+    def noted(self, sight: Sight, following: bool = True) -> Circuit:
+        """On the first pass, the way driven since the last call counted, and this step's
+        pose laid on the trail if it lies the trail's spacing beyond the last point laid;
         ``following``: whether the robot follows an edge here (only such points close a
         loop: :meth:`closing`)."""
         if self.phase is not CircuitPhase.FIRST_PASS:
-            return
+            return self
         here = sight.pose.position
-        if self._last is not None:
-            self._travelled += distance(self._last, here)
-        self._last = here
-        travelled = self._travelled
-        n = self._laid
+        travelled = self.travelled
+        if self.last is not None:
+            travelled += distance(self.last, here)
+        trail = self.trail
         spacing = TRAIL_SPACING_FRACTION * sight.body.tuning.return_radius
-        if n and travelled < self._trail[n - 1, _TRAVELLED] + spacing:
-            return
-        if n == len(self._trail):
-            self._trail = np.concatenate([self._trail, np.empty_like(self._trail)])
+        if len(trail) and travelled < trail[-1, _TRAVELLED] + spacing:
+            return replace(self, travelled=travelled, last=here)
         pose = sight.pose
-        self._trail[n] = (pose.x, pose.y, pose.theta, sight.goal_distance, travelled, following)
-        self._laid = n + 1
+        point = (pose.x, pose.y, pose.theta, sight.goal_distance, travelled, following)
+        trail = np.concatenate([trail, np.array([point], dtype=np.float64)])
+        return replace(self, trail=trail, travelled=travelled, last=here)
 
     def closing(self, sight: Sight) -> int | None:
         """On the first pass, the trail point the robot is back at, if any: one laid while
@@ -183,8 +190,8 @@ class Circuit:
         if self.phase is not CircuitPhase.FIRST_PASS:
             return None
         tuning = sight.body.tuning
-        trail = self._trail[: self._laid]
-        back = self._travelled - tuning.min_loop
+        trail = self.trail
+        back = self.travelled - tuning.min_loop
         old = int(np.searchsorted(trail[:, _TRAVELLED], back, "right"))
         if old == 0:
             return None
@@ -195,36 +202,45 @@ class Circuit:
         (back_at,) = (near & same_way & (trail[:old, _FOLLOWING] > 0.0)).nonzero()
         return int(back_at[0]) if len(back_at) else None
 
-    def close(self, sight: Sight, at: int, side: FollowSide) -> bool:
+    def closed(self, sight: Sight, at: int, side: FollowSide) -> tuple[Circuit, bool]:
         """Back at trail point ``at`` (:meth:`closing`) after the whole loop, followed with
-        the edge on ``side``: take Q, the loop's point nearest the goal, and start on to it.
+        the edge on ``side``: the round with Q taken, the loop's point nearest the goal, and
+        on its way to it; and whether the goal may yet be reached.
 
-        Return whether the goal may yet be reached: not if it lies on the obstacle's side of
-        the loop (:func:`encloses`: the obstacle gone round surrounds it, or the robot went
-        round the inside of an enclosure with the goal outside), nor if this Q is no nearer
-        the goal, by a step of travel, than the Q the robot left just before meeting this
-        obstacle (:attr:`left_q`: it went round what stood between that Q and the goal and
-        found no nearer way)."""
-        loop = self._trail[at : self._laid]
+        It may not if it lies on the obstacle's side of the loop (:func:`encloses`: the
+        obstacle gone round surrounds it, or the robot went round the inside of an enclosure
+        with the goal outside), nor if this Q is no nearer the goal, by a step of travel,
+        than the Q the robot left just before meeting this obstacle (:attr:`left_q`: it went
+        round what stood between that Q and the goal and found no nearer way)."""
+        loop = self.trail[at:]
         best = int(loop[:, _GOAL_DISTANCE].argmin())
-        self.q_point = Point(float(loop[best, _X]), float(loop[best, _Y]))
-        self.q_distance = float(loop[best, _GOAL_DISTANCE])
-        self._next, self._q_index = at, at + best
-        self.phase = CircuitPhase.RETURN_TO_Q
+        q_distance = float(loop[best, _GOAL_DISTANCE])
+        closed = replace(
+            self,
+            phase=CircuitPhase.RETURN_TO_Q,
+            q_point=Point(float(loop[best, _X]), float(loop[best, _Y])),
+            q_distance=q_distance,
+            cursor=at,
+            q_index=at + best,
+        )
         if encloses(loop[:, :2], sight.body.goal, side):
-            return False
-        return self.q_distance < self.left_q - sight.body.speed * sight.body.dt
+            return closed, False
+        return closed, q_distance < self.left_q - sight.body.speed * sight.body.dt
+
+    def advanced(self, sight: Sight) -> Circuit:
+        """On to Q: the :attr:`cursor` moved past the trail points, short of Q, that lie
+        within ``return_radius`` of the robot."""
+        pose, reach = sight.pose, sight.body.tuning.return_radius
+        trail, cursor = self.trail, self.cursor
+        while cursor < self.q_index and (
+            math.hypot(trail[cursor, _X] - pose.x, trail[cursor, _Y] - pose.y) <= reach
+        ):
+            cursor += 1
+        return self if cursor == self.cursor else replace(self, cursor=cursor)
 
     def heading_to_q(self, sight: Sight) -> float:
-        """On to Q: the heading towards the first trail point, not beyond Q, that lies more
-        than ``return_radius`` ahead of the robot (the trail points passed are dropped)."""
-        pose, reach = sight.pose, sight.body.tuning.return_radius
-        trail = self._trail
-        while self._next < self._q_index and (
-            math.hypot(trail[self._next, _X] - pose.x, trail[self._next, _Y] - pose.y) <= reach
-        ):
-            self._next += 1
-        target = trail[self._next]
+        """On to Q: the heading towards the trail point at the :attr:`cursor`."""
+        pose, target = sight.pose, self.trail[self.cursor]
         return math.atan2(target[_Y] - pose.y, target[_X] - pose.x)
 
     def at_q(self, sight: Sight) -> bool:
@@ -232,9 +248,9 @@ class Circuit:
         and Q within half a ``return_radius`` (the trail's spacing)."""
         spacing = TRAIL_SPACING_FRACTION * sight.body.tuning.return_radius
         return (
-            self._next >= self._q_index and distance(sight.pose.position, self.q_point) <= spacing
+            self.cursor >= self.q_index and distance(sight.pose.position, self.q_point) <= spacing
         )
 
-    def leave(self) -> None:
-        """Left at Q towards the goal."""
-        self.phase = CircuitPhase.LEFT_AT_Q
+    def left_at_q(self) -> Circuit:
+        """The round left at Q towards the goal."""
+        return replace(self, phase=CircuitPhase.LEFT_AT_Q)

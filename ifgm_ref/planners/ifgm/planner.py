@@ -138,7 +138,6 @@ class IFGMPlanner:
 
     def __init__(self, readings: Readings | None = None) -> None:
         self.readings = Readings() if readings is None else readings
-        self.circuit = Circuit()
         self.governor = BrakingGovernor()
         self.last_branch: Branch | None = None
         self.last_seen: tuple[Percepts, IFGMState, Reading] | None = None
@@ -210,7 +209,7 @@ class IFGMPlanner:
         self.body = Body.of(goal, params, tuning)
         self.memory = PerceptMemory(tuning.memory_horizon, params.dt)
         self.step_length = DistBugParams.for_episode(params).step_length
-        self.circuit.reset()
+        self.circuit = Circuit()
         self.governor.reset(params)
         p = IFGMParams.for_episode(params)
         r = params.robot.radius
@@ -276,7 +275,7 @@ class IFGMPlanner:
         view = observation.scan.window().limited(view_range)
         clusters = cluster_points(points if view is scan else scan_points(view), self.ifgm.jump)
         sight = Sight(pose, self.body, self.memory.points, self.goal_bearing(pose))
-        self.circuit.note(sight, following=state.following)
+        self.circuit = self.circuit.noted(sight, following=state.following)
         may_leave = False
         if state.following:
             followed = self._track(sight, state.followed)
@@ -312,10 +311,11 @@ class IFGMPlanner:
         if circuit.returning:
             if not circuit.at_q(sight):
                 return state, False
-            circuit.leave()
+            self.circuit = circuit.left_at_q()
             return state, True
         if (back_at := circuit.closing(sight)) is not None:
-            if not circuit.close(sight, back_at, state.side):  # no way on this way round
+            self.circuit, way_on = circuit.closed(sight, back_at, state.side)
+            if not way_on:  # no way on this way round
                 other = FollowSide.LEFT if state.side is FollowSide.RIGHT else FollowSide.RIGHT
                 state = replace(state, turn_other_way=other)
             return state, False
@@ -395,7 +395,7 @@ class IFGMPlanner:
         side = state.turn_other_way or freer_side(percepts.view, sight.pose, sight.bearing)
         d_min = yardstick_at_hit(state.d_min, sight.pose.position, sight.body.goal)
         if self.circuit.phase is not CircuitPhase.FIRST_PASS:
-            self.circuit.on_hit()
+            self.circuit = self.circuit.hit()
         return replace(
             state,
             mode=Mode.FOLLOWING,
@@ -412,10 +412,11 @@ class IFGMPlanner:
     def _follow(self, state: IFGMState, sight: Sight, branch: Branch) -> tuple[IFGMState, Command]:
         """Follow the edge with IBA -- after a whole loop, retrace it to Q (Bug1's round,
         errata row 34); if the edge is forgotten, head for the goal instead."""
-        circuit = self.circuit
-        heading = (
-            circuit.heading_to_q(sight) if circuit.returning else edge_heading(sight, state.side)
-        )
+        if self.circuit.returning:
+            self.circuit = self.circuit.advanced(sight)
+            heading: float | None = self.circuit.heading_to_q(sight)
+        else:
+            heading = edge_heading(sight, state.side)
         if heading is None:  # the edge is forgotten: the obstacle is behind us
             state = replace(state, mode=Mode.MOVE_TO_GOAL)
             return state, steer(sight.bearing, sight.pose, self.body, TO_GOAL, branch)
