@@ -7,8 +7,11 @@ of the oracle's modules and not Hypothesis; each name of the face is its module'
 from __future__ import annotations
 
 import importlib
+import importlib.util
+import re
 import subprocess
 import sys
+from pathlib import Path
 
 import pytest
 
@@ -64,3 +67,42 @@ def test_check_passes_its_arguments_to_check_planner() -> None:
     }
     with pytest.raises(AssertionError, match="collision_free"):
         face.check("straight", **arguments, on_fail="raise")
+
+
+def _oracle_layers() -> tuple[tuple[tuple[str, ...], ...], tuple[str, ...]]:
+    """``ORACLE_LAYERS`` of tests/test_layers.py, where the oracle's layers are checked, and
+    its ``_PACKAGES`` (whose modules have layers of their own)."""
+    path = Path(__file__).with_name("test_layers.py")
+    spec = importlib.util.spec_from_file_location("_oracle_layers_of_test_layers", path)
+    assert spec is not None and spec.loader is not None
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module.ORACLE_LAYERS, module._PACKAGES
+
+
+def test_every_oracle_module_has_its_line_in_the_docs_with_its_layer() -> None:
+    """docs/oracle-modules.md says why each module is there, at the layer it is checked at."""
+    package = Path(face.__file__).parent
+    modules = {
+        ".".join(("ifgm_ref", *p.relative_to(package.parent).with_suffix("").parts)).removesuffix(
+            ".__init__"
+        )
+        for p in package.rglob("*.py")
+    }
+    doc = (package.parents[1] / "docs" / "oracle-modules.md").read_text()
+    rows = dict(re.findall(r"^\| `(ifgm_ref\.oracle[\w.]*)` \| (\d) \|", doc, re.MULTILINE))
+    assert set(rows) == modules, (
+        f"missing from the docs: {sorted(modules - set(rows))}; "
+        f"no such module: {sorted(set(rows) - modules)}"
+    )
+    layers, packages = _oracle_layers()
+    for module, layer in rows.items():
+        placed = [
+            level
+            for level, members in enumerate(layers)
+            for m in members
+            if module == m or (m not in packages and module.startswith(f"{m}."))
+        ]
+        assert placed == [int(layer)], (
+            f"{module}: the docs say layer {layer}, ORACLE_LAYERS {placed}"
+        )
