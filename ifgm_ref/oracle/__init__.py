@@ -85,11 +85,8 @@ def check(
     level: str | None = None,
     spec: str | Path | None = None,
 ) -> Report:
-    """Check a planner implementation against every property it promises.
-
-    The few arguments an implementer needs of
-    :func:`~ifgm_ref.oracle.runner.check_planner`, which takes more (the equations, noise,
-    processes, progress).
+    """Check a planner implementation against every property it promises: the arguments an
+    implementer needs of :func:`~ifgm_ref.oracle.runner.check_planner` (which takes more).
 
     Parameters
     ----------
@@ -101,10 +98,10 @@ def check(
         How hard to look: examples per check (50, 200, 1000; ``robust``: 50 under the noise
         the planner promises; ``brief``: 10).
     promises : Promises or str, optional
-        What it promises, which decides the checks that apply, or a built-in planner's name
-        (default: a built-in's own, else IFGM's).
+        What it promises (the checks that apply), or a built-in planner's name (default: a
+        built-in's own, else IFGM's).
     checks : iterable of str, optional
-        Run only these checks (default: all that apply).
+        Run only these checks (default: every one that applies).
     expected_failed_checks : mapping of str to str, optional
         ``{check: reason}``: checks known to fail, reported as expected failures.
     artifacts : path or None, default "oracle-failures"
