@@ -13,6 +13,8 @@ nothing; the planner (:mod:`ifgm_ref.planners.ifgm`) carries out the branch
 from __future__ import annotations
 
 import math
+import operator
+from collections.abc import Callable
 from dataclasses import dataclass
 from enum import StrEnum
 
@@ -200,11 +202,83 @@ class Percepts:
 
 
 @dataclass(frozen=True)
+class Threshold:
+    """One atom of Figure 3 declared as a quantity against its threshold: :func:`read`
+    decides by :attr:`holds`, :func:`~ifgm_ref.planners.ifgm.margins.margins` measures
+    :meth:`margin`.
+
+    Attributes
+    ----------
+    quantity : float
+        The percept, a length (``-inf``: a return nearer than ``range_min``; ``+inf``: none).
+    threshold : float
+        What it is compared with.
+    compare : callable
+        The comparison that makes the atom hold, ``operator.le`` (at or below), ``lt`` or ``gt``.
+    """
+
+    quantity: float
+    threshold: float
+    compare: Callable[[float, float], bool]
+
+    @property
+    def holds(self) -> bool:
+        """The comparison holds."""
+        return bool(self.compare(self.quantity, self.threshold))
+
+    def margin(self, unit: float) -> float:
+        """``|quantity - threshold| / unit``; an infinite quantity is never within rounding
+        of a threshold (``inf``)."""
+        return finite_gap(self.quantity, self.threshold) / unit
+
+
+def finite_gap(value: float, threshold: float) -> float:
+    """``|value - threshold|``, ``inf`` unless ``value`` is finite."""
+    return abs(value - threshold) if math.isfinite(value) else math.inf
+
+
+@dataclass(frozen=True)
+class Thresholds:
+    """The atoms of one step that are a quantity against a threshold (:class:`Threshold`);
+    ``None`` where there is nothing to compare, and the atom does not hold.
+
+    Attributes
+    ----------
+    at_goal : Threshold
+        The distance to the goal against the goal tolerance (at or below).
+    blocked : Threshold or None
+        The free length of the corridor towards the goal against the encounter distance or
+        the goal, if nearer (below); ``None`` while looking short (errata row 34).
+    close : Threshold or None
+        The nearest obstacle against ``d_obs`` (at or below); ``None`` without obstacles.
+    wide : Threshold or None
+        The chosen gap's width against ``d_th`` (above); ``None`` without a gap.
+    front : Threshold
+        The front beam's nearest return against ``d_look`` (at or below; rays in error
+        ignored).
+    enclosed : Threshold
+        The view's farthest return against the view range (at or below: every ray returns).
+    """
+
+    at_goal: Threshold
+    blocked: Threshold | None
+    close: Threshold | None
+    wide: Threshold | None
+    front: Threshold
+    enclosed: Threshold
+
+
+def _held(threshold: Threshold | None) -> bool:
+    return threshold is not None and threshold.holds
+
+
+@dataclass(frozen=True)
 class Reading:
-    """What :func:`read` makes of one step: the atoms, and the percepts behind them that the
-    planner acts on or carries to the next step."""
+    """What :func:`read` makes of one step: the atoms, the thresholds they compare, and the
+    percepts behind them that the planner acts on or carries to the next step."""
 
     atoms: Atoms
+    thresholds: Thresholds
     gap: Gap | None  # the chosen gap (Case-1 steers through it)
     gap_mid: Point | None  # its middle, world frame, if wider than d_th
     preemptor: Point | None  # Case-3's obstacle of most impact
@@ -262,6 +336,29 @@ def preemptor(
     return Point(float(point[0]), float(point[1]))
 
 
+def thresholds(percepts: Percepts, gap: Gap | None, short_look: bool) -> Thresholds:
+    """The :class:`Thresholds` of ``percepts`` with the chosen ``gap``, looking short or not."""
+    sight, params, view = percepts.sight, percepts.params, percepts.view
+    free_ahead = sight.goal_free_length
+    nearest = min((c.nearest for c in percepts.clusters), default=None)
+    front = view.ranges[view.beam_mask(Beam.FRONT)]
+    return Thresholds(
+        at_goal=Threshold(sight.goal_distance, percepts.goal_tolerance, operator.le),
+        blocked=None
+        if short_look
+        else Threshold(free_ahead, min(params.d_look, sight.goal_distance), operator.lt),
+        close=None if nearest is None else Threshold(nearest, params.d_obs, operator.le),
+        wide=None if gap is None else Threshold(gap.width, params.d_th, operator.gt),
+        front=Threshold(float(np.fmin.reduce(front, initial=math.inf)), params.d_look, operator.le),
+        # -inf (a return nearer than range_min) returns too; nan (an error) does not
+        enclosed=Threshold(
+            float(view.ranges.max(initial=-math.inf)),
+            sight.body.tuning.view_range,
+            operator.le,
+        ),
+    )
+
+
 @traces("fig3.both_conditions", "fig3.case1", "fig3.case2", "fig3.dead_end")
 def read(percepts: Percepts, state: IFGMState) -> Reading:
     """The flowchart's atoms for ``percepts`` in ``state``, and the percepts behind them."""
@@ -270,36 +367,27 @@ def read(percepts: Percepts, state: IFGMState) -> Reading:
     gap, gap_mid = chosen_gap(
         pose, percepts.gaps, state.gap_mid, params, percepts.readings.gap_choice
     )
-    nearest = min((c.nearest for c in clusters), default=math.inf)
     sides = {c.side for c in clusters}
     one_sided = bool(clusters) and (sides == {Side.LEFT} or sides == {Side.RIGHT})
-    gap_wide = gap is not None and gap.width > params.d_th
-    free_ahead = sight.goal_free_length
-    short_look = state.short_look and not free_ahead >= params.d_look  # in the open again
-    view = percepts.view
-    front_near = bool((view.ranges[view.beam_mask(Beam.FRONT)] <= params.d_look).any())
-    # Every ray returns within the view range (-inf too): the view ahead is closed.
-    enclosed = bool((view.ranges <= sight.body.tuning.view_range).all())
+    short_look = state.short_look and not sight.goal_free_length >= params.d_look  # open again
+    found = thresholds(percepts, gap, short_look)
+    gap_wide = _held(found.wide)
     following = state.following
     other = preemptor(pose, clusters, state.followed, params) if following else None
     atoms = Atoms(
-        at_goal=sight.goal_distance <= percepts.goal_tolerance,
+        at_goal=found.at_goal.holds,
         turning=state.turning,
         avoiding=following,
         # Looking short, an obstacle is met as IBA meets one (errata row 34): in the corridor
         # within the encounter distance, and the nearest ahead -- not the one just left.
-        blocked=(
-            sight.meets_obstacle()
-            if short_look
-            else free_ahead < min(params.d_look, sight.goal_distance)
-        ),
+        blocked=sight.meets_obstacle() if found.blocked is None else found.blocked.holds,
         free=following and percepts.may_leave,
-        close=nearest <= params.d_obs,
+        close=_held(found.close),
         # Case-1 needs a gap measured from afar (d_look): near, gaps look wider than they
         # are (errata row 23), so not while looking short.
         wide=gap_wide and not short_look,
         one_sided=one_sided,
-        dead_end=front_near and enclosed and not gap_wide,
+        dead_end=found.front.holds and found.enclosed.holds and not gap_wide,
         preempt=other is not None,
     )
-    return Reading(atoms, gap, gap_mid, other, short_look)
+    return Reading(atoms, found, gap, gap_mid, other, short_look)

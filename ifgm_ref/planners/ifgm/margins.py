@@ -23,7 +23,7 @@ from ifgm_ref.paper.percepts.clusters import Gap
 from ifgm_ref.paper.percepts.points import point_to_world
 from ifgm_ref.planners.distbug import DistBugRule
 from ifgm_ref.planners.iba import beam_openness
-from ifgm_ref.planners.ifgm.atoms import IFGMState, Percepts, Reading
+from ifgm_ref.planners.ifgm.atoms import IFGMState, Percepts, Reading, finite_gap
 from ifgm_ref.planners.ifgm.readings import DeadEndSide, GapChoice, GapReading, LeavingRule
 from ifgm_ref.planners.sight import IN_VIEW_MARGIN, Sight
 
@@ -88,12 +88,10 @@ def margins(
     >>> {name: round(value, 3) for name, value in found.items()}
     {'at_goal': 59.368, 'blocked': inf}
     """
-    sight, params = percepts.sight, percepts.params
-    r = sight.body.radius
-    found = {"at_goal": abs(sight.goal_distance - percepts.goal_tolerance) / r}
-    if not reading.short_look:
-        reach = min(params.d_look, sight.goal_distance)
-        found["blocked"] = _finite_gap(sight.goal_free_length, reach) / r
+    r, declared = percepts.sight.body.radius, reading.thresholds
+    found = {"at_goal": declared.at_goal.margin(r)}
+    if declared.blocked is not None:  # not while looking short
+        found["blocked"] = declared.blocked.margin(r)
     atoms = reading.atoms
     if atoms.blocked and not atoms.avoiding and not atoms.turning:  # meeting an obstacle
         found.update(_encounter(percepts, reading))
@@ -167,13 +165,13 @@ def _leave_margin(percepts: Percepts, state: IFGMState) -> float:
     d, free = sight.goal_distance, sight.goal_free_length
     view_range = sight.body.tuning.view_range
     lengths = [
-        _finite_gap(free, min(view_range, d)),
-        _finite_gap(d - min(free, view_range), state.d_min),
+        finite_gap(free, min(view_range, d)),
+        finite_gap(d - min(free, view_range), state.d_min),
     ]
     progress = percepts.readings.leaving_rule is LeavingRule.FREE_PATH_OR_PROGRESS
     if progress and not state.escaped:
         reach = d - DistBugRule.free_range(sight)
-        lengths += [abs(reach), _finite_gap(reach, state.d_min - percepts.step_length)]
+        lengths += [abs(reach), finite_gap(reach, state.d_min - percepts.step_length)]
     return min(edge - off, min(lengths) / sight.body.radius)
 
 
@@ -217,21 +215,16 @@ _TAKING_A_SIDE = frozenset(
 def _encounter(percepts: Percepts, reading: Reading) -> dict[str, float]:
     """The margins of the decisions taken on meeting an obstacle: too close, one-sided, the
     gap, the dead end."""
-    params, r = percepts.params, percepts.sight.body.radius
+    r, declared = percepts.sight.body.radius, reading.thresholds
     found: dict[str, float] = {}
-    clusters = percepts.clusters
-    if clusters:
-        found["close"] = abs(min(c.nearest for c in clusters) - params.d_obs) / r
-        found["side"] = min(abs(float(c.angles[i])) for c in clusters for i in (0, -1))
-    if reading.gap is not None:
-        found["wide"] = abs(reading.gap.width - params.d_th) / r
+    if declared.close is not None:
+        found["close"] = declared.close.margin(r)
+        found["side"] = min(abs(float(c.angles[i])) for c in percepts.clusters for i in (0, -1))
+    if declared.wide is not None:
+        found["wide"] = declared.wide.margin(r)
     found.update(_widest_margin(percepts))
-    view = percepts.view
-    front = view.ranges[view.beam_mask(Beam.FRONT)]
-    if len(front):
-        found["front"] = _finite_gap(float(front.min()), params.d_look) / r
-    view_range = percepts.sight.body.tuning.view_range
-    found["enclosed"] = _finite_gap(float(view.ranges.max()), view_range) / r
+    found["front"] = declared.front.margin(r)
+    found["enclosed"] = declared.enclosed.margin(r)
     return found
 
 
@@ -272,9 +265,3 @@ def _side_margin(percepts: Percepts) -> float:
     if not math.isclose(left, right, rel_tol=1e-9):
         return abs(left - right) / sight.body.radius
     return abs(wrap_angle(sight.bearing - sight.pose.theta))
-
-
-def _finite_gap(value: float, threshold: float) -> float:
-    """``|value - threshold|``; a return nearer than ``range_min`` (``-inf``) or none at all
-    (``+inf``) is never within rounding of a threshold."""
-    return abs(value - threshold) if math.isfinite(value) else math.inf
