@@ -30,7 +30,7 @@ Scans use the default sensor (:class:`~ifgm_ref.core.params.SensorParams`: 135 d
 1.8 degrees apart, ``range_max`` 15 ft) unless another is passed. Ranges follow REP 117:
 ``+inf`` no return, ``-inf`` a return nearer than ``range_min`` (drawn only with
 ``too_near=True``). Lengths are in ft, angles in radians; bands of ranges named below (near,
-middle, far) are chosen round the reference's defaults (``d_obs`` 1.66 ft, ``d_look`` 8 ft).
+middle, far) are drawn round the reference's thresholds (:data:`PARAMS`).
 
 Every draw is labelled, so a failing example says which choice it came from; scans shrink
 towards fewer obstacles, constant ranges and the low end of the middle band.
@@ -50,30 +50,36 @@ from numpy.typing import NDArray
 from ifgm_ref.core.laserscan import LaserScan
 from ifgm_ref.core.params import SensorParams
 from ifgm_ref.core.pose import Point, Pose, wrap_angle
-from ifgm_ref.core.protocol import Observation
+from ifgm_ref.core.protocol import EpisodeParams, Observation
+from ifgm_ref.paper.flowchart import DEAD_END_STEP as STEP
+from ifgm_ref.planners.boundary import BoundaryParams
+from ifgm_ref.planners.ifgm.atoms import IFGMParams
 
 #: The paper's sensor with the reference's defaults (section 4, Figure 2).
 DEFAULT_SENSOR = SensorParams()
-#: Goal distances, ft: within the reference's goal tolerance plus one step (0.63 ft), near
-#: (inside the encounter distance ``d_look``), and far.
-NEAR_GOAL = (1e-3, 0.7)
-MID_GOAL = (0.7, 8.0)
-FAR_GOAL = (8.0, 100.0)
-#: Bands of ranges, ft: near (round the reference's ``d_obs`` = 1.66), middle (up to its
-#: encounter distance ``d_look`` = 8), far (to the default ``range_max``).
-NEAR_RANGE = (0.2, 2.5)
-MID_RANGE = (2.5, 8.5)
-#: Half-width of the reference's robot-wide corridor, ft: radius 1 plus the 0.25 margin
+#: The reference's episode and thresholds, which the bands below are drawn round.
+EPISODE = EpisodeParams()
+PARAMS = IFGMParams.for_episode(EPISODE)
+#: The goal counts as reached within the goal tolerance plus one step of travel, ft (0.63).
+AT_GOAL = EPISODE.goal_tolerance + EPISODE.robot.speed * EPISODE.dt
+#: Goal distances, ft: round the goal's reach (a tenth beyond it), near (inside the
+#: encounter distance ``d_look``), and far.
+NEAR_GOAL = (1e-3, 1.1 * AT_GOAL)
+MID_GOAL = (NEAR_GOAL[1], PARAMS.d_look)
+FAR_GOAL = (PARAMS.d_look, 100.0)
+#: Bands of ranges, ft: near (round ``d_obs``, to half as far again beyond it), middle (to
+#: half a radius beyond ``d_look``, so both sides of it are drawn), far (to ``range_max``).
+NEAR_RANGE = (0.2, 1.5 * PARAMS.d_obs)
+MID_RANGE = (NEAR_RANGE[1], PARAMS.d_look + EPISODE.robot.radius / 2)
+#: Half-width of the reference's robot-wide corridor, ft: the radius plus the corridor margin
 #: (:class:`~ifgm_ref.planners.boundary.BoundaryParams`). :func:`dead_end_rooms` keeps its
 #: openings clear of such a corridor with :data:`ROOM_MARGIN` to spare.
-HALF_WIDTH = 1.25
+HALF_WIDTH = EPISODE.robot.radius + BoundaryParams.for_episode(EPISODE).corridor_margin
 #: Angular margin of the room construction, radians: every direction is either free with
 #: this much room or blocked this far inside a wall, so ray sampling cannot decide it.
 ROOM_MARGIN = math.radians(2.0)
 #: The layouts of :func:`scans`.
 LAYOUTS = ("open", "sides", "one side", "enclosed")
-#: The dead-end rule's step (section 4: "turns in steps of 45 degrees").
-STEP = math.pi / 4
 
 
 def scan_from_ranges(ranges: NDArray[np.float64], *, sensor: SensorParams) -> LaserScan:
