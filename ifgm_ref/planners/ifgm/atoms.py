@@ -1,13 +1,5 @@
-"""IFGM's inputs to Figure 3: its thresholds, its state, one step's percepts, and the pure
-function from percepts and state to the flowchart's atoms.
-
-Section 4 of the paper: "if both conditions are true (refer to Figure 3), the robot is steered
-by FGM otherwise it is steered by IBA" -- *max gap > d_th* and *distance to the nearest
-obstacle > d_obs* -- with Case-2 for obstacles on one side only, Case-3 for an obstacle of more
-impact, and the dead-end rule for U and H shapes. :func:`read` computes every such yes/no fact
-(:class:`~ifgm_ref.paper.flowchart.Atoms`) from :class:`Percepts` and :class:`IFGMState` and changes
-nothing; the planner (:mod:`ifgm_ref.planners.ifgm`) carries out the branch
-:func:`~ifgm_ref.paper.flowchart.decide` picks and moves to the next state.
+"""IFGM's inputs to Figure 3: thresholds, state, one step's percepts, and :func:`read`, the
+pure function from percepts and state to the flowchart's atoms (section 4; errata row 18).
 """
 
 from __future__ import annotations
@@ -37,41 +29,31 @@ from ifgm_ref.planners.tuning import Tuning, derived
 @traces("d_th", "d_obs", "s3.robot_dimensions")
 @dataclass(frozen=True)
 class IFGMParams(Tuning):
-    """IFGM's thresholds and weights (section 4), each derived from the robot.
+    """IFGM's thresholds and weights (section 4), each derived from the robot. Why each
+    default: ``docs/flowchart.md`` (IFGM's thresholds).
 
     Parameters
     ----------
     d_th : float, default ``3 r``
-        Gap threshold, a length: Case-1 needs a gap wider than this. The paper: greater than
-        the robot's size (we read: its diameter 2 r, errata row 12); one more radius leaves
-        half a radius of clearance either side when passing through the middle.
+        Gap threshold, a length: Case-1 needs a gap wider than this (errata row 12).
     d_obs : float, default ``r + v/2``
-        Nearest-obstacle threshold: at or below it IBA takes over. The paper: it "depends on
-        speed of the robot"; we take the robot's radius plus half a second of travel, so that
-        a robot passing through the middle of a gap just wider than ``d_th`` is not "too close".
+        Nearest-obstacle threshold: at or below it IBA takes over (errata row 16).
     d_look : float, default ``8 r``
         Encounter distance: an obstacle in the robot-wide corridor towards the goal nearer
-        than this makes the robot leave *move to goal*; four robot diameters (about half the
-        paper's sensor range), so that gaps are measured while there is still room to steer.
-        After leaving an edge by DistBug's progress rule with an obstacle still ahead, the
-        encounter distance is IBA's short one (``standoff + hit_margin``) and Case-1 is off
-        until the corridor towards the goal is free for ``d_look`` again (errata row 24).
+        than this ends *move to goal*; IBA's short one after leaving an edge with an obstacle
+        still ahead (errata row 24).
     w_g : float, default ``9 r``
-        Gap weight of eq. (4), a length: eq. (4) weighs the gap by ``w_g / d_th``, so only a
-        length keeps the balance with the goal at every scale (errata row 29). With the
-        default ``d_th`` = 3 r the gap counts three times as much as the goal, so the robot
-        commits to the gap.
+        Gap weight of eq. (4), a length, so that ``w_g / d_th`` keeps its balance with the
+        goal at every scale (errata row 29).
     w_d : float, default 1
         Goal weight of eq. (4), a number.
     jump : float, default ``2 r``
-        Two consecutive returns further apart than this belong to different obstacles: a
-        robot cannot pass between returns nearer than its diameter anyway.
+        Consecutive returns further apart belong to different obstacles (errata row 15).
     preempt_margin : float, default ``r/2``
-        Case-3: another obstacle pre-empts the followed edge when it is this much nearer.
+        Case-3: another obstacle pre-empts the followed edge when this much nearer.
     turn_done : float, default ``w dt / 2``
-        A dead-end turn is done when the heading is within this angle of its target: half
-        the turn of one step, the most a robot turning at ``w`` and deciding every ``dt``
-        can promise; a port's rounding stays within it (errata row 32).
+        A dead-end turn is done within this angle of its target: half a step's turn
+        (errata row 32).
     """
 
     d_th: float = derived("3*r", Unit.LENGTH)
@@ -239,25 +221,9 @@ def finite_gap(value: float, threshold: float) -> float:
 
 @dataclass(frozen=True)
 class Thresholds:
-    """The atoms of one step that are a quantity against a threshold (:class:`Threshold`);
-    ``None`` where there is nothing to compare, and the atom does not hold.
-
-    Attributes
-    ----------
-    at_goal : Threshold
-        The distance to the goal against the goal tolerance (at or below).
-    blocked : Threshold or None
-        The free length of the corridor towards the goal against the encounter distance or
-        the goal, if nearer (below); ``None`` while looking short (errata row 34).
-    close : Threshold or None
-        The nearest obstacle against ``d_obs`` (at or below); ``None`` without obstacles.
-    wide : Threshold or None
-        The chosen gap's width against ``d_th`` (above); ``None`` without a gap.
-    front : Threshold
-        The front beam's nearest return against ``d_look`` (at or below; rays in error
-        ignored).
-    enclosed : Threshold
-        The view's farthest return against the view range (at or below: every ray returns).
+    """The atoms of one step that compare a quantity with a threshold, ``None`` where there
+    is nothing to compare (the atom does not hold; ``blocked``: looking short, errata row 34).
+    Their quantities and thresholds: :data:`~ifgm_ref.planners.ifgm.margins.DECISIONS`.
     """
 
     at_goal: Threshold
