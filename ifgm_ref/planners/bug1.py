@@ -15,12 +15,9 @@ Bug1 is that round alone: the :class:`~ifgm_ref.planners.boundary.BoundaryPlanne
 with a leaving rule that never leaves earlier (:class:`~ifgm_ref.planners.boundary.LeaveRule`).
 
 Symbols: H (hit point, :attr:`EdgeFollower.hit_point`), Q (:attr:`Circuit.q_point`),
-d(x, T) (distance to the goal). Lumelsky and Stepanov's bound on the path length,
-``D + 1.5 * sum(p_i)`` (D the start-goal distance, ``p_i`` the perimeters of the obstacles
-met), holds for a robot that returns to Q the shorter way; ours goes on the same way round
-(errata row 34), which allows ``D + 2 * sum(p_i)``. The tests check the 1.5 on worlds whose
-Q lies in the first half of the loop, with ``p_i`` the perimeter of the curve the robot can
-follow: the obstacle grown by the stand-off.
+d(x, T) (distance to the goal). Ours goes on to Q the same way round (errata row 34), so
+Lumelsky and Stepanov's bound ``D + 1.5 * sum(p_i)`` becomes ``D + 2 * sum(p_i)``
+(``docs/ifgm-state.md``).
 """
 
 from __future__ import annotations

@@ -1,4 +1,6 @@
-"""Bug1's round of one obstacle: what every boundary follower falls back on after a lap.
+"""Bug1's round of one obstacle, what every boundary follower falls back on after a lap
+(errata row 34: with the paper's 135-degree sensor a disc robot can go round an obstacle
+without its own leaving rule ever firing).
 
 Paper, section 2.1.1: "In Bug-1, after detecting an obstacle, the robot moves around the
 obstacle completely in order to find the point (leaving point) having minimum distance to
@@ -7,37 +9,19 @@ point and generates a new referenced path to destination." Reference: V. J. Lume
 A. A. Stepanov, "Path-planning strategies for a point mobile automaton moving amidst unknown
 obstacles of arbitrary shape", *Algorithmica* 2 (1987) 403-430.
 
-Bug1 is complete: every leaving point Q is the nearest point of its obstacle to the goal T,
-so the next obstacle, if any, is met nearer T than Q, and no obstacle is met twice. The other
-followers (Bug2, DistBug, IBA, IFGM's IBA) leave earlier, by their own rules, and for a point
-robot that sees all round those rules suffice. A disc robot with the paper's 135-degree sensor
-can go round an obstacle without any of them firing: the goal is out of view wherever the way
-to it is free, and in view only where a second obstacle stands in it (IFGM lapped a post for
-ever with a box behind it; DistBug and Bug2 reported a solvable goal unreachable). So every
-follower here runs Bug1's round beside its own rule (errata row 34):
+The round (:class:`Circuit`, in the phases of :class:`CircuitPhase`):
 
-1. *first pass*: from the hit point H, lay a trail of the way followed; the loop is closed
-   where the robot passes a point of its trail again, heading the same way (within
-   :data:`SAME_WAY`), at least ``min_loop`` further on. The trail, not H alone, because IFGM
-   may start following away from the edge (after a dead-end escape it drives to the wall),
-   so H need not lie on the loop; the same way, because a robot that follows a wall into a
-   narrow bay and out again, or crosses its own way between two obstacles near each other,
-   has not gone round;
-2. *on to Q*: once the loop is closed, retrace the trail, the same way round, to the point Q
-   of the loop nearest the goal. Lumelsky and Stepanov's robot follows the edge again, the
-   shorter way; ours drives along its own trail, because a disc robot that follows the
-   nearest edge may, where two obstacles are near each other, follow the other one the
-   second time and never come to Q;
-3. at Q, leave towards the goal. Lumelsky and Stepanov's robot first tests whether it can
-   move towards the goal from Q; ours reads the test from the loop instead, when it closes
-   (:meth:`Circuit.close`): the goal cannot be reached if it lies on the obstacle's side of
-   the loop (:func:`encloses`), or if the robot met this obstacle on leaving the last Q and
-   its loop has no point nearer the goal than that Q. A disc robot's test at Q could not
-   tell the obstacle it went round from another one just ahead of Q.
+1. *first pass*: from the hit point H, lay a trail of the way driven (:meth:`Circuit.noted`);
+   the loop is closed where the robot passes a point of its trail again, heading the same way
+   (within :data:`SAME_WAY`), at least ``min_loop`` further on (:meth:`Circuit.closing`);
+2. *on to Q*: retrace the trail, the same way round, to the loop's point Q nearest the goal
+   (:meth:`Circuit.closed`, :meth:`Circuit.advanced`, :meth:`Circuit.at_q`);
+3. at Q, leave towards the goal (:meth:`Circuit.left_at_q`), unless the loop showed that the
+   goal cannot be reached (:func:`encloses`, :attr:`Circuit.left_q`).
 
-A follower whose own rule leaves earlier never gets to step 2. The class here holds the
-bookkeeping; :class:`~ifgm_ref.planners.boundary.BoundaryPlanner` and
-:class:`~ifgm_ref.planners.ifgm.planner.IFGMPlanner` drive it.
+A follower whose own rule leaves earlier never gets to step 2. Why the trail, the heading and
+the loop's shape instead of Lumelsky and Stepanov's hit point, edge and test at Q: errata row
+34 and ``docs/ifgm-state.md``, which also says who holds the round.
 """
 
 from __future__ import annotations

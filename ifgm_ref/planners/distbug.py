@@ -7,43 +7,22 @@ obstacle calculating and simultaneously storing the distance from its current an
 positions to destination"; section 5.1, Figure 5a: "the robot is following the edge of
 obstacle until it reaches to the leaving point having minimum distance to destination".
 
-Kamon and Rivlin's leaving rule, with their symbols: while following the obstacle met at the
-hit point H, with x the robot's position and T the goal,
+Kamon and Rivlin's leaving rule (errata row 22): while following the obstacle met at the
+hit point H, with x the robot's position and T the goal, leave when ``d(x, T) - F <= 0`` (T
+is visible) or ``d(x, T) - F <= d_min - Step``, where ``d_min`` is the least d(x, T) seen
+since H and ``F`` the free range towards T (:meth:`DistBugRule.free_range`). For a disc
+robot that sees 135 degrees ahead:
 
-* ``d_min`` is the least distance d(x, T) seen since H (the current position included);
-* ``F`` is the free range towards T, as far as the range sensor sees;
-* the robot leaves when ``d(x, T) - F <= 0`` (T is visible) or
-  ``d(x, T) - F <= d_min - Step``: moving ``F`` towards T brings it at least ``Step`` nearer
-  than it has been on this obstacle, so the next hit point (if any) is nearer T than any
-  point of this one and the algorithm terminates.
+* ``F = 0`` when the goal is outside the field of view;
+* ``F = d(x, T)`` when the robot-wide corridor towards the goal
+  (:attr:`~ifgm_ref.planners.sight.Sight.goal_free_length`) is free up to a goal within
+  ``view_range``, the farthest the planners remember (errata row 34);
+* otherwise ``F = min(free length, view_range) - (standoff + hit_margin)``, at least 0: as
+  far as the robot can go before it meets the wall again (errata row 22).
 
-After a whole loop without having left, the robot falls back on Bug1's round (the
-skeleton's :mod:`~ifgm_ref.planners.circuit`): on to the loop's point nearest the goal and
-leave there, or stop with ``goal_unreachable`` if the loop shows that the obstacle stands
-between the robot and the goal. The rule is :class:`DistBugRule`; IBA's rule builds on it.
-
-Our robot is a disc that sees 135 degrees ahead, so ``F`` is adapted, and says so:
-
-* ``F = 0`` when the goal is outside the field of view (``goal_in_view`` fails): the
-  sensor cannot see towards it, and nothing is known to be free;
-* ``F = d(x, T)`` when the corridor towards the goal (as wide as the robot, see
-  :attr:`~ifgm_ref.planners.sight.Sight.goal_free_length`) is free up to the
-  goal and the goal is within ``view_range``: T is visible (the planners remember returns
-  only that far, so beyond it a corridor free of remembered points is not known to be
-  free; with BARN's 30 m LiDAR, ``range_max`` there let IFGM leave towards clutter it had
-  just gone round, for ever: errata row 34);
-* otherwise ``F = min(free length, view_range) - (standoff + hit_margin)``, at least 0: the
-  distance the robot can move towards T before the skeleton's hit test (an obstacle nearer
-  than ``standoff + hit_margin`` in the corridor) fires again. Without that subtraction a
-  robot at the stand-off from a wall facing the goal sees ``F = standoff``, leaves when
-  ``standoff >= Step`` and re-hits the same wall at once, with a new H, and never closes its
-  loop: Kamon and Rivlin's guarantee that the next hit point is ``Step`` nearer T holds
-  only for the distance the robot can actually travel.
-
-``Step`` is the ``step_length`` parameter. Kamon and Rivlin leave it as a constant of the
-robot; we take the robot's diameter, the least progress that moves the whole robot to a
-place it did not occupy, and large enough that re-hitting an edge the robot has just left
-is not mistaken for progress.
+``Step`` is ``step_length``, the robot's diameter. After a whole loop without having left,
+Bug1's round (:mod:`~ifgm_ref.planners.circuit`). The rule is :class:`DistBugRule`; IBA's
+rule builds on it. The reasons at length: ``docs/ifgm-state.md``.
 """
 
 from __future__ import annotations

@@ -17,14 +17,9 @@ So IBA is DistBug (:class:`~ifgm_ref.planners.distbug.DistBugPlanner`) with thes
   the robot-wide corridor towards it is clear as far as the paper's sensor sees, or to the
   goal, and following it that far would bring the robot as near the goal as it has been;
 * **one yardstick**: progress is measured against the best distance to the goal of the whole
-  episode, not of the current obstacle (errata row 31).
-
-The free-path rule alone never fires while a second obstacle stands within sensor range
-behind the followed one: the robot circles the first for ever (the oracle's
-``converges_open`` found two posts in a row; errata row 24). So IBA keeps DistBug's own
-leaving rule too, which IBA improves on rather than drops: it also leaves when the free range
-promises ``step_length`` of progress beyond the best distance seen on this obstacle. That
-rule alone guarantees termination (Kamon and Rivlin); the free-path rule leaves earlier.
+  episode, not of the current obstacle (errata row 31);
+* **DistBug's rule kept** beside the free path, which alone never fires while a second
+  obstacle stands behind the followed one (errata row 24).
 
 After a whole loop without leaving it falls back on Bug1's round, as DistBug does
 (:mod:`~ifgm_ref.planners.circuit`, errata row 34).

@@ -21,14 +21,11 @@ alone picks the branch, and this module carries it out:
   ``dead_end_escape``, ``dead_end_handover`` (errata row 35).
 
 A step is four parts, and the state (:class:`~ifgm_ref.planners.ifgm.atoms.IFGMState`, one
-immutable record: the mode, the dead-end turn, the followed point and its side, the Case-3
-stack, IBA's ``d_min``) is written in one place, :meth:`IFGMPlanner._decide`:
+immutable record) is written in one place, :meth:`IFGMPlanner._decide`:
 :meth:`~IFGMPlanner.perceive` (the percepts, and the state as they update it), the atoms
 (:func:`~ifgm_ref.planners.ifgm.atoms.read`, pure), the branch
-(:func:`~ifgm_ref.paper.flowchart.decide`), and :meth:`~IFGMPlanner.transition`, one ``match`` over
-the branch that returns the next state and the command. IBA's parts are its functions
-(:func:`~ifgm_ref.planners.iba.leaves`, :func:`~ifgm_ref.planners.boundary.edge_heading`),
-not objects with state of their own.
+(:func:`~ifgm_ref.paper.flowchart.decide`), and :meth:`~IFGMPlanner.transition`, one ``match``
+over the branch that returns the next state and the command (``docs/ifgm-state.md``).
 
 On a sensor wider than the paper's (a 270-degree LiDAR) Figure 3 reads the paper's 135-degree
 view of the scan (:meth:`~ifgm_ref.core.laserscan.LaserScan.window`); the whole scan is remembered
@@ -121,7 +118,7 @@ class IFGMPlanner:
         The obstacle points of the last ``memory_horizon`` seconds (a handle the state
         leaves out: a growing log).
     circuit : Circuit
-        Bug1's round (errata row 34; a handle too).
+        Bug1's round (errata row 34), a value replaced as the round goes on.
     ifgm : IFGMParams
         The thresholds and weights of this episode.
     last_branch : Branch or None
@@ -247,12 +244,10 @@ class IFGMPlanner:
     def _decide(self, observation: Observation) -> tuple[Command, Percepts]:
         """One step: perceive, read the atoms, let Figure 3 pick the branch, carry it out.
         The only place the state is written after :meth:`reset`."""
-        state, percepts = self.perceive(self.state, observation)
-        reading = read(percepts, read_in := state)
+        read_in, percepts = self.perceive(self.state, observation)
+        reading = read(percepts, read_in)
         branch = decide(reading.atoms)
-        if (reading.gap_mid, reading.short_look) != (state.gap_mid, state.short_look):
-            state = replace(state, gap_mid=reading.gap_mid, short_look=reading.short_look)
-        state, command = self.transition(state, percepts, reading, branch)
+        state, command = self.transition(read_in, percepts, reading, branch)
         self.state, self.last_branch, self.last_seen = state, branch, (percepts, read_in, reading)
         return command, percepts
 
@@ -296,17 +291,10 @@ class IFGMPlanner:
         return tracked or nearest_remembered(sight, None, jump)
 
     def may_leave(self, state: IFGMState, sight: Sight) -> tuple[IFGMState, bool]:
-        """IBA's leaving rules (errata row 24): a free path, or DistBug's progress rule --
-        but not while following the wall round from outside after a dead end, where the
-        progress rule would lead straight back into the U or H (``tests/worlds/small_u``).
-        Beside them, Bug1's round (:mod:`~ifgm_ref.planners.circuit`, errata row 34): one
-        round from the first obstacle met until the robot leaves at a Q, its trail laid in
-        every mode, so that it also closes when IFGM leaves an edge by IBA's rules, meets the
-        same obstacles again and goes the same way round (a lap without progress); once the
-        loop closes, only Q is left from: along the loop to the point Q nearest the goal, and
-        leave there. IFGM has no "goal unreachable": a loop that shows the goal cannot be
-        reached is left at its Q all the same. A round that found no way on sends the next
-        one the other way round (``turn_other_way``)."""
+        """Whether to leave the edge: by IBA's rules, a free path or, unless ``escaped``,
+        DistBug's progress (errata row 24); once Bug1's round has closed its loop, only at Q
+        (errata row 34). Returns ``state`` with ``turn_other_way`` set when the loop closes
+        with no way on (IFGM has no "goal unreachable": it leaves at that Q all the same)."""
         circuit = self.circuit
         if circuit.returning:
             if not circuit.at_q(sight):
@@ -329,7 +317,10 @@ class IFGMPlanner:
     def transition(
         self, state: IFGMState, percepts: Percepts, reading: Reading, branch: Branch
     ) -> tuple[IFGMState, Command]:
-        """Carry out Figure 3's ``branch``: the next state and this step's command."""
+        """Carry out Figure 3's ``branch``: the next state, which keeps the gap chosen and
+        the look of ``reading``, and this step's command."""
+        if (reading.gap_mid, reading.short_look) != (state.gap_mid, state.short_look):
+            state = replace(state, gap_mid=reading.gap_mid, short_look=reading.short_look)
         sight = percepts.sight
         pose, bearing = sight.pose, sight.bearing
         match branch:
@@ -493,15 +484,9 @@ class IFGMPlanner:
         return 1 if way is DeadEndSide.LEFT else -1
 
     def side_walls(self, view: LaserScan) -> tuple[bool, bool]:
-        """Whether the left and the right beam of the view have a return within ``d_look``.
-
-        Section 5.2: driving out of a dead end, the robot "detects the side wall in 135
-        degrees FOV and finds the clear path in respective direction after reaching to the
-        end of wall". We read: the escape ends where a side beam that has seen a wall since
-        the robot started driving out sees none within ``d_look`` (errata row 34); the
-        robot then follows the wall it has passed the end of. Driving on to ``d_look``, it
-        could meet another obstacle first, follow that one, and come back into the dead end
-        for ever (``tests/worlds/rigid_motion_long_mixed.json``)."""
+        """Whether the left and the right beam of the view have a return within ``d_look``:
+        the dead-end escape ends where a side beam that has seen a wall sees none, "after
+        reaching to the end of wall" (section 5.2; errata row 34)."""
         d_look = self.ifgm.d_look
         return (
             bool((view.ranges[view.beam_mask(Beam.LEFT)] <= d_look).any()),
