@@ -9,6 +9,7 @@ import operator
 from collections.abc import Callable
 from dataclasses import dataclass
 from enum import StrEnum
+from typing import NamedTuple
 
 import numpy as np
 
@@ -183,8 +184,7 @@ class Percepts:
     step_length: float
 
 
-@dataclass(frozen=True)
-class Threshold:
+class Threshold(NamedTuple):
     """One atom of Figure 3 declared as a quantity against its threshold: :func:`read`
     decides by :attr:`holds`, :func:`~ifgm_ref.planners.ifgm.margins.margins` measures
     :meth:`margin`.
@@ -219,8 +219,7 @@ def finite_gap(value: float, threshold: float) -> float:
     return abs(value - threshold) if math.isfinite(value) else math.inf
 
 
-@dataclass(frozen=True)
-class Thresholds:
+class Thresholds(NamedTuple):
     """The atoms of one step that compare a quantity with a threshold, ``None`` where there
     is nothing to compare (the atom does not hold; ``blocked``: looking short, errata row 34).
     Their quantities and thresholds: :data:`~ifgm_ref.planners.ifgm.margins.DECISIONS`.
