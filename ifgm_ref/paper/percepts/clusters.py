@@ -13,7 +13,7 @@ in the field of view. A gap is the Euclidean distance *between* two consecutive 
 the nearest point of one to the nearest point of the other, the narrowest place the robot must
 pass. Not between their average positions, which for a long wall lie far from its end, nor
 between the borders the robot happens to see, which for obstacles seen obliquely are far
-corners (see the errata table; :func:`gaps_between` offers the printed reading too).
+corners (errata row 15; :func:`gaps_between` offers the printed reading too).
 """
 
 from __future__ import annotations
