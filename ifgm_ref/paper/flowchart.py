@@ -149,17 +149,8 @@ GUARDS: dict[Branch, Guard] = {
 
 def figure3(atoms: Atoms[object]) -> Branch:
     """Read Figure 3 top down, in the order of ``docs/flowchart.md``'s diagram and of the C
-    port's ``decide``.
-
-    Parameters
-    ----------
-    atoms : Atoms
-        The atoms, of any type with a truth value (``bool``, numpy booleans).
-
-    Returns
-    -------
-    Branch
-        One of :data:`DECIDED`: the branch whose guard in :data:`GUARDS` holds.
+    port's ``decide``: the branch (of :data:`DECIDED`) whose guard in :data:`GUARDS` holds for
+    ``atoms`` (of any type with a truth value).
 
     Examples
     --------
@@ -190,20 +181,11 @@ def figure3(atoms: Atoms[object]) -> Branch:
 
 @traces("fig3.partition", "fig3.both_conditions")
 def decide(atoms: Atoms[object]) -> Branch:
-    """Choose the Figure 3 branch for ``atoms``: :func:`figure3`.
+    """Choose the Figure 3 branch for one step's ``atoms``: :func:`figure3`'s.
 
-    Parameters
-    ----------
-    atoms : Atoms
-        One step's atoms (``bool`` or numpy booleans).
-
-    Returns
-    -------
-    Branch
-        The one branch whose guard in :data:`GUARDS` holds. That exactly one holds for every
-        combination of atoms is not checked here, at every step, but proved once:
-        ``proofs/flowchart.py`` for all atom values, ``tests/test_flowchart.py`` for each of
-        the 1,024 combinations (a guard that overlaps another fails both).
+    That exactly one guard of :data:`GUARDS` holds, the branch :func:`figure3` takes, is not
+    checked here, at every step: ``proofs/flowchart.py`` proves it for all atom values and
+    ``tests/test_flowchart.py`` checks it for each of the 1,024 combinations.
 
     Examples
     --------
