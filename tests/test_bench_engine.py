@@ -83,7 +83,7 @@ def test_a_body_without_the_mujoco_engine_is_a_usage_error(
     argv = ["bench", "--classes", "u", "--per-class", "1", "--body", "paper"]
     assert main([*argv, "--out", str(tmp_path / "out")]) == 2
     err = capsys.readouterr().err
-    assert err == "ifgm-ref: error: --body applies to --engine mujoco only\n"
+    assert err == "ifgm-ref: error: `body` applies to the mujoco engine only, got 'paper'\n"
     assert not (tmp_path / "out").exists()  # refused before anything ran
 
 

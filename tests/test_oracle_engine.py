@@ -10,7 +10,7 @@ from typing import ClassVar
 import pytest
 
 from ifgm_ref.apps.cli import main
-from ifgm_ref.core.errors import ImplementationError
+from ifgm_ref.core.errors import ParameterError
 from ifgm_ref.core.params import SimParams
 from ifgm_ref.core.pose import Point, Pose
 from ifgm_ref.core.protocol import Command, EpisodeParams, Observation
@@ -79,9 +79,9 @@ def test_kinematic_stays_the_default() -> None:
 
 
 def test_bad_engines_are_refused() -> None:
-    with pytest.raises(ImplementationError, match="`engine` must be one of"):
-        check_planner("ifgm", profile=Profile("p", 1, engine="bullet"))
-    with pytest.raises(ImplementationError, match="with engine 'mujoco'"):
+    with pytest.raises(ParameterError, match="`engine` must be one of"):
+        check_planner("ifgm", profile=Profile("p", 1, engine="bullet"))  # type: ignore[arg-type]
+    with pytest.raises(ParameterError, match="`body` applies to the mujoco engine only"):
         Profile("p", 1, body="jackal")
     argv = ["oracle", "--planner", "ifgm", "--body", "jackal", "--check", "deterministic"]
     assert main(argv) == 2  # a body needs --engine mujoco: bad input, before any run

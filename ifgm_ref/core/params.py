@@ -15,6 +15,7 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass, field, fields, replace
+from enum import StrEnum
 from typing import Any, Final, Literal, Self
 
 from ifgm_ref.core.elements import traces
@@ -240,8 +241,39 @@ AUTO: Final = "auto"
 DT: Final = 0.1
 #: The default goal tolerance, ft (the same two).
 GOAL_TOLERANCE: Final = 0.5
-#: The engines that move the robot (:mod:`ifgm_ref.sim.engine`); the first is the default.
-ENGINES: Final = ("kinematic", "mujoco")
+
+
+class EngineName(StrEnum):
+    """The engines that move the robot (:mod:`ifgm_ref.sim.engine`, ``--engine``), each made
+    by :data:`ifgm_ref.sim.engine.ENGINE_FACTORIES`.
+
+    >>> EngineName("mujoco") is EngineName.MUJOCO, f"{EngineName.KINEMATIC}"
+    (True, 'kinematic')
+    """
+
+    #: The paper's instant robot (the default).
+    KINEMATIC = "kinematic"
+    #: A robot with mass on the MuJoCo physics engine; the only one with a ``body``.
+    MUJOCO = "mujoco"
+
+
+#: The engines' names; the first is the default.
+ENGINES: Final = tuple(EngineName)
+
+
+def engine_named(name: str) -> EngineName:
+    """The engine ``name``, or a :class:`ParameterError` naming the known ones.
+
+    >>> engine_named("physx")
+    Traceback (most recent call last):
+    ...
+    ifgm_ref.core.errors.ParameterError: `engine` must be one of kinematic, mujoco, got 'physx'
+    """
+    try:
+        return EngineName(name)
+    except ValueError:
+        known = ", ".join(ENGINES)
+        raise ParameterError(f"`engine` must be one of {known}, got {name!r}") from None
 
 
 @dataclass(frozen=True)
@@ -269,14 +301,15 @@ class SimParams:
         :mod:`ifgm_ref.sim.simulator`, thresholds in :mod:`ifgm_ref.sim.laps`); ``None`` or 0 turns
         this rule off. With both rules off a robot that makes no progress runs to
         ``max_time``.
-    engine : str, default "kinematic"
+    engine : EngineName or str, default "kinematic"
         What senses and moves the robot (:mod:`ifgm_ref.sim.engine`): ``kinematic``, the paper's
         instant robot, or ``mujoco``, a robot with mass on the MuJoCo physics engine
         (:mod:`ifgm_ref.sim.physics`).
     body : str or None, default None
         The ``mujoco`` engine's robot body (:data:`ifgm_ref.sim.physics.bodies.BODIES`:
         ``paper`` or ``jackal``); ``None`` takes the Jackal for BARN's robot and the
-        paper's otherwise. The kinematic engine has no body.
+        paper's otherwise. The kinematic engine has no body: a body with it is a
+        :class:`ParameterError` here, the one place this rule is checked.
     """
 
     dt: float = DT
@@ -284,18 +317,17 @@ class SimParams:
     goal_tolerance: float = GOAL_TOLERANCE
     stall_time: float | Literal["auto"] | None = AUTO
     stall_laps: int | None = 2
-    engine: str = ENGINES[0]
+    engine: EngineName | str = EngineName.KINEMATIC  # made an EngineName on construction
     body: str | None = None
 
     def __post_init__(self) -> None:
         require("dt", self.dt, POSITIVE)
         require("max_time", self.max_time, POSITIVE)
-        if self.engine not in ENGINES:
-            raise ParameterError(
-                f"`engine` must be one of {', '.join(ENGINES)}, got {self.engine!r}"
-            )
+        object.__setattr__(self, "engine", engine_named(self.engine))
         if self.body is not None and not isinstance(self.body, str):
             raise ParameterError(f"`body` must be a body's name or None, got {self.body!r}")
+        if self.body is not None and self.engine is not EngineName.MUJOCO:  # the one place
+            raise ParameterError(f"`body` applies to the mujoco engine only, got {self.body!r}")
         require("goal_tolerance", self.goal_tolerance, POSITIVE)
         if self.stall_time is not None and self.stall_time != AUTO:
             if isinstance(self.stall_time, str):

@@ -15,11 +15,18 @@ from dataclasses import dataclass, replace
 from hypothesis import HealthCheck, Phase, settings
 
 from ifgm_ref.core.errors import ImplementationError
-from ifgm_ref.core.params import DT, ENGINES, GOAL_TOLERANCE, SensorParams, SimParams
+from ifgm_ref.core.params import (
+    DT,
+    GOAL_TOLERANCE,
+    EngineName,
+    SensorParams,
+    SimParams,
+    engine_named,
+)
 from ifgm_ref.oracle.implementation import Promises
 from ifgm_ref.sim.engine import require_physics
 from ifgm_ref.sim.noise import NoiseLevels
-from ifgm_ref.sim.physics.bodies import BODIES
+from ifgm_ref.sim.physics.bodies import body_named
 
 __all__ = [
     "PROFILES",
@@ -46,10 +53,12 @@ class Profile:
     robustness run (:mod:`ifgm_ref.oracle.robust`).
 
     ``engine`` senses and moves the robot in every episode the checks simulate
-    (:data:`ifgm_ref.core.params.ENGINES`: ``kinematic``, the default, or ``mujoco``), with the
-    ``mujoco`` engine's ``body`` (``None``: the robot's default). It changes no draw: the
-    same examples run on either engine. ``robot`` changes these fields of the robot of every
-    world drawn (``--robot``, ``--speed``: :func:`~ifgm_ref.core.params.changed_robot`), as pairs.
+    (:class:`ifgm_ref.core.params.EngineName`: ``kinematic``, the default, or ``mujoco``), with
+    the ``mujoco`` engine's ``body`` (``None``: the robot's default); either wrong is a
+    :class:`~ifgm_ref.core.errors.ParameterError`, as :class:`SimParams` words it. It changes
+    no draw: the same examples run on either engine. ``robot`` changes these fields of the
+    robot of every world drawn (``--robot``, ``--speed``:
+    :func:`~ifgm_ref.core.params.changed_robot`), as pairs.
     ``sensor`` (``None``: each world's own) replaces the sensor of every world drawn, and
     every episode runs at ``dt`` and ends as reached within ``goal_tolerance``: what an
     implementation declares in its specification (:mod:`ifgm_ref.oracle.specification`).
@@ -62,7 +71,7 @@ class Profile:
     seed: int | None = None
     noise: NoiseLevels | None = None
     robust: bool = False
-    engine: str = ENGINES[0]
+    engine: EngineName | str = EngineName.KINEMATIC  # made an EngineName on construction
     body: str | None = None
     robot: tuple[tuple[str, float], ...] = ()
     sensor: SensorParams | None = None
@@ -70,20 +79,14 @@ class Profile:
     goal_tolerance: float = GOAL_TOLERANCE
 
     def __post_init__(self) -> None:
-        if self.engine not in ENGINES:
-            raise ImplementationError(
-                f"`engine` must be one of {', '.join(ENGINES)}, got {self.engine!r}"
-            )
-        if self.body is not None and (self.engine != "mujoco" or self.body not in BODIES):
-            raise ImplementationError(
-                f"`body` must be one of {', '.join(sorted(BODIES))} with engine 'mujoco', got "
-                f"{self.body!r} with engine {self.engine!r}"
-            )
+        object.__setattr__(self, "engine", self.sim().engine)  # SimParams checks engine, body
+        if self.body is not None:
+            body_named(self.body)
 
     @property
     def physical(self) -> bool:
         """Whether its episodes run on a robot with mass (not the kinematic engine)."""
-        return self.engine != ENGINES[0]
+        return self.engine is not EngineName.KINEMATIC
 
     def sim(self) -> SimParams:
         """The simulation settings every episode of its checks starts from: the engine and
@@ -195,20 +198,20 @@ def on_engine(profile: Profile | str, engine: str | None, body: str | None = Non
     is). The ``mujoco`` engine needs MuJoCo installed: a
     :class:`~ifgm_ref.core.errors.ParameterError` says what to install otherwise.
 
-    >>> on_engine("quick", "mujoco", "jackal").sim().engine
-    'mujoco'
-    >>> on_engine("quick", "kinematic", "jackal")  # doctest: +ELLIPSIS
+    >>> print(on_engine("quick", "mujoco", "jackal").sim().engine)
+    mujoco
+    >>> on_engine("quick", "kinematic", "jackal")
     Traceback (most recent call last):
     ...
-    ifgm_ref.core.errors.ImplementationError: `body` must be one of jackal, jackal-disc, paper ...
+    ifgm_ref.core.errors.ParameterError: `body` applies to the mujoco engine only, got 'jackal'
     """
     profile = profile_named(profile) if isinstance(profile, str) else profile
     if engine is None and body is None:
         return profile
-    engine = profile.engine if engine is None else engine
-    if engine == "mujoco":
+    name = profile.engine if engine is None else engine_named(engine)
+    if name is EngineName.MUJOCO:
         require_physics()
-    return replace(profile, engine=engine, body=body)
+    return replace(profile, engine=name, body=body)
 
 
 def engine_tag(profile: Profile) -> str:

@@ -10,7 +10,8 @@ things that depend on the robot's physics:
 * :meth:`Engine.move`: one time step under a command; the new true pose, the clearance of the
   path swept and whether the robot collided.
 
-Two engines (:data:`ifgm_ref.core.params.ENGINES`, ``--engine`` on the command line):
+Two engines (:class:`ifgm_ref.core.params.EngineName`, ``--engine`` on the command line;
+:data:`ENGINE_FACTORIES` makes each):
 
 ``kinematic`` (default)
     The paper's robot as the paper simulates it: it turns, then drives, at once
@@ -29,10 +30,12 @@ from __future__ import annotations
 
 import importlib.util
 import math
+from collections.abc import Callable
 from typing import TYPE_CHECKING, Protocol
 
 from ifgm_ref.core.errors import ParameterError
 from ifgm_ref.core.laserscan import LaserScan
+from ifgm_ref.core.params import EngineName, engine_named
 from ifgm_ref.core.pose import Pose
 from ifgm_ref.core.protocol import Command
 from ifgm_ref.sim.collision import ClearanceChecker
@@ -121,20 +124,32 @@ class KinematicEngine:
         return self.checker.pose_clearance(pose)
 
 
+def _mujoco(world: World, sim: SimParams) -> Engine:
+    """The MuJoCo engine, once MuJoCo is found installed (:func:`require_physics`)."""
+    require_physics()
+    from ifgm_ref.sim.physics.mujoco import MujocoEngine
+
+    return MujocoEngine(world, sim.dt, sim.body)
+
+
+#: How each engine (:class:`~ifgm_ref.core.params.EngineName`) is made for a world and the
+#: simulation's settings: the one registry of engines.
+ENGINE_FACTORIES: dict[EngineName, Callable[[World, SimParams], Engine]] = {
+    EngineName.KINEMATIC: lambda world, sim: KinematicEngine(world, sim.dt),
+    EngineName.MUJOCO: _mujoco,
+}
+
+
 def make_engine(world: World, sim: SimParams) -> Engine:
-    """The engine ``sim.engine`` for ``world``, stepped at ``sim.dt``.
+    """The engine ``sim.engine`` for ``world``, stepped at ``sim.dt``
+    (:data:`ENGINE_FACTORIES`).
 
     Raises
     ------
     ParameterError
         For ``mujoco`` when MuJoCo is not installed (the message says what to install).
     """
-    if sim.engine == "kinematic":
-        return KinematicEngine(world, sim.dt)
-    require_physics()
-    from ifgm_ref.sim.physics.mujoco import MujocoEngine
-
-    return MujocoEngine(world, sim.dt, sim.body)
+    return ENGINE_FACTORIES[engine_named(sim.engine)](world, sim)
 
 
 def require_physics() -> None:

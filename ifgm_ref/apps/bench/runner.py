@@ -22,7 +22,7 @@ from typing import Any, TypeVar
 
 from ifgm_ref.apps.bench.tasks import NOISE_FREE, Condition, Row, WorldSpec, run_world
 from ifgm_ref.core.errors import ParameterError
-from ifgm_ref.core.params import ENGINES, SimParams
+from ifgm_ref.core.params import ENGINES, EngineName, SimParams
 from ifgm_ref.core.progress import progress_bar
 
 #: What a task's function returns.
@@ -115,10 +115,8 @@ def check_engine(engine: str, body: str | None) -> None:
     ...
     ifgm_ref.core.errors.ParameterError: `body` applies to the mujoco engine only, got 'paper'
     """
-    SimParams(engine=engine, body=body)  # an unknown engine
-    if body is not None and engine != "mujoco":
-        raise ParameterError(f"`body` applies to the mujoco engine only, got {body!r}")
-    if engine == "mujoco":
+    sim = SimParams(engine=engine, body=body)  # an unknown engine, a body off mujoco
+    if sim.engine is EngineName.MUJOCO:
         from ifgm_ref.sim.engine import require_physics
         from ifgm_ref.sim.physics.bodies import body_named
 

@@ -20,7 +20,7 @@ from ifgm_ref.apps.cli.common import (
 )
 from ifgm_ref.apps.cli.interrupt import exit_status
 from ifgm_ref.core.errors import ParameterError
-from ifgm_ref.core.params import SimParams
+from ifgm_ref.core.params import EngineName, SimParams
 
 if TYPE_CHECKING:
     from ifgm_ref.apps.bench.tasks import Condition, WorldSpec
@@ -174,7 +174,7 @@ def run_bench(args: argparse.Namespace) -> int:
     where = f"Dask scheduler {args.scheduler}" if args.scheduler else _processes(args.jobs)
     points = f" x {_count(len(conditions), 'noise level')}" if args.noise_sweep is not None else ""
     planners, worlds = _count(len(args.planners), "planner"), _count(len(specs), "world")
-    engine = f", {sim.engine} engine" if sim.engine != "kinematic" else ""
+    engine = f", {sim.engine} engine" if sim.engine is not EngineName.KINEMATIC else ""
     print(f"bench: {planners} x {worlds}{points} ({source}) on {where}{engine}", file=sys.stderr)
     if args.record is not None:
         output_folder("--record", args.record, is_folder=True)
@@ -361,7 +361,7 @@ def _header(
 
 def _engine_line(args: argparse.Namespace) -> str:
     """What moved the robot (the rows' ``engine``), and its body."""
-    if args.engine != "mujoco":
+    if args.engine != EngineName.MUJOCO:
         return f"{args.engine} (the paper's instant robot)"
     body = args.body or "the Jackal in BARN's worlds, the paper's robot in the others"
     return f"mujoco (a robot with mass on the MuJoCo physics engine), body: {body}"

@@ -11,7 +11,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, NoReturn
 
 from ifgm_ref.core.errors import ParameterError
-from ifgm_ref.core.params import ENGINES, ROBOT_OPTIONS, SimParams, robot_changes
+from ifgm_ref.core.params import ENGINES, ROBOT_OPTIONS, EngineName, SimParams, robot_changes
 from ifgm_ref.core.validate import POSITIVE, violation
 from ifgm_ref.io.transport.external import STARTUP_TIMEOUT, TIMEOUT
 from ifgm_ref.sim.engine import require_physics
@@ -167,12 +167,12 @@ def add_engine_options(parser: argparse.ArgumentParser) -> None:
 
 def with_engine(sim: SimParams, args: argparse.Namespace) -> SimParams:
     """``sim`` with the engine and body of ``--engine`` and ``--body`` (checked now, before any
-    run: MuJoCo installed, a body only for the mujoco engine)."""
-    if args.body is not None and args.engine != "mujoco":
-        raise ParameterError("--body applies to --engine mujoco only")
-    if args.engine == "mujoco":
+    run: a body only for the mujoco engine, as :class:`SimParams` checks it; MuJoCo
+    installed)."""
+    sim = replace(sim, engine=args.engine, body=args.body)
+    if sim.engine is EngineName.MUJOCO:
         require_physics()
-    return replace(sim, engine=args.engine, body=args.body)
+    return sim
 
 
 def add_robot_options(parser: argparse.ArgumentParser) -> None:
