@@ -13,24 +13,35 @@ from __future__ import annotations
 
 import shlex
 from collections.abc import Callable, Mapping, Sequence
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field, fields, replace
 
-from ifgm_ref.core.errors import ImplementationError, ParameterError
+from ifgm_ref.core.errors import ImplementationError, ParameterError, PlannerError
 from ifgm_ref.core.pose import Point, Pose
+from ifgm_ref.core.promises import ALL_CLASSES, REFERENCE_NOISE_LEVELS, Promised
 from ifgm_ref.core.protocol import EpisodeParams, Planner
 from ifgm_ref.io.transport.external import TIMEOUT
 from ifgm_ref.io.transport.loading import load_planner_factory
-from ifgm_ref.planners import PLANNERS
+from ifgm_ref.planners import PLANNERS, declared_promises
 from ifgm_ref.planners.ifgm.readings import known_names
 from ifgm_ref.sim.noise import NoiseLevels
 
-#: Every solvable world class of :mod:`ifgm_ref.oracle.strategies`.
-ALL_CLASSES = frozenset({"open", "u", "h", "symmetric", "mixed"})
-#: The noise levels the reference planners promise: Gaussian range noise of 2 % of the range,
-#: 5 % of the rays dropping out, odometry drifting by 1 % of the distance
-#: (:mod:`ifgm_ref.sim.noise`). Measured, with the history of these levels: ``docs/oracle.md``,
-#: "Robustness".
-REFERENCE_NOISE = NoiseLevels(range=0.02, dropout=0.05, odometry=0.01)
+__all__ = [
+    "ALL_CLASSES",
+    "PROMISES",
+    "REFERENCE_NOISE",
+    "Implementation",
+    "Promises",
+    "promises_of",
+]
+
+#: The noise levels the reference planners promise
+#: (:data:`~ifgm_ref.core.promises.REFERENCE_NOISE_LEVELS`; :mod:`ifgm_ref.sim.noise`).
+REFERENCE_NOISE = NoiseLevels.parse(REFERENCE_NOISE_LEVELS)
+#: How to say what an implementation the oracle cannot find promises of promises.
+HOW_TO_PROMISE = (
+    "say what it promises: --promises ifgm (ifgm-ref oracle), --ifgm-promises ifgm (pytest), "
+    'promises="ifgm" (check_planner), a --spec file, or a promises attribute on its factory'
+)
 
 
 @dataclass(frozen=True)
@@ -99,40 +110,25 @@ class Promises:
             known_names(self.readings)
         except ParameterError as err:
             raise ImplementationError(f"readings: {err}") from None
-        unknown = set(self.converges_in) - ALL_CLASSES
-        if unknown:
-            raise ImplementationError(
-                f"converges_in: unknown world classes {sorted(unknown)}; "
-                f"known: {', '.join(sorted(ALL_CLASSES))}"
-            )
-        object.__setattr__(self, "converges_in", frozenset(self.converges_in))
+        classes = Promised(converges_in=self.converges_in).converges_in  # checked there
+        object.__setattr__(self, "converges_in", classes)
+
+    @classmethod
+    def declared(cls, promised: Promised) -> Promises:
+        """The promises a planner declared (:class:`~ifgm_ref.core.promises.Promised`), its
+        noise levels as :class:`~ifgm_ref.sim.noise.NoiseLevels`.
+
+        >>> Promises.declared(Promised(noise="range=0.02")).noise.range
+        0.02
+        """
+        values = {f.name: getattr(promised, f.name) for f in fields(Promised)}
+        noise = None if promised.noise is None else NoiseLevels.parse(promised.noise, "noise")
+        return cls(**values | {"noise": noise})
 
 
-#: What each built-in planner promises (paper Table 1 and section 5), and the noise levels at
-#: which it keeps those promises (measured; Bug1, Bug2 and APF miss too often at any level
-#: tried, so they promise none: ``docs/oracle.md``, "Robustness").
+#: What each built-in planner promises, as it declares it (:data:`ifgm_ref.planners.PLANNERS`).
 PROMISES: dict[str, Promises] = {
-    "bug1": Promises(reports_unreachable=True, passes_wide_gaps=False, stops_in_time=True),
-    "bug2": Promises(reports_unreachable=True, passes_wide_gaps=False, stops_in_time=True),
-    "distbug": Promises(
-        reports_unreachable=True, passes_wide_gaps=False, noise=REFERENCE_NOISE, stops_in_time=True
-    ),
-    "iba": Promises(
-        reports_unreachable=True, passes_wide_gaps=False, noise=REFERENCE_NOISE, stops_in_time=True
-    ),
-    # no "goal unreachable" exit
-    "ifgm": Promises(
-        noise=REFERENCE_NOISE, turns_at_dead_ends=True, reference="ifgm", stops_in_time=True
-    ),
-    # FGM steers at the *widest* gap, which beside a wall is the open space past its end.
-    "fgm": Promises(
-        converges_in=frozenset({"open", "symmetric"}),
-        passes_wide_gaps=False,
-        noise=REFERENCE_NOISE,
-        stops_in_time=True,
-    ),
-    "apf": Promises(converges_in=frozenset({"open"}), passes_wide_gaps=False, stops_in_time=True),
-    "straight": Promises(converges_in=frozenset(), collision_free=False, passes_wide_gaps=False),
+    name: Promises.declared(info.promises) for name, info in PLANNERS.items()
 }
 
 
@@ -154,12 +150,46 @@ def default_equations(spec: str) -> str | None:
 
 
 def promises_of(name: str) -> Promises:
-    """The promises of the built-in planner ``name``."""
+    """The promises of the built-in planner ``name``.
+
+    >>> promises_of("dwa").stops_in_time
+    False
+    >>> promises_of("mypkg")
+    Traceback (most recent call last):
+    ...
+    ifgm_ref.core.errors.ImplementationError: no promises known for 'mypkg'; known: apf, bug1, \
+bug2, distbug, dwa, fgm, iba, ifgm, straight
+    """
     try:
         return PROMISES[name]
     except KeyError:
         known = ", ".join(sorted(PROMISES))
         raise ImplementationError(f"no promises known for {name!r}; known: {known}") from None
+
+
+def promises_for(factory: object, label: str, promises: Promises | str | None) -> Promises:
+    """What the implementation ``factory`` (named ``label``) is held to: ``promises`` if given
+    (:class:`Promises` or a built-in planner's name), else what it declares
+    (:func:`ifgm_ref.planners.declared_promises`); neither is one line saying how.
+
+    >>> promises_for(lambda: None, "mypkg.mod:make", None)
+    Traceback (most recent call last):
+    ...
+    ifgm_ref.core.errors.ImplementationError: mypkg.mod:make declares no promises; say what it \
+promises: --promises ifgm (ifgm-ref oracle), --ifgm-promises ifgm (pytest), promises="ifgm" \
+(check_planner), a --spec file, or a promises attribute on its factory
+    """
+    if isinstance(promises, Promises):
+        return promises
+    if promises is not None:
+        return promises_of(promises)
+    try:
+        declared = declared_promises(factory)
+    except PlannerError as err:
+        raise ImplementationError(str(err)) from None
+    if declared is None:
+        raise ImplementationError(f"{label} declares no promises; {HOW_TO_PROMISE}")
+    return Promises.declared(declared)
 
 
 @dataclass
@@ -216,15 +246,13 @@ class Implementation:
     ) -> Implementation:
         """A Python planner named like ``ifgm-ref serve --planner``: built-in or module:attr.
 
-        ``promises`` defaults to the built-in planner's own, or IFGM's for anything else. A
-        factory that makes no planner is an :class:`ImplementationError` here, before any check.
+        ``promises`` defaults to what the planner declares (:func:`promises_for`): a built-in
+        planner's own, a factory's ``promises`` attribute; anything else must be told, or it
+        is an :class:`ImplementationError`, as is a factory that makes no planner, here,
+        before any check.
         """
         factory = load_planner_factory(spec)
-        if promises is None:
-            promises = spec if spec in PROMISES else "ifgm"
-        if isinstance(promises, str):
-            promises = promises_of(promises)
-        return cls(factory, spec, promises, equations)
+        return cls(factory, spec, promises_for(factory, spec, promises), equations)
 
     def declare_readings(self, readings: Mapping[str, str]) -> None:
         """Declare the readings it takes of the paper's open choices (``--reading``,

@@ -103,7 +103,7 @@ def pytest_addoption(parser: pytest.Parser) -> None:
     group.addoption(
         "--ifgm-promises",
         metavar="PLANNER",
-        help="check what this built-in planner promises (default: the built-in's own, or ifgm)",
+        help="check what this built-in planner promises (default: what the planner declares)",
     )
     group.addoption(
         "--ifgm-spec",
@@ -271,6 +271,8 @@ def _implementation(config: pytest.Config) -> Implementation:
             "--ifgm-impl module:factory (or a built-in planner name) or --ifgm-cmd 'PROGRAM'"
         )
     promises = config.getoption("ifgm_promises")
+    if config.getoption("ifgm_spec") is not None:
+        promises = Promises()  # the file declares them (an option besides is refused)
     equations: object | None = None
     try:
         given = _equations(config)
@@ -392,13 +394,13 @@ def pytest_report_header(config: pytest.Config) -> list[str]:
         profile = profile_named(config.getoption("ifgm_profile"))
     promises = config.getoption("ifgm_promises") or (spec if spec in PROMISES else None)
     declared_in = _declared_in(config)
-    promised = PROMISES.get(promises or "ifgm", Promises())
+    promised = PROMISES.get(promises or ("ifgm" if cmd else ""), Promises())
     if declared_in is not None:
         promises, promised = f"declared in {declared_in.source}", declared_in.promises
     lines = [
         f"ifgm-ref oracle: implementation {spec or 'cmd: ' + cmd}",
         f"ifgm-ref oracle: profile {profile.name} ({profile.max_examples} examples per check), "
-        f"promises {promises or 'default'}, equations {_equations(config)}, "
+        f"promises {promises or 'declared by the planner'}, equations {_equations(config)}, "
         f"artifacts {config.getoption('ifgm_artifacts')}",
     ]
     checked, noise = noise_tags(profile, promised)

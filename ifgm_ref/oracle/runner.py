@@ -29,7 +29,7 @@ from typing import Any
 from hypothesis import example, given, seed
 from hypothesis.errors import Flaky
 
-from ifgm_ref.core.errors import ImplementationError
+from ifgm_ref.core.errors import ImplementationError, ParameterError
 from ifgm_ref.core.protocol import Planner
 from ifgm_ref.oracle.check_types import (
     Check,
@@ -42,7 +42,7 @@ from ifgm_ref.oracle.check_types import (
 from ifgm_ref.oracle.checks import CHECKS
 from ifgm_ref.oracle.counterexample import slug, write_evidence
 from ifgm_ref.oracle.crash import crash
-from ifgm_ref.oracle.implementation import Implementation, Promises, promises_of
+from ifgm_ref.oracle.implementation import Implementation, Promises, promises_for
 from ifgm_ref.oracle.profiles import (
     Profile,
     engine_tag,
@@ -403,9 +403,7 @@ def _implementation(
         return Implementation.from_spec(planner, promises=promises, equations=equations)
     name = getattr(planner, "__qualname__", None) or repr(planner)
     label = f"{getattr(planner, '__module__', '')}:{name}".lstrip(":")
-    if isinstance(promises, str) or promises is None:
-        promises = promises_of(promises or "ifgm")
-    return Implementation(planner, label, promises, equations)
+    return Implementation(planner, label, promises_for(planner, label, promises), equations)
 
 
 def check_planner(
@@ -435,7 +433,7 @@ def check_planner(
     profile : {"quick", "standard", "thorough", "robust", "brief"} or Profile, default "quick"
         Examples per check (50, 200, 1000; robust: 50 under the promised noise).
     promises : Promises or str, optional
-        What it promises, or a built-in planner's name (default: a built-in's own, else IFGM's).
+        What it promises, or a built-in planner's name (default: what the planner declares).
     equations : object, optional
         A module or object exposing ``eq1_gap_midpoint`` ... to check eqs. (1)-(4).
     expected_failed_checks, checks : mapping of str to str, iterable of str, optional
@@ -463,7 +461,7 @@ def check_planner(
     """
     impl, profile, level, held_to = _declared(planner, promises, equations, profile, level, spec)
     expected = dict(expected_failed_checks or {})
-    names, profile = _arguments(checks, expected, with_noise(profile, noise), jobs, level)
+    names, profile = _arguments(checks, expected, with_noise(profile, noise), jobs, level, on_fail)
     run = (names, impl, profile, artifacts, expected, jobs, progress, stop_on_failure, level)
     report = replace(_report(impl, profile, _run_checks(*run)), held_to=held_to)
     _act_on(report, on_fail)
@@ -480,10 +478,10 @@ def _declared(
 ) -> tuple[Implementation, Profile | str, Level | str, str]:
     """The implementation, profile and level :func:`check_planner` runs, held to ``spec`` if
     given (:func:`~.specification.declared`), and what that holds it to (``""``: nothing)."""
-    impl = _implementation(planner, promises, equations)
     if spec is None:
-        return impl, profile, level or Level.PAPER, ""
-    return declared(spec, impl, profile, promises, level)
+        return _implementation(planner, promises, equations), profile, level or Level.PAPER, ""
+    told = promises if promises is not None else Promises()  # the file's replace them
+    return declared(spec, _implementation(planner, told, equations), profile, promises, level)
 
 
 def _report(impl: Implementation, profile: Profile, done: tuple[CheckResult, ...]) -> Report:
@@ -498,10 +496,13 @@ def _arguments(
     profile: Profile,
     jobs: int,
     level: Level | str,
+    on_fail: str | None,
 ) -> tuple[list[str], Profile]:
     """Validate :func:`check_planner`'s arguments; return the names of the checks to run and
     the profile."""
     levels_up_to(level)  # an unknown level is refused
+    if on_fail not in (None, "raise", "warn"):
+        raise ParameterError(f"on_fail: must be 'raise', 'warn' or None, got {on_fail!r}")
     names = list(CHECKS) if checks is None else list(checks)
     unknown = [n for n in [*names, *expected] if n not in CHECKS]
     if unknown:

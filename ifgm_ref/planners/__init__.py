@@ -8,10 +8,11 @@ module in this package imports the world, the sensor or the simulator (section 3
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 from ifgm_ref.core.errors import PlannerError
 from ifgm_ref.core.formulas import Scale
+from ifgm_ref.core.promises import REFERENCE_NOISE_LEVELS, Promised
 from ifgm_ref.core.protocol import Planner
 from ifgm_ref.planners.apf import APFPlanner
 from ifgm_ref.planners.bug1 import Bug1Planner
@@ -27,10 +28,13 @@ from ifgm_ref.planners.tuning import ParamInfo, Tuning, parameter_infos
 
 @dataclass(frozen=True)
 class PlannerInfo:
-    """A registered planner: its factory, a one-line description and its parameter classes."""
+    """A registered planner: its factory, a one-line description, what it promises (declared
+    with it, so that no planner is without: :class:`~ifgm_ref.core.promises.Promised`) and its
+    parameter classes."""
 
     factory: Callable[[], Planner]
     description: str
+    promises: Promised
     tunings: tuple[type[Tuning], ...] = ()
 
     @property
@@ -44,57 +48,137 @@ class PlannerInfo:
         return parameter_infos(self.tunings)
 
 
+#: The Bug family's promises (Table 1): convergence in every solvable class, "goal
+#: unreachable" reported, obstacles gone round rather than gaps taken. Bug1 and Bug2 miss too
+#: often under noise at any level tried, so they promise none (``docs/oracle.md``,
+#: "Robustness"); DistBug and IBA keep their promises under the reference levels.
+BOUNDARY = Promised(reports_unreachable=True, passes_wide_gaps=False, stops_in_time=True)
+ROBUST_BOUNDARY = replace(BOUNDARY, noise=REFERENCE_NOISE_LEVELS)
+#: DWA's promises, measured with ``ifgm-ref oracle --planner dwa --profile brief``
+#: (``docs/oracle.md``, "The properties"): it stalls even in open worlds (turning in place
+#: beside a post its costmap inflated), so it promises no convergence; it keeps its own dynamic
+#: window, not the braking governor, so it does not promise to stop in time.
+DWA_PROMISES = Promised(converges_in=frozenset(), passes_wide_gaps=False)
+
+#: Every planner by its command-line name, with what it promises (paper Table 1 and section
+#: 5; FGM steers at the *widest* gap, which beside a wall is the open space past its end; IFGM
+#: has no "goal unreachable" exit).
 PLANNERS: dict[str, PlannerInfo] = {
     "bug1": PlannerInfo(
         Bug1Planner,
         "Bug1 (Lumelsky & Stepanov; section 2.1.1): go round the whole obstacle, leave at the "
         "point nearest the goal",
+        BOUNDARY,
         Bug1Planner.tunings,
     ),
     "bug2": PlannerInfo(
         Bug2Planner,
         "Bug2 (Lumelsky & Stepanov; section 2.1.2): follow the edge back to the start-goal line, "
         "nearer the goal",
+        BOUNDARY,
         Bug2Planner.tunings,
     ),
     "distbug": PlannerInfo(
         DistBugPlanner,
         "DistBug (Kamon & Rivlin 1997; section 2.1.3): leave when the free range towards the "
         "goal promises progress",
+        ROBUST_BOUNDARY,
         DistBugPlanner.tunings,
     ),
     "iba": PlannerInfo(
         IBAPlanner,
         "Intelligent Bug Algorithm (section 4.1): bidirectional edge following, leaving at the "
         "first free path to the goal",
+        ROBUST_BOUNDARY,
         IBAPlanner.tunings,
     ),
     "fgm": PlannerInfo(
         FGMPlanner,
         "Follow the Gap Method (Sezer & Gokasan 2012; section 2.2): steer through the widest "
         "gap; trapped by U and H shapes",
+        Promised(
+            converges_in=frozenset({"open", "symmetric"}),
+            passes_wide_gaps=False,
+            noise=REFERENCE_NOISE_LEVELS,
+            stops_in_time=True,
+        ),
         FGMPlanner.tunings,
     ),
     "ifgm": PlannerInfo(
         IFGMPlanner,
         "Intelligent Follow the Gap Method (section 4, Figure 3): FGM through wide gaps, IBA "
         "round the rest, 45-degree turns out of dead ends",
+        Promised(
+            noise=REFERENCE_NOISE_LEVELS,
+            turns_at_dead_ends=True,
+            reference="ifgm",
+            stops_in_time=True,
+        ),
         IFGMPlanner.tunings,
     ),
     "apf": PlannerInfo(
         APFPlanner,
         "artificial potential field (Khatib 1986; Table 1): goal attracts, returns repel; "
         "trapped by U, H and symmetric obstacles",
+        Promised(converges_in=frozenset({"open"}), passes_wide_gaps=False, stops_in_time=True),
         APFPlanner.tunings,
     ),
     "dwa": PlannerInfo(
         DWAPlanner,
         "BARN's baseline, ROS move_base DWA (Fox, Burgard & Thrun 1997): keeps a costmap of its "
         "own scans, plans on it, scores a dynamic window",
+        DWA_PROMISES,
         DWAPlanner.tunings,
     ),
-    "straight": PlannerInfo(StraightPlanner, "steer straight at the goal; no avoidance"),
+    "straight": PlannerInfo(
+        StraightPlanner,
+        "steer straight at the goal; no avoidance",
+        Promised(converges_in=frozenset(), collision_free=False, passes_wide_gaps=False),
+    ),
 }
+
+
+def declared_promises(factory: object) -> Promised | None:
+    """What the planner factory ``factory`` declares it promises, or ``None`` if nothing.
+
+    A factory declares it with a ``promises`` attribute (on a class: for every instance and
+    subclass), either a :class:`~ifgm_ref.core.promises.Promised` or the name of a registered
+    planner whose promises it keeps. A registered planner's class declares the promises it is
+    registered with, and so does any subclass of it (the oracle's IFGM variants and mutants,
+    a port built on the reference): the registration nearest in its method resolution order.
+
+    >>> declared_promises(IFGMPlanner) == PLANNERS["ifgm"].promises
+    True
+    >>> class Port(IBAPlanner):
+    ...     promises = "ifgm"
+    >>> declared_promises(Port) == PLANNERS["ifgm"].promises
+    True
+    >>> declared_promises(lambda: StraightPlanner()) is None
+    True
+    """
+    promises = getattr(factory, "promises", None)
+    if isinstance(promises, Promised):
+        return promises
+    if isinstance(promises, str):
+        return promises_named(promises)
+    if promises is not None:
+        raise PlannerError(
+            f"{factory!r}.promises: must be a Promised or a planner name, got {promises!r}"
+        )
+    registered = {info.factory: info.promises for info in PLANNERS.values()}
+    for base in factory.__mro__ if isinstance(factory, type) else ():
+        if base in registered:
+            return registered[base]
+    return None
+
+
+def promises_named(name: str) -> Promised:
+    """What the registered planner ``name`` promises.
+
+    >>> promises_named("apf").converges_in
+    frozenset({'open'})
+    """
+    return _info(name).promises
 
 
 def make_planner(name: str) -> Planner:
@@ -103,12 +187,15 @@ def make_planner(name: str) -> Planner:
     >>> make_planner("straight").name
     'straight'
     """
+    return _info(name).factory()
+
+
+def _info(name: str) -> PlannerInfo:
     try:
-        info = PLANNERS[name]
+        return PLANNERS[name]
     except KeyError:
         known = ", ".join(sorted(PLANNERS))
         raise PlannerError(f"unknown planner {name!r}; known planners: {known}") from None
-    return info.factory()
 
 
 def parameters_markdown() -> str:

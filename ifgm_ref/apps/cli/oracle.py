@@ -84,7 +84,9 @@ def add_oracle(sub: Subcommands) -> None:
     oracle.add_argument(
         "--promises",
         metavar="PLANNER",
-        help="check what this built-in planner promises (default: its own, or ifgm's)",
+        help="check what this built-in planner promises (default: what the planner declares: "
+        "a built-in's own, a factory's promises attribute; a --cmd program: ifgm's; any other "
+        "must be told)",
     )
     oracle.add_argument(
         "--spec",
@@ -221,7 +223,7 @@ def _implementation(args: argparse.Namespace) -> Implementation:
     :func:`~ifgm_ref.oracle.implementation.default_equations`) and readings (``--reading``); a
     program is started and reset once."""
     from ifgm_ref.oracle.equation_checks import load_equations
-    from ifgm_ref.oracle.implementation import Implementation, default_equations
+    from ifgm_ref.oracle.implementation import Implementation, Promises, default_equations
     from ifgm_ref.planners.ifgm.readings import parse_readings
 
     given = args.equations
@@ -240,7 +242,8 @@ def _implementation(args: argparse.Namespace) -> Implementation:
         )
         impl.answers_reset()  # a program that cannot start is bad input, not 11 errors
     else:
-        impl = Implementation.from_spec(args.planner, promises=args.promises, equations=equations)
+        told = args.promises if args.spec is None else Promises()  # the file's replace them
+        impl = Implementation.from_spec(args.planner, promises=told, equations=equations)
     if args.reading:
         impl.declare_readings(parse_readings(args.reading))
     return impl
