@@ -594,13 +594,13 @@ def test_the_c_planner_goes_round_as_the_python_one(
     """Bug1's round in the C port: the trail, the loop's closing, the way on to Q, the leave
     at Q and the enclosed goal, closed loop as above, step for step the Python planner's."""
     left_at: list[Point] = []  # the reference's leaving points Q (IFGM's branches name none)
-    leave = Circuit.leave
+    leave = Circuit.left_at_q
 
-    def noting_leave(circuit: Circuit) -> None:
+    def noting_leave(circuit: Circuit) -> Circuit:
         left_at.append(circuit.q_point)
-        leave(circuit)
+        return leave(circuit)
 
-    monkeypatch.setattr(Circuit, "leave", noting_leave)
+    monkeypatch.setattr(Circuit, "left_at_q", noting_leave)
     reference = simulate(_round_world(world), make_planner(planner), params=params)
     # The premise: the reference goes round, and leaves at Q or stops.
     if world == "enclosure":
@@ -628,19 +628,21 @@ def test_the_c_ifgm_closes_a_round_across_its_leaves_as_the_python_one(
     loop closes on a point laid while following. In :data:`SPANNING_WORLD` the C IFGM does
     so step for step as the Python one, closed loop as above."""
     events: list[str] = []  # the reference's: obstacles met on a first pass, loops closed
-    start_following, close = IFGMPlanner._start_following, Circuit.close
+    start_following, close = IFGMPlanner._start_following, Circuit.closed
 
     def noting_start(planner: IFGMPlanner, state: IFGMState, percepts: Percepts) -> IFGMState:
         if planner.circuit.phase is CircuitPhase.FIRST_PASS:
             events.append("met again")
         return start_following(planner, state, percepts)
 
-    def noting_close(circuit: Circuit, sight: Sight, at: int, side: FollowSide) -> bool:
+    def noting_close(
+        circuit: Circuit, sight: Sight, at: int, side: FollowSide
+    ) -> tuple[Circuit, bool]:
         events.append("closed")
         return close(circuit, sight, at, side)
 
     monkeypatch.setattr(IFGMPlanner, "_start_following", noting_start)
-    monkeypatch.setattr(Circuit, "close", noting_close)
+    monkeypatch.setattr(Circuit, "closed", noting_close)
     world = random_world(*SPANNING_WORLD)
     sim = SimParams(max_time=time_bound(world))
     reference = simulate(world, make_planner("ifgm"), sim)
@@ -656,19 +658,21 @@ def test_the_c_ifgm_closes_a_round_across_its_leaves_as_the_python_one(
 def test_the_c_ifgm_turns_the_other_way_as_the_python_one(
     build: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    """A round whose loop shows no way on (:meth:`Circuit.close` returns false) makes IFGM's
+    """A round whose loop shows no way on (:meth:`Circuit.closed` says so) makes IFGM's
     next round follow the other side (``IFGMState.turn_other_way``, errata row 34). Round the
     enclosed goal the reference's rounds close, each on the other side than the one before,
     until the simulator's lap rule stops the run; the C IFGM does the same step for step."""
     closings: list[tuple[bool, FollowSide]] = []  # the reference's: (way on, side followed)
-    close = Circuit.close
+    close = Circuit.closed
 
-    def noting_close(circuit: Circuit, sight: Sight, at: int, side: FollowSide) -> bool:
-        way_on = close(circuit, sight, at, side)
+    def noting_close(
+        circuit: Circuit, sight: Sight, at: int, side: FollowSide
+    ) -> tuple[Circuit, bool]:
+        closed, way_on = close(circuit, sight, at, side)
         closings.append((way_on, side))
-        return way_on
+        return closed, way_on
 
-    monkeypatch.setattr(Circuit, "close", noting_close)
+    monkeypatch.setattr(Circuit, "closed", noting_close)
     world = _enclosure()
     sim = SimParams(max_time=time_bound(world))
     reference = simulate(world, make_planner("ifgm"), sim)
