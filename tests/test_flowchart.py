@@ -9,16 +9,15 @@ import re
 import numpy as np
 import pytest
 
+from ifgm_ref.io.bags.read import FORMER_LABELS, same_branch
 from ifgm_ref.paper.flowchart import (
     DEAD_END_PHASES,
     DECIDED,
-    FORMER_LABELS,
     GUARDS,
     Atoms,
     Branch,
     decide,
     figure3,
-    same_branch,
 )
 
 ALL_ATOMS = list(itertools.product([False, True], repeat=len(Atoms.names())))

@@ -51,10 +51,9 @@ from ifgm_ref.core.params import RobotParams, SensorParams
 from ifgm_ref.core.pose import Point, Pose
 from ifgm_ref.core.progress import progress_bar
 from ifgm_ref.core.protocol import EpisodeParams, Observation, Planner
-from ifgm_ref.io.bags.read import BagScan, LogStep, RobotLog
+from ifgm_ref.io.bags.read import BagScan, LogStep, RobotLog, same_branch
 from ifgm_ref.io.transport.wire import parse_reset
 from ifgm_ref.oracle.invariance import HEADING_TOL, SPEED_TOL
-from ifgm_ref.paper.flowchart import same_branch
 
 __all__ = [
     "BRANCH",
@@ -78,7 +77,7 @@ CENTRE_TOLERANCE = 1e-4
 HEADING, SPEED, BRANCH = "heading", "speed", "branch"
 #: The rules of motion: a step breaking one differs in what the robot does.
 MOTION = (HEADING, SPEED)
-#: The branch rule, as ``--help`` states it (:func:`~ifgm_ref.paper.flowchart.same_branch`).
+#: The branch rule, as ``--help`` states it (:func:`~ifgm_ref.io.bags.read.same_branch`).
 BRANCH_RULE = (
     "where the log and the reference both name a branch, it is the same one (a logged "
     "dead_end_turn also matches dead_end_escape and dead_end_handover)"
@@ -453,7 +452,7 @@ def difference(
 ) -> str:
     """What differs between a logged step and the reference's, ``""`` when they agree:
     speeds and turn rates within the robot's limits, and the two steps' branches (compared
-    when both name one: :func:`~ifgm_ref.paper.flowchart.same_branch`). The logged speed is
+    when both name one: :func:`~ifgm_ref.io.bags.read.same_branch`). The logged speed is
     compared as the robot executes it, clipped to its top speed; the message gives the speed
     asked beside it when it was clipped.
 

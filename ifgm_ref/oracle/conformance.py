@@ -6,7 +6,7 @@ reference IFGM saw in an episode, in order and open loop (its answers move nothi
 answers every step with the reference's command -- the heading within :data:`HEADING_TOL`
 and the speed within :data:`SPEED_TOL` (above a float32 port's rounding, below another
 ray's or gap's heading), and, where it reports one, the same branch (``dead_end_turn`` is
-accepted for the dead end's later phases: :func:`~ifgm_ref.paper.flowchart.same_branch`).
+accepted for the dead end's later phases: :func:`~ifgm_ref.io.bags.read.same_branch`).
 
 A step where the two differ is a **tie** when some decision the reference consulted there,
 or in the :data:`LOOKBACK` steps before, lay within its bound (:func:`tie_bound`: :data:`TIE`,
@@ -26,9 +26,10 @@ from ifgm_ref.core.errors import present
 from ifgm_ref.core.params import SimParams
 from ifgm_ref.core.protocol import Command, EpisodeParams, Observation
 from ifgm_ref.core.recording import Recording, RecordingPlanner
+from ifgm_ref.io.bags.read import same_branch
 from ifgm_ref.oracle.implementation import Implementation
 from ifgm_ref.oracle.invariance import AnswerError, answer_errors
-from ifgm_ref.paper.flowchart import Atoms, same_branch
+from ifgm_ref.paper.flowchart import Atoms
 from ifgm_ref.planners.ifgm import IFGMPlanner
 from ifgm_ref.planners.ifgm.margins import margins
 from ifgm_ref.planners.ifgm.readings import Readings

@@ -20,13 +20,13 @@ import math
 from collections.abc import Iterator, Sequence
 
 from ifgm_ref.core.pose import wrap_angle
-from ifgm_ref.paper.flowchart import Branch
+from ifgm_ref.paper.flowchart import DEAD_END_STEP, Branch
 from ifgm_ref.sim.simulator import TraceStep
 
 __all__ = ["STEP", "STEPS", "dead_end_turns", "part_errors", "turn_errors"]
 
-#: One turn, rad (section 4).
-STEP = math.pi / 4
+#: One turn, rad (section 4): the flowchart's dead-end step.
+STEP = DEAD_END_STEP
 #: The most turns in one dead end: 180 degrees (section 4, "on 180°").
 STEPS = 4
 #: Rounding allowed beside the dead band, rad.

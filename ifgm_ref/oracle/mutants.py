@@ -46,7 +46,7 @@ class NeverLeavesEdge(IFGMPlanner):
 
     name = "ifgm-never-leaves"
 
-    def may_leave(self, state: IFGMState, sight: Sight) -> tuple[IFGMState, bool]:
+    def advance_round(self, state: IFGMState, sight: Sight) -> tuple[IFGMState, bool]:
         return state, False
 
 

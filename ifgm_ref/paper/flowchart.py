@@ -58,22 +58,6 @@ DEAD_END_STEP = math.pi / 4
 #: later phases.
 DECIDED = tuple(branch for branch in Branch if branch not in DEAD_END_PHASES[1:])
 
-#: The label each phase label replaces: traces written before the phases had labels of their
-#: own (issue 29) call all three ``dead_end_turn``.
-FORMER_LABELS = {phase: Branch.DEAD_END_TURN for phase in DEAD_END_PHASES[1:]}
-
-
-def same_branch(reported: str, reference: str) -> bool:
-    """Whether a port's (or a log's) branch label ``reported`` names the reference's branch
-    ``reference``: the same label, or the one it replaces (:data:`FORMER_LABELS`).
-
-    >>> same_branch("dead_end_turn", "dead_end_escape"), same_branch("follow_edge", "too_close")
-    (True, False)
-    """
-    if reported == reference:
-        return True
-    return reference in FORMER_LABELS and reported == FORMER_LABELS[Branch(reference)]
-
 
 @dataclass(frozen=True)
 class Atoms(Generic[L]):

@@ -34,8 +34,26 @@ from numpy.typing import NDArray
 from ifgm_ref.core.errors import BagError
 from ifgm_ref.core.pose import Point, Pose, wrap_angle
 from ifgm_ref.io.bags.messages import EPISODE_FORMAT, TopicName
+from ifgm_ref.paper.flowchart import DEAD_END_PHASES, Branch
 
-__all__ = ["BagScan", "LogStep", "RobotLog", "Topics", "read_log"]
+__all__ = ["FORMER_LABELS", "BagScan", "LogStep", "RobotLog", "Topics", "read_log", "same_branch"]
+
+#: The label each dead-end phase label replaces: logs, traces and ports from before the
+#: phases had labels of their own (issue 29; errata row 35) call all three ``dead_end_turn``.
+FORMER_LABELS = {phase: Branch.DEAD_END_TURN for phase in DEAD_END_PHASES[1:]}
+
+
+def same_branch(reported: str, reference: str) -> bool:
+    """Whether a log's (or a port's) branch label ``reported`` names the reference's branch
+    ``reference``: the same label, or the one it replaces (:data:`FORMER_LABELS`).
+
+    >>> same_branch("dead_end_turn", "dead_end_escape"), same_branch("follow_edge", "too_close")
+    (True, False)
+    """
+    if reported == reference:
+        return True
+    return reference in FORMER_LABELS and reported == FORMER_LABELS[Branch(reference)]
+
 
 #: The message types each topic may carry (rosbags' names: ROS 1 types read the same).
 SCAN_TYPES = ("sensor_msgs/msg/LaserScan",)

@@ -17,6 +17,7 @@ from typing import Any
 
 from ifgm_ref.core.protocol import Command, Planner
 from ifgm_ref.core.recording import replay
+from ifgm_ref.io.bags.read import same_branch
 from ifgm_ref.oracle.vectors.schema import (
     CaseRecord,
     Failure,
@@ -33,7 +34,6 @@ from ifgm_ref.oracle.vectors.schema import (
     parse_tolerances,
     parse_traces,
 )
-from ifgm_ref.paper.flowchart import same_branch
 
 __all__ = ["check_vectors", "replay_traces"]
 

@@ -7,7 +7,7 @@ from __future__ import annotations
 import math
 import operator
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from enum import StrEnum
 from typing import NamedTuple
 
@@ -21,6 +21,7 @@ from ifgm_ref.paper.equations import eq1_gap_midpoint
 from ifgm_ref.paper.flowchart import Atoms
 from ifgm_ref.paper.percepts.clusters import Cluster, Gap, Side
 from ifgm_ref.paper.percepts.points import point_to_world, to_world
+from ifgm_ref.planners.circuit import Circuit
 from ifgm_ref.planners.edge_following import FollowSide
 from ifgm_ref.planners.ifgm.readings import GapChoice, Readings
 from ifgm_ref.planners.sight import Sight
@@ -94,9 +95,8 @@ class DeadEndTurn:
 @dataclass(frozen=True)
 class IFGMState:
     """Everything IFGM carries from one step to the next, in one immutable record; beside it
-    only the planner's handles to two growing logs, the remembered points
-    (:class:`~ifgm_ref.paper.percepts.memory.PerceptMemory`) and Bug1's round
-    (:class:`~ifgm_ref.planners.circuit.Circuit`).
+    only the planner's handle to a growing log, the remembered points
+    (:class:`~ifgm_ref.paper.percepts.memory.PerceptMemory`).
 
     Attributes
     ----------
@@ -122,6 +122,8 @@ class IFGMState:
     d_min : float
         IBA's yardstick: the least distance to the goal seen while following, over the whole
         episode (errata row 31).
+    circuit : Circuit
+        Bug1's round of the followed obstacle (errata row 34).
     """
 
     mode: Mode = Mode.MOVE_TO_GOAL
@@ -134,6 +136,7 @@ class IFGMState:
     turn_other_way: FollowSide | None = None
     side: FollowSide = FollowSide.RIGHT
     d_min: float = math.inf
+    circuit: Circuit = field(default_factory=Circuit)
 
     @property
     def following(self) -> bool:

@@ -46,7 +46,7 @@ from ifgm_ref.core.laserscan import Beam, LaserScan
 from ifgm_ref.core.pose import Point, Pose, distance, wrap_angle
 from ifgm_ref.core.protocol import Behaviour, Command, EpisodeParams, Observation
 from ifgm_ref.paper.equations import eq1_gap_midpoint, eq2_gap_angle, eq4_final_heading
-from ifgm_ref.paper.flowchart import Atoms, Branch, decide
+from ifgm_ref.paper.flowchart import DEAD_END_STEP, Atoms, Branch, decide
 from ifgm_ref.paper.percepts.clusters import Gap, cluster_points, gaps_between
 from ifgm_ref.paper.percepts.corridor import free_length
 from ifgm_ref.paper.percepts.memory import PerceptMemory
@@ -74,8 +74,6 @@ __all__ = ["DEAD_END_MAX_STEPS", "DEAD_END_STEP", "IFGMParams", "IFGMPlanner"]
 
 #: The two behaviours a command reports (section 2.1).
 TO_GOAL, AVOIDING = Behaviour.MOVE_TO_GOAL, Behaviour.OBSTACLE_AVOIDANCE
-#: The dead-end rule's step, radians (section 4: "turns in steps of 45 degrees").
-DEAD_END_STEP = math.pi / 4
 #: At most four steps: 45, 90, 135 and 180 degrees ("until it finds obstacle free path (on
 #: 180 degrees)").
 DEAD_END_MAX_STEPS = 4
@@ -117,8 +115,6 @@ class IFGMPlanner:
     memory : PerceptMemory
         The obstacle points of the last ``memory_horizon`` seconds (a handle the state
         leaves out: a growing log).
-    circuit : Circuit
-        Bug1's round (errata row 34), a value replaced as the round goes on.
     ifgm : IFGMParams
         The thresholds and weights of this episode.
     last_branch : Branch or None
@@ -193,6 +189,11 @@ class IFGMPlanner:
         return self.state.followed
 
     @property
+    def circuit(self) -> Circuit:
+        """Bug1's round (:attr:`IFGMState.circuit`)."""
+        return self.state.circuit
+
+    @property
     def stack(self) -> tuple[tuple[Point, FollowSide], ...]:
         """Case-3: the pre-empted obstacles and their sides, the last pushed resumed first."""
         return self.state.stack
@@ -206,7 +207,6 @@ class IFGMPlanner:
         self.body = Body.of(goal, params, tuning)
         self.memory = PerceptMemory(tuning.memory_horizon, params.dt)
         self.step_length = DistBugParams.for_episode(params).step_length
-        self.circuit = Circuit()
         self.governor.reset(params)
         p = IFGMParams.for_episode(params)
         r = params.robot.radius
@@ -262,7 +262,8 @@ class IFGMPlanner:
         The whole field of view is remembered, for edge following; Figure 3 reads the paper's
         view, 135 degrees and ``view_range`` deep (the scan itself for the paper's sensor).
         While following, the followed point is tracked along its edge, ``d_min`` notes the
-        distance to the goal, and IBA's leaving rules are asked (:meth:`may_leave`)."""
+        distance to the goal, and Bug1's round and IBA's leaving rules are asked
+        (:meth:`advance_round`)."""
         pose, view_range = observation.pose, self.body.tuning.view_range
         scan = observation.scan.limited(view_range)
         points = scan_points(scan)
@@ -270,12 +271,12 @@ class IFGMPlanner:
         view = observation.scan.window().limited(view_range)
         clusters = cluster_points(points if view is scan else scan_points(view), self.ifgm.jump)
         sight = Sight(pose, self.body, self.memory.points, self.goal_bearing(pose))
-        self.circuit = self.circuit.noted(sight, following=state.following)
+        state = replace(state, circuit=state.circuit.noted(sight, following=state.following))
         may_leave = False
         if state.following:
             followed = self._track(sight, state.followed)
             state = replace(state, followed=followed, d_min=min(state.d_min, sight.goal_distance))
-            state, may_leave = self.may_leave(state, sight)
+            state, may_leave = self.advance_round(state, sight)
         gaps = gaps_between(clusters, reading=self.readings.gap_points)
         percepts = Percepts(
             sight, view, clusters, gaps, may_leave, self.ifgm, self.goal_tolerance, self.readings,
@@ -290,23 +291,22 @@ class IFGMPlanner:
         tracked = nearest_remembered(sight, followed, jump) if followed else None
         return tracked or nearest_remembered(sight, None, jump)
 
-    def may_leave(self, state: IFGMState, sight: Sight) -> tuple[IFGMState, bool]:
-        """Whether to leave the edge: by IBA's rules, a free path or, unless ``escaped``,
-        DistBug's progress (errata row 24); once Bug1's round has closed its loop, only at Q
-        (errata row 34). Returns ``state`` with ``turn_other_way`` set when the loop closes
-        with no way on (IFGM has no "goal unreachable": it leaves at that Q all the same)."""
-        circuit = self.circuit
+    def advance_round(self, state: IFGMState, sight: Sight) -> tuple[IFGMState, bool]:
+        """``state`` with Bug1's round advanced by this step of following, and whether to
+        leave the edge: by IBA's rules, a free path or, unless ``escaped``, DistBug's
+        progress (errata row 24); once the round has closed its loop, only at Q (errata row
+        34). A loop closed with no way on sets ``turn_other_way`` (IFGM has no "goal
+        unreachable": it leaves at that Q all the same)."""
+        circuit = state.circuit
         if circuit.returning:
             if not circuit.at_q(sight):
                 return state, False
-            self.circuit = circuit.left_at_q()
-            return state, True
+            return replace(state, circuit=circuit.left_at_q()), True
         if (back_at := circuit.closing(sight)) is not None:
-            self.circuit, way_on = circuit.closed(sight, back_at, state.side)
-            if not way_on:  # no way on this way round
-                other = FollowSide.LEFT if state.side is FollowSide.RIGHT else FollowSide.RIGHT
-                state = replace(state, turn_other_way=other)
-            return state, False
+            circuit, way_on = circuit.closed(sight, back_at, state.side)
+            other = FollowSide.LEFT if state.side is FollowSide.RIGHT else FollowSide.RIGHT
+            turn_other_way = state.turn_other_way if way_on else other
+            return replace(state, circuit=circuit, turn_other_way=turn_other_way), False
         by_progress = (
             not state.escaped and self.readings.leaving_rule is LeavingRule.FREE_PATH_OR_PROGRESS
         )
@@ -336,7 +336,7 @@ class IFGMPlanner:
                 # short encounter distance, not d_look (the followed one is still the nearest,
                 # and at d_look the robot would go back to following it:
                 # tests/worlds/two_posts_in_line).
-                at_q = self.circuit.phase is CircuitPhase.LEFT_AT_Q
+                at_q = state.circuit.phase is CircuitPhase.LEFT_AT_Q
                 short_look = at_q or not sight.path_free()
                 state = replace(
                     state, mode=Mode.MOVE_TO_GOAL, short_look=short_look, escaped=False,
@@ -385,8 +385,7 @@ class IFGMPlanner:
         sight = percepts.sight
         side = state.turn_other_way or freer_side(percepts.view, sight.pose, sight.bearing)
         d_min = yardstick_at_hit(state.d_min, sight.pose.position, sight.body.goal)
-        if self.circuit.phase is not CircuitPhase.FIRST_PASS:
-            self.circuit = self.circuit.hit()
+        circuit = state.circuit
         return replace(
             state,
             mode=Mode.FOLLOWING,
@@ -398,14 +397,15 @@ class IFGMPlanner:
             stack=(),
             turn_other_way=None,
             d_min=d_min,
+            circuit=circuit if circuit.phase is CircuitPhase.FIRST_PASS else circuit.hit(),
         )
 
     def _follow(self, state: IFGMState, sight: Sight, branch: Branch) -> tuple[IFGMState, Command]:
         """Follow the edge with IBA -- after a whole loop, retrace it to Q (Bug1's round,
         errata row 34); if the edge is forgotten, head for the goal instead."""
-        if self.circuit.returning:
-            self.circuit = self.circuit.advanced(sight)
-            heading: float | None = self.circuit.heading_to_q(sight)
+        if state.circuit.returning:
+            state = replace(state, circuit=state.circuit.advanced(sight))
+            heading: float | None = state.circuit.heading_to_q(sight)
         else:
             heading = edge_heading(sight, state.side)
         if heading is None:  # the edge is forgotten: the obstacle is behind us
