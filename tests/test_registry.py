@@ -44,7 +44,8 @@ def test_dwa_is_held_to_its_own_promises_not_ifgms() -> None:
     """``oracle --planner dwa`` judged DWA against IFGM's promises, reference level included."""
     dwa = Implementation.from_spec("dwa").promises
     assert dwa != promises_of("ifgm")
-    assert dwa.reference is None and not dwa.stops_in_time and not dwa.turns_at_dead_ends
+    assert dwa.reference is None and not dwa.turns_at_dead_ends and not dwa.converges_in
+    assert dwa.collision_free and dwa.scale_invariant and dwa.stops_in_time  # measured
     report = check_planner("dwa", level="reference", checks=["agrees_with_reference"])
     (result,) = report.results
     assert result.status is Status.NOT_APPLICABLE, result.message

@@ -85,8 +85,8 @@ class Promises:
         ``braking``, ``acceleration`` and ``response``): on a robot that cannot stop at once,
         every command leaves it room to stop before what it sees (the braking governor's
         condition, :mod:`ifgm_ref.planners.governor`), which the ``stops_in_time`` check
-        monitors step by step. The reference planners promise it, but DWA, which keeps its own
-        dynamic window.
+        monitors step by step. Every built-in planner promises it but ``straight`` (DWA, which
+        keeps its own dynamic window, measured: ``docs/oracle.md``).
     readings : mapping of str to str, default {}
         The readings it takes of the paper's open choices, where they are not ours
         (:data:`~ifgm_ref.planners.ifgm.readings.OPEN_READINGS`: ``{"dead_end_side":
@@ -152,8 +152,8 @@ def default_equations(spec: str) -> str | None:
 def promises_of(name: str) -> Promises:
     """The promises of the built-in planner ``name``.
 
-    >>> promises_of("dwa").stops_in_time
-    False
+    >>> promises_of("dwa").converges_in
+    frozenset()
     >>> promises_of("mypkg")
     Traceback (most recent call last):
     ...

@@ -54,11 +54,12 @@ class PlannerInfo:
 #: "Robustness"); DistBug and IBA keep their promises under the reference levels.
 BOUNDARY = Promised(reports_unreachable=True, passes_wide_gaps=False, stops_in_time=True)
 ROBUST_BOUNDARY = replace(BOUNDARY, noise=REFERENCE_NOISE_LEVELS)
-#: DWA's promises, measured with ``ifgm-ref oracle --planner dwa --profile brief``
-#: (``docs/oracle.md``, "The properties"): it stalls even in open worlds (turning in place
-#: beside a post its costmap inflated), so it promises no convergence; it keeps its own dynamic
-#: window, not the braking governor, so it does not promise to stop in time.
-DWA_PROMISES = Promised(converges_in=frozenset(), passes_wide_gaps=False)
+#: DWA's promises, what it kept under ``ifgm-ref oracle --planner dwa --profile brief``
+#: (``docs/oracle.md``, "What DWA promises, measured"): collision-freedom, scale invariance and
+#: stopping in time (its dynamic window keeps within the robot's braking); no convergence (it
+#: stalls even in open worlds, turning in place beside a post), no Case-1 gap, no "goal
+#: unreachable", no IFGM dead end, no noise levels.
+DWA_PROMISES = Promised(converges_in=frozenset(), passes_wide_gaps=False, stops_in_time=True)
 
 #: Every planner by its command-line name, with what it promises (paper Table 1 and section
 #: 5; FGM steers at the *widest* gap, which beside a wall is the open space past its end; IFGM
