@@ -266,7 +266,7 @@ def test_arrival_is_judged_at_the_declared_goal_tolerance(tmp_path: Path) -> Non
     under its declared 0.3 m; under a declared 0.6 ft it fails, and the counterexample replays
     at the declared dt and tolerance."""
     open_only = dict(profile=TINY, checks=["converges_open"], artifacts=None)
-    plain = check_planner(StopsShort, **open_only)  # type: ignore[arg-type]
+    plain = check_planner(StopsShort, promises="ifgm", **open_only)  # type: ignore[arg-type]
     assert plain["converges_open"].status is Status.FAILED
     assert "stalled" in plain["converges_open"].message
     ros = write(tmp_path, 'unit = "m"\ngoal_tolerance = 0.3\n', "ros.toml")
@@ -334,6 +334,16 @@ def test_the_plugin_takes_a_spec_and_says_what_it_holds_to(pytester: pytest.Pyte
     both = pytester.runpytest_inprocess(*common, "--ifgm-spec", str(spec), "--ifgm-level", "paper")
     assert both.ret == pytest.ExitCode.USAGE_ERROR
     both.stderr.fnmatch_lines(["*--ifgm-level paper given with the specification*"])
+
+
+def test_the_equations_are_checked_under_a_declared_sensor_and_robot() -> None:
+    """A specification changes the worlds drawn, not the equations' inputs: with one, eq1's
+    examples were put through the world's robot and sensor and the check crashed
+    (``KeyError: 0`` in ``robust.with_world``)."""
+    done = run_cli("oracle", "--planner", "ifgm", "--spec", str(ROS), "--check", "eq1_gap_midpoint",
+                   "--profile", "brief")  # fmt: skip
+    assert done.returncode == 0, done.stdout + done.stderr
+    assert re.search(r"^PASSED +eq1_gap_midpoint +10 examples", done.stdout, re.M), done.stdout
 
 
 _STOPS_SHORT_MODULE = f"""

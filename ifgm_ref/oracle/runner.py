@@ -301,7 +301,7 @@ def _explorer(
         n = profile.max_examples
         return functools.partial(run_statistical, check, impl, levels, n, first, recorder, progress)
     examples = check.strategy(impl)
-    changed = bool(profile.robot) or profile.sensor is not None
+    changed = (bool(profile.robot) or profile.sensor is not None) and check.kind is Kind.SIMULATION
     if changed:
         examples = examples.map(lambda drawn: with_world(drawn, recorder.robot_of))
     if levels is not None:

@@ -116,9 +116,13 @@ class OppositeTies(IFGMPlanner):
         return replace(command, heading=-command.heading)
 
 
-def Twist() -> VelocityPlanner:
+class Twist(VelocityPlanner):
     """The reference answering velocity commands (linear and angular velocity)."""
-    return VelocityPlanner(IFGMPlanner())
+
+    promises = "ifgm"
+
+    def __init__(self) -> None:
+        super().__init__(IFGMPlanner())
 
 
 #: Every accepted variant by a short name.
