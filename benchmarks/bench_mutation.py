@@ -23,7 +23,7 @@ original. For each it reports:
   counted in the kill rates);
 * ``paper``: killed by the paper's properties (``ifgm-ref oracle``, quick profile, the
   first failure unshrunk: ``--stop-on-failure --no-shrink``);
-* ``reference``: killed by reference conformance (``--check agrees_with_reference``);
+* ``reference``: killed by reference agreement (``--check agrees_with_reference``);
 * ``tests``: killed by the project's tests of the decision code (``--tests``);
 * ``suite_quick`` and ``suite_full`` (only with ``--levels``): killed by the frozen suite's
   quick or full tier at both levels (``ifgm-ref oracle --suite v1 --level reference``), the

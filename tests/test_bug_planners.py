@@ -26,7 +26,7 @@ from ifgm_ref.planners.boundary import GOAL_UNREACHABLE, BoundaryParams, Boundar
 from ifgm_ref.planners.bug1 import Bug1Planner
 from ifgm_ref.planners.bug2 import Bug2Planner, signed_distance
 from ifgm_ref.planners.distbug import DistBugPlanner, DistBugRule
-from ifgm_ref.planners.sight import Body, Sight
+from ifgm_ref.planners.sight import Episode, Sight
 from ifgm_ref.sim.shapes import rectangle, regular_polygon, u_shape
 from ifgm_ref.sim.simulator import Run, StopReason, simulate
 from ifgm_ref.sim.world import Bounds, World
@@ -359,10 +359,10 @@ def test_distbug_free_range_counts_only_what_the_robot_can_travel() -> None:
     here = Pose(0.0, 0.0, 0.0)
 
     def free_range(goal: Point, pose: Pose, points: tuple[tuple[float, float], ...] = ()) -> float:
-        body = Body.of(goal, params, tuning)
+        episode = Episode.of(goal, params, tuning)
         seen = np.array(points, dtype=float).reshape(-1, 2)
         bearing = math.atan2(goal.y - pose.y, goal.x - pose.x)
-        return DistBugRule.free_range(Sight(pose, body, seen, bearing))
+        return DistBugRule.free_range(Sight(pose, episode, seen, bearing))
 
     goal = Point(10.0, 0.0)
     assert free_range(goal, here) == 10.0  # nothing seen: the goal, 10 ft away, is visible

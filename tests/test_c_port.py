@@ -1,7 +1,7 @@
 """The C port (``examples/c``), checked end to end by the project's own tools.
 
 The port is built with its Makefile into a temporary directory (the normal, the sanitizer and
-the float builds). It must pass the conformance vectors (``ifgm_vectors``: the equations and
+the float builds). It must pass the test vectors (``ifgm_vectors``: the equations and
 the reference traces), speak the JSON-lines protocol as ``ifgm-ref serve`` does
 (``ifgm_json``: the documented example session, the documented exit codes), pass the oracle's
 quick profile, drive the robot in the built-in worlds as the Python planners do, and brake in
@@ -51,7 +51,7 @@ from ifgm_ref.planners.distbug import DistBugRule
 from ifgm_ref.planners.edge_following import FollowSide
 from ifgm_ref.planners.governor import BrakingGovernor
 from ifgm_ref.planners.ifgm import IFGMPlanner
-from ifgm_ref.planners.ifgm.atoms import IFGMState, Percepts
+from ifgm_ref.planners.ifgm.atoms import IFGMState, StepInputs
 from ifgm_ref.planners.sight import Sight
 from ifgm_ref.sim.convergence import time_bound
 from ifgm_ref.sim.simulator import Run, simulate
@@ -123,7 +123,7 @@ def float_build(tmp_path_factory: pytest.TempPathFactory) -> Path:
 
 @pytest.fixture(scope="module")
 def vectors_file(tmp_path_factory: pytest.TempPathFactory) -> Path:
-    """The conformance vectors, written by ``ifgm-ref vectors``."""
+    """The test vectors, written by ``ifgm-ref vectors``."""
 
     def write(folder: Path) -> None:
         subprocess.run(
@@ -154,7 +154,7 @@ def _run(
     )
 
 
-# --- the conformance vectors ------------------------------------------------------------------
+# --- the test vectors ------------------------------------------------------------------
 
 
 def _summary(vectors_file: Path, precision: str) -> str:
@@ -167,7 +167,7 @@ def _summary(vectors_file: Path, precision: str) -> str:
 
 
 @pytest.mark.parametrize("build_name", ["build", "asan_build"])
-def test_the_port_passes_the_conformance_vectors(
+def test_the_port_passes_the_test_vectors(
     request: pytest.FixtureRequest, build_name: str, vectors_file: Path
 ) -> None:
     """Every equation case and every step of every reference trace (IFGM and IBA) agrees with
@@ -630,7 +630,7 @@ def test_the_c_ifgm_closes_a_round_across_its_leaves_as_the_python_one(
     events: list[str] = []  # the reference's: obstacles met on a first pass, loops closed
     start_following, close = IFGMPlanner._start_following, Circuit.closed
 
-    def noting_start(planner: IFGMPlanner, state: IFGMState, percepts: Percepts) -> IFGMState:
+    def noting_start(planner: IFGMPlanner, state: IFGMState, percepts: StepInputs) -> IFGMState:
         if planner.circuit.phase is CircuitPhase.FIRST_PASS:
             events.append("met again")
         return start_following(planner, state, percepts)
@@ -717,11 +717,11 @@ def test_the_c_planner_takes_the_goal_for_visible_only_within_view_range(
 
     def noting(sight: Sight) -> float:
         d = sight.goal_distance
-        seen = sight.body.tuning.view_range
+        seen = sight.episode.tuning.view_range
         if (
             sight.goal_in_view()
             and sight.goal_free_length >= d
-            and seen < d <= sight.body.range_max
+            and seen < d <= sight.episode.range_max
         ):
             beyond_view.append(d)
         return free_range(sight)

@@ -20,7 +20,7 @@ from ifgm_ref.planners import make_planner
 from ifgm_ref.planners.circuit import Circuit, CircuitPhase, encloses
 from ifgm_ref.planners.distbug import DistBugRule
 from ifgm_ref.planners.edge_following import FollowSide
-from ifgm_ref.planners.sight import Body, BoundaryParams, Sight
+from ifgm_ref.planners.sight import BoundaryParams, Episode, Sight
 from ifgm_ref.sim.simulator import simulate
 
 EPISODE = EpisodeParams()
@@ -28,12 +28,12 @@ TUNING = BoundaryParams.for_episode(EPISODE)
 NOTHING = np.empty((0, 2))
 
 
-def body(goal: Point) -> Body:
-    return Body.of(goal, EPISODE, TUNING)
+def episode(goal: Point) -> Episode:
+    return Episode.of(goal, EPISODE, TUNING)
 
 
 def sight(pose: Pose, goal: Point) -> Sight:
-    return Sight(pose, body(goal), NOTHING, math.atan2(goal.y - pose.y, goal.x - pose.x))
+    return Sight(pose, episode(goal), NOTHING, math.atan2(goal.y - pose.y, goal.x - pose.x))
 
 
 def walk(points: list[tuple[float, float]], step: float = 0.1) -> Iterator[Pose]:
@@ -214,8 +214,8 @@ def test_free_range_claims_the_goal_visible_only_within_view_range() -> None:
     tuning = BoundaryParams.for_episode(long_sensor)
     assert tuning.view_range < 100.0
     goal = Point(tuning.view_range + 10.0, 0.0)
-    far = Sight(Pose(0.0, 0.0, 0.0), Body.of(goal, long_sensor, tuning), NOTHING, 0.0)
-    assert DistBugRule.free_range(far) == pytest.approx(tuning.view_range - far.body.encounter)
+    far = Sight(Pose(0.0, 0.0, 0.0), Episode.of(goal, long_sensor, tuning), NOTHING, 0.0)
+    assert DistBugRule.free_range(far) == pytest.approx(tuning.view_range - far.episode.encounter)
     near_goal = Point(tuning.view_range - 1.0, 0.0)
-    near = Sight(Pose(0.0, 0.0, 0.0), Body.of(near_goal, long_sensor, tuning), NOTHING, 0.0)
+    near = Sight(Pose(0.0, 0.0, 0.0), Episode.of(near_goal, long_sensor, tuning), NOTHING, 0.0)
     assert DistBugRule.free_range(near) == pytest.approx(near.goal_distance)

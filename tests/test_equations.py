@@ -7,7 +7,7 @@ tolerance); where the proofs say they differ, the tests check the difference.
 
 The equations' inputs are drawn from their domains, defined once in
 ``ifgm_ref/oracle/domains.py`` and shared with the oracle's equation checks and the
-conformance vectors: bounded floats (no nan, inf or subnormals), coordinates within 1000 ft (a
+test vectors: bounded floats (no nan, inf or subnormals), coordinates within 1000 ft (a
 world a few times the paper's 197 ft scenario), sensor ranges 0.1-15 ft (``SensorParams``),
 weights in {0} or [1e-3, 1e3]. Transformations the properties apply (scale factors, turns,
 angles written with extra turns) have their own ranges here.

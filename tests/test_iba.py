@@ -20,7 +20,7 @@ from ifgm_ref.planners import make_planner
 from ifgm_ref.planners.boundary import EdgeFollower, keep_clear
 from ifgm_ref.planners.edge_following import FollowSide
 from ifgm_ref.planners.iba import IBAPlanner, IBARule, beam_openness, freer_side
-from ifgm_ref.planners.sight import Body, BoundaryParams, Sight
+from ifgm_ref.planners.sight import BoundaryParams, Episode, Sight
 from ifgm_ref.sim.simulator import simulate
 from ifgm_ref.sim.world import Polygon, World
 
@@ -106,12 +106,12 @@ def test_one_way_turning_costs_time_where_the_room_is_on_the_other_side() -> Non
 
 
 #: The paper's robot on its way to (20, 0) ft, as IBA plans with it.
-BODY = Body.of(Point(20.0, 0.0), EpisodeParams(), BoundaryParams.for_episode(EpisodeParams()))
+EPISODE = Episode.of(Point(20.0, 0.0), EpisodeParams(), BoundaryParams.for_episode(EpisodeParams()))
 
 
 def _guarded(points: list[tuple[float, float]], command: Command, pose: Pose) -> Command:
     """``command`` through the clearance filter, with one scan's worth of ``points`` remembered."""
-    return keep_clear(command, Sight(pose, BODY, np.array(points, dtype=float), 0.0))
+    return keep_clear(command, Sight(pose, EPISODE, np.array(points, dtype=float), 0.0))
 
 
 def test_the_clearance_filter_turns_the_robot_off_an_obstacle_it_would_hit() -> None:
@@ -138,9 +138,9 @@ def test_the_clearance_filter_never_sweeps_the_disc_into_a_remembered_point(
     points: list[tuple[float, float]], heading: float, speed: float
 ) -> None:
     out = _guarded(points, Command(heading, speed), Pose(0.0, 0.0, 0.0))
-    turn = max(-BODY.turn_limit, min(BODY.turn_limit, wrap_angle(out.heading)))
-    travel = min(out.speed, BODY.speed) * BODY.dt
-    free = disc_travel(np.array(points, dtype=float), (0.0, 0.0), turn, BODY.half_width)
+    turn = max(-EPISODE.turn_limit, min(EPISODE.turn_limit, wrap_angle(out.heading)))
+    travel = min(out.speed, EPISODE.speed) * EPISODE.dt
+    free = disc_travel(np.array(points, dtype=float), (0.0, 0.0), turn, EPISODE.half_width)
     assert out.speed == 0.0 or travel <= free
 
 
@@ -149,8 +149,8 @@ def test_iba_measures_progress_over_the_whole_episode() -> None:
     rule, follower = IBARule(), EdgeFollower()
     goal = Point(10.0, 0.0)
     rule.reset(Pose(0.0, 0.0, 0.0), goal, EpisodeParams())
-    body = replace(BODY, goal=goal)
+    episode = replace(EPISODE, goal=goal)
     for x in (6.0, 2.0, 7.0):
         follower.start(Point(x, 0.0), FollowSide.RIGHT)
-        rule.on_hit(Sight(Pose(x, 0.0, 0.0), body, np.zeros((0, 2)), 0.0), follower)
+        rule.on_hit(Sight(Pose(x, 0.0, 0.0), episode, np.zeros((0, 2)), 0.0), follower)
     assert rule.d_min == 3.0  # the distance at the hit point x = 7, not x = 2's 8

@@ -247,7 +247,7 @@ ORACLE_LAYERS = (
         "ifgm_ref.oracle.episodes",
         "ifgm_ref.oracle.braking",
         "ifgm_ref.oracle.checks",
-        "ifgm_ref.oracle.conformance",
+        "ifgm_ref.oracle.agreement",
         "ifgm_ref.oracle.dead_end",
         "ifgm_ref.oracle.equation_checks",
         "ifgm_ref.oracle.invariance",

@@ -43,7 +43,7 @@ from ifgm_ref.sim.world import Circle
 from ifgm_ref.sim.worldgen.classes import PASSAGE, solvable
 
 WORLDS = Path(__file__).parent / "worlds"
-#: The paper level's simulation checks (the reference level: test_reference_conformance.py).
+#: The paper level's simulation checks (the reference level: test_reference_agreement.py).
 SIMULATION = [name for name in checks_at("paper") if CHECKS[name].kind is Kind.SIMULATION]
 #: Mutant hunting: the same 50 examples, but no shrinking (speed; the report is not needed).
 HUNT = Profile("hunt", 50, shrink=False)

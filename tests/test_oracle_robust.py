@@ -128,7 +128,7 @@ def _walled_world(d: Draw) -> World:
 
 def _statistical(factory: object, sample: object, tmp_path: Path) -> object:
     check = replace(CHECKS["converges_open"], sample=sample)
-    impl = Implementation(factory, "stub", Promises(noise=REFERENCE_NOISE))  # type: ignore[arg-type]
+    impl = Implementation(factory, "stub", Promises(noise=REFERENCE_NOISE.tags()))  # type: ignore[arg-type]
     return run_check(check, impl, "robust", artifacts=tmp_path)
 
 

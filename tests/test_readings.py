@@ -1,6 +1,6 @@
 """Readings as options (issue 26, item 3; ifgm_ref.planners.ifgm.readings): the reference IFGM
 runs each reading the errata table leaves open, a port declares the one it takes, and
-reference conformance compares it with the reference running that reading -- or says that
+reference agreement compares it with the reference running that reading -- or says that
 the reference cannot run it."""
 
 from __future__ import annotations
@@ -13,7 +13,7 @@ import pytest
 from ifgm_ref.core.errors import ImplementationError, ParameterError
 from ifgm_ref.core.params import SimParams
 from ifgm_ref.io.scenarios import resolve_world
-from ifgm_ref.oracle.conformance import compare, divergence_message, reference_episode
+from ifgm_ref.oracle.agreement import compare, divergence_message, reference_episode
 from ifgm_ref.oracle.implementation import Implementation, Promises, promises_of
 from ifgm_ref.oracle.runner import check_planner
 from ifgm_ref.planners.ifgm import IFGMPlanner

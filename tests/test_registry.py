@@ -10,7 +10,6 @@ import pytest
 
 from ifgm_ref.core.errors import ImplementationError, ParameterError
 from ifgm_ref.core.params import ENGINES, EngineName, SimParams
-from ifgm_ref.core.promises import Promised
 from ifgm_ref.oracle.implementation import PROMISES, Implementation, Promises, promises_of
 from ifgm_ref.oracle.mutants import MUTANTS
 from ifgm_ref.oracle.profiles import Profile
@@ -34,9 +33,9 @@ def make():
 def test_every_registered_planner_declares_its_promises(name: str) -> None:
     """Registered with its promises, the oracle's are built from them, not kept apart."""
     declared = PLANNERS[name].promises
-    assert isinstance(declared, Promised)
+    assert isinstance(declared, Promises)
     assert declared_promises(PLANNERS[name].factory) == declared
-    assert PROMISES[name] == Promises.declared(declared)
+    assert PROMISES[name] is declared
     assert Implementation.from_spec(name).promises == PROMISES[name]
 
 
@@ -85,7 +84,7 @@ class _Declares(IBAPlanner):
 
 
 class _DeclaresItsOwn:
-    promises = Promised(converges_in=frozenset({"open"}))
+    promises = Promises(converges_in=frozenset({"open"}))
 
 
 class _DeclaresNonsense(IBAPlanner):
@@ -93,15 +92,15 @@ class _DeclaresNonsense(IBAPlanner):
 
 
 def test_a_factory_declares_its_own_promises() -> None:
-    """A ``promises`` attribute (a planner's name or a Promised) wins; a subclass of a
+    """A ``promises`` attribute (a planner's name or a Promises) wins; a subclass of a
     registered planner keeps its registration's (the oracle's IFGM variants and mutants)."""
     assert declared_promises(_Declares) == PLANNERS["ifgm"].promises
     assert promises_of("ifgm") == Implementation.from_spec(f"{__name__}:_Declares").promises
-    assert declared_promises(_DeclaresItsOwn) == Promised(converges_in=frozenset({"open"}))
+    assert declared_promises(_DeclaresItsOwn) == Promises(converges_in=frozenset({"open"}))
     assert declared_promises(HeadingWobble) == PLANNERS["ifgm"].promises
     assert all(declared_promises(m) == PLANNERS["ifgm"].promises for m in MUTANTS.values())
     assert declared_promises(lambda: IBAPlanner()) is None
-    with pytest.raises(ImplementationError, match="must be a Promised or a planner name"):
+    with pytest.raises(ImplementationError, match="must be a Promises or a planner name"):
         Implementation.from_spec(f"{__name__}:_DeclaresNonsense")
 
 

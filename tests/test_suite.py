@@ -20,8 +20,8 @@ from ifgm_ref.core.errors import ImplementationError
 from ifgm_ref.io.scenarios import resolve_world
 from ifgm_ref.io.transport.wire import PROTOCOL_VERSION
 from ifgm_ref.io.worldfile import save_world
+from ifgm_ref.oracle.agreement import HEADING_TOL, POINT_TIE, SPEED_TOL, TIE, reference_episode
 from ifgm_ref.oracle.checks import CHECKS
-from ifgm_ref.oracle.conformance import HEADING_TOL, POINT_TIE, SPEED_TOL, TIE, reference_episode
 from ifgm_ref.oracle.implementation import Implementation
 from ifgm_ref.oracle.suite.build import build_suite
 from ifgm_ref.oracle.suite.cases import Case, decode_example, encode_example, read_cases

@@ -68,7 +68,7 @@ OWN_WORDING = {
     "sim/raycast.py",
     # a scan range may also be null (no return): "must be a finite number or null"
     "io/transport/wire.py",
-    # equations (1)-(4)'s messages are in the conformance vectors, whose bytes stay put
+    # equations (1)-(4)'s messages are in the test vectors, whose bytes stay put
     "paper/equations.py",
 }
 

@@ -1,4 +1,4 @@
-"""The conformance vectors (``ifgm_ref.oracle.vectors``, ``docs/vectors-format.md``).
+"""The test vectors (``ifgm_ref.oracle.vectors``, ``docs/vectors-format.md``).
 
 The file must be deterministic and JSON-clean; the reference must pass its own vectors; broken
 equations and broken planners must be caught, with messages that name the equation or trace

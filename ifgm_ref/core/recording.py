@@ -5,7 +5,7 @@ command; :meth:`RecordingPlanner.recording` freezes them into a :class:`Recordin
 :func:`replay` hands a recording's observations, in order, to a fresh planner (open loop:
 its commands move nothing) and yields each recorded command beside the new one. Three users
 compare the two their own way: the oracle's ``deterministic`` check (bit for bit), the
-conformance vectors' reference traces (within the file's tolerances:
+test vectors' reference traces (within the file's tolerances:
 :func:`ifgm_ref.oracle.vectors.replay_traces`), and ``benchmarks/bench_decision.py``, which
 times and counts the replayed decisions. ``ifgm-ref simulate --record`` writes a recording
 as a ROS bag (:mod:`ifgm_ref.io.bags.write`). The module knows no map: it sits below the

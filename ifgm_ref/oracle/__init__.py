@@ -31,7 +31,7 @@ min_clearance=-0.128 ft at t=3.4 s, but should be >= 0 [...StraightPlanner in op
 
 Importing this package is cheap (the pytest plugin imports it in every pytest session): the
 names above load their modules, and Hypothesis, when first used. The rest of the oracle
-(its checks, strategies, the suite, the conformance vectors, what each module is for) is
+(its checks, strategies, the suite, the test vectors, what each module is for) is
 ``docs/oracle-modules.md``.
 """
 

@@ -12,7 +12,7 @@ a planner promises, ``reports_unreachable``, ``rigid_motion_invariant`` and
 :mod:`ifgm_ref.oracle.dead_end`), ``deterministic``, ``stops_in_time`` (a robot with mass:
 :mod:`ifgm_ref.oracle.braking`), the equations' checks
 (:mod:`ifgm_ref.oracle.equation_checks`) and, at the reference level only,
-``agrees_with_reference`` (:mod:`ifgm_ref.oracle.conformance`). Each check's sentence says
+``agrees_with_reference`` (:mod:`ifgm_ref.oracle.agreement`). Each check's sentence says
 its property; ``docs/oracle.md``, "The properties", says each in full with whom it applies to.
 
 Every simulation check runs with the simulator's defaults (``dt`` 0.1 s, goal tolerance 0.5 ft)
@@ -39,6 +39,12 @@ from ifgm_ref.core.errors import present
 from ifgm_ref.core.protocol import Command
 from ifgm_ref.core.recording import RecordingPlanner, replay
 from ifgm_ref.io.scenarios import resolve_world
+from ifgm_ref.oracle.agreement import (
+    ReferenceEpisode,
+    compare,
+    divergence_message,
+    reference_episode,
+)
 from ifgm_ref.oracle.braking import stops_in_time
 from ifgm_ref.oracle.check_types import (
     Check,
@@ -49,12 +55,6 @@ from ifgm_ref.oracle.check_types import (
     Meets,
     Recorder,
     levels_up_to,
-)
-from ifgm_ref.oracle.conformance import (
-    ReferenceEpisode,
-    compare,
-    divergence_message,
-    reference_episode,
 )
 from ifgm_ref.oracle.dead_end import dead_end_turns, turn_errors
 from ifgm_ref.oracle.episodes import MOVING, NEAR, _xy, ending, episode, place_of
@@ -366,7 +366,7 @@ def _determinism_test(impl: Implementation, world: World, rec: Recorder) -> None
 
 def _agrees_test(impl: Implementation, world: World, rec: Recorder) -> None:
     """Replay the reference IFGM's episode in ``world`` into ``impl``, open loop, and compare
-    step by step (:mod:`ifgm_ref.oracle.conformance`)."""
+    step by step (:mod:`ifgm_ref.oracle.agreement`)."""
     sim = rec.sim_for(world)
     reference = reference_episode(world, sim, Readings.declared(impl.promises.readings))
     agrees_with(impl, world, reference, rec)

@@ -2,7 +2,7 @@
 
 Three things draw inputs for the functions of :mod:`ifgm_ref.paper.equations`: the oracle's equation
 checks (:mod:`ifgm_ref.oracle.equation_checks`), the property tests of
-``tests/test_equations.py`` and the seeded random cases of the conformance vectors
+``tests/test_equations.py`` and the seeded random cases of the test vectors
 (:mod:`ifgm_ref.oracle.vectors`). They take their intervals from here. Each :class:`Argument`
 holds two, each with its reason:
 

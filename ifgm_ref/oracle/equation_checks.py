@@ -1,12 +1,12 @@
 """The oracle's equation checks: an implementation's eqs. (1)-(4) against the reference.
 
 Each check draws keyword arguments from the equation's domain
-(:func:`ifgm_ref.oracle.domains.inputs`, the same table the conformance vectors and
+(:func:`ifgm_ref.oracle.domains.inputs`, the same table the test vectors and
 ``tests/test_equations.py`` draw from), calls the implementation's function of that name and
 the reference's, and fails when they differ by more than :data:`EQUATION_TOL` (a point by its
 distance, a direction modulo 2 pi). Inputs where the reference raises (the domain's singular
 points) are skipped. A program, which exposes no Python functions, checks its equations
-against the conformance vectors instead (``docs/vectors-format.md``).
+against the test vectors instead (``docs/vectors-format.md``).
 """
 
 from __future__ import annotations

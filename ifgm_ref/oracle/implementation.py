@@ -13,16 +13,16 @@ from __future__ import annotations
 
 import shlex
 from collections.abc import Callable, Mapping, Sequence
-from dataclasses import dataclass, field, fields, replace
+from dataclasses import dataclass, field, replace
 
-from ifgm_ref.core.errors import ImplementationError, ParameterError, PlannerError
+from ifgm_ref.core.errors import ImplementationError, PlannerError
 from ifgm_ref.core.pose import Point, Pose
-from ifgm_ref.core.promises import ALL_CLASSES, REFERENCE_NOISE_LEVELS, Promised
 from ifgm_ref.core.protocol import EpisodeParams, Planner
 from ifgm_ref.io.transport.external import TIMEOUT
 from ifgm_ref.io.transport.loading import load_planner_factory
 from ifgm_ref.planners import PLANNERS, declared_promises
-from ifgm_ref.planners.ifgm.readings import known_names
+from ifgm_ref.planners.promises import ALL_CLASSES, REFERENCE_NOISE_LEVELS
+from ifgm_ref.planners.promises import Promises as Promises
 from ifgm_ref.sim.noise import NoiseLevels
 
 __all__ = [
@@ -35,7 +35,7 @@ __all__ = [
 ]
 
 #: The noise levels the reference planners promise
-#: (:data:`~ifgm_ref.core.promises.REFERENCE_NOISE_LEVELS`; :mod:`ifgm_ref.sim.noise`).
+#: (:data:`~ifgm_ref.planners.promises.REFERENCE_NOISE_LEVELS`; :mod:`ifgm_ref.sim.noise`).
 REFERENCE_NOISE = NoiseLevels.parse(REFERENCE_NOISE_LEVELS)
 #: How to say what an implementation the oracle cannot find promises of promises.
 HOW_TO_PROMISE = (
@@ -44,92 +44,18 @@ HOW_TO_PROMISE = (
 )
 
 
-@dataclass(frozen=True)
-class Promises:
-    """What a planner promises, and so which checks apply to it.
+def promised_noise(promises: Promises) -> NoiseLevels | None:
+    """The noise levels ``promises`` promise (:attr:`Promises.noise`), parsed; ``None``: no
+    robustness promised.
 
-    Parameters
-    ----------
-    converges_in : frozenset of str
-        The world classes (names of :data:`ifgm_ref.oracle.strategies.SOLVABLE_CLASSES`) in
-        which it reaches the goal within the time bound.
-    reports_unreachable : bool, default False
-        Whether it stops with ``goal_unreachable`` when the goal is enclosed.
-    collision_free : bool, default True
-        Whether its swept disc never meets an obstacle (every planner of the paper).
-    passes_wide_gaps : bool, default True
-        Whether it steers through a gap wider than IFGM's ``d_th`` rather than round the
-        obstacles (section 4, Case-1; IFGM only: FGM takes the widest gap, the Bug family
-        goes round).
-    scale_invariant : bool, default True
-        Whether it derives every length from the robot and the sensor, so that scaling every
-        length of the problem by ``k`` (the world, the robot's radius and speed, the sensor's
-        ranges, the goal tolerance) scales its trajectory by ``k`` (the ``scale_invariant``
-        check; :mod:`ifgm_ref.oracle.metamorphic`). Every planner here promises it: their
-        parameters are formulas in the robot and the sensor (:mod:`ifgm_ref.planners.tuning`).
-    noise : NoiseLevels or None, default None
-        The noise levels (:mod:`ifgm_ref.sim.noise`) at which it keeps these promises: never
-        collides, and reaches the goal in at least
-        :data:`~ifgm_ref.oracle.robust.SUCCESS_THRESHOLD` of the worlds of each class it
-        converges in, with 95 % confidence. The robust profile checks these levels; ``None``
-        promises no robustness.
-    turns_at_dead_ends : bool, default False
-        Whether it meets a dead end by turning in 45-degree steps (section 4, Case-3; IFGM
-        only), which the ``dead_end_turns`` check reads from the branches it reports.
-    reference : str or None, default None
-        The reference planner whose readings it follows step by step: ``"ifgm"`` (the only
-        one with the margins that tell a tie from a fault) makes the reference level's
-        ``agrees_with_reference`` check apply (:mod:`ifgm_ref.oracle.conformance`).
-    stops_in_time : bool, default False
-        Whether it honours the robot's dynamics (:class:`~ifgm_ref.core.params.RobotParams`
-        ``braking``, ``acceleration`` and ``response``): on a robot that cannot stop at once,
-        every command leaves it room to stop before what it sees (the braking governor's
-        condition, :mod:`ifgm_ref.planners.governor`), which the ``stops_in_time`` check
-        monitors step by step. Every built-in planner promises it but ``straight`` (DWA, which
-        keeps its own dynamic window, measured: ``docs/oracle.md``).
-    readings : mapping of str to str, default {}
-        The readings it takes of the paper's open choices, where they are not ours
-        (:data:`~ifgm_ref.planners.ifgm.readings.OPEN_READINGS`: ``{"dead_end_side":
-        "left"}``, say): the reference runs the same readings to compare with it, or the
-        check says it cannot.
+    >>> promised_noise(Promises(noise="range=0.02")).range, promised_noise(Promises())
+    (0.02, None)
     """
-
-    converges_in: frozenset[str] = ALL_CLASSES
-    reports_unreachable: bool = False
-    collision_free: bool = True
-    passes_wide_gaps: bool = True
-    scale_invariant: bool = True
-    noise: NoiseLevels | None = None
-    turns_at_dead_ends: bool = False
-    reference: str | None = None
-    readings: Mapping[str, str] = field(default_factory=dict)
-    stops_in_time: bool = False
-
-    def __post_init__(self) -> None:
-        try:
-            known_names(self.readings)
-        except ParameterError as err:
-            raise ImplementationError(f"readings: {err}") from None
-        classes = Promised(converges_in=self.converges_in).converges_in  # checked there
-        object.__setattr__(self, "converges_in", classes)
-
-    @classmethod
-    def declared(cls, promised: Promised) -> Promises:
-        """The promises a planner declared (:class:`~ifgm_ref.core.promises.Promised`), its
-        noise levels as :class:`~ifgm_ref.sim.noise.NoiseLevels`.
-
-        >>> Promises.declared(Promised(noise="range=0.02")).noise.range
-        0.02
-        """
-        values = {f.name: getattr(promised, f.name) for f in fields(Promised)}
-        noise = None if promised.noise is None else NoiseLevels.parse(promised.noise, "noise")
-        return cls(**values | {"noise": noise})
+    return None if promises.noise is None else NoiseLevels.parse(promises.noise, "noise")
 
 
 #: What each built-in planner promises, as it declares it (:data:`ifgm_ref.planners.PLANNERS`).
-PROMISES: dict[str, Promises] = {
-    name: Promises.declared(info.promises) for name, info in PLANNERS.items()
-}
+PROMISES: dict[str, Promises] = {name: info.promises for name, info in PLANNERS.items()}
 
 
 #: The equations a built-in planner is checked with when none are given: the reference's.
@@ -189,7 +115,7 @@ promises: --promises ifgm (ifgm-ref oracle), --ifgm-promises ifgm (pytest), prom
         raise ImplementationError(str(err)) from None
     if declared is None:
         raise ImplementationError(f"{label} declares no promises; {HOW_TO_PROMISE}")
-    return Promises.declared(declared)
+    return declared
 
 
 @dataclass

@@ -17,7 +17,7 @@ from ifgm_ref.core.protocol import Behaviour, Command, EpisodeParams
 from ifgm_ref.paper.equations import eq3_goal_angle_literal
 from ifgm_ref.paper.percepts.clusters import Gap
 from ifgm_ref.planners.ifgm import IFGMPlanner
-from ifgm_ref.planners.ifgm.atoms import IFGMState, Percepts
+from ifgm_ref.planners.ifgm.atoms import IFGMState, StepInputs
 from ifgm_ref.planners.sight import Sight
 
 
@@ -102,7 +102,7 @@ class NoDeadEndRule(IFGMPlanner):
 
     name = "ifgm-no-dead-end-rule"
 
-    def dead_end(self, state: IFGMState, percepts: Percepts) -> tuple[IFGMState, Command]:
+    def dead_end(self, state: IFGMState, percepts: StepInputs) -> tuple[IFGMState, Command]:
         pose = percepts.sight.pose
         return state, Command(pose.theta, 0.0, behaviour=Behaviour.OBSTACLE_AVOIDANCE)
 

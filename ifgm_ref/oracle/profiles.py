@@ -23,7 +23,7 @@ from ifgm_ref.core.params import (
     SimParams,
     engine_named,
 )
-from ifgm_ref.oracle.implementation import Promises
+from ifgm_ref.oracle.implementation import Promises, promised_noise
 from ifgm_ref.sim.engine import require_physics
 from ifgm_ref.sim.noise import NoiseLevels
 from ifgm_ref.sim.physics.bodies import body_named
@@ -106,13 +106,15 @@ class Profile:
         promised).
 
         >>> from ifgm_ref.oracle.implementation import REFERENCE_NOISE
-        >>> promised = Promises(noise=REFERENCE_NOISE)
+        >>> promised = Promises(noise=REFERENCE_NOISE.tags())
         >>> PROFILES["robust"].levels(promised).tags()
         'range=0.02,dropout=0.05,odometry=0.01'
         >>> PROFILES["quick"].levels(promised) is None
         True
         """
-        levels = self.noise if self.noise is not None or not self.robust else promises.noise
+        levels = (
+            self.noise if self.noise is not None or not self.robust else promised_noise(promises)
+        )
         return levels if levels is not None and levels.on else None
 
     def settings(self) -> settings:
@@ -229,9 +231,9 @@ def noise_tags(profile: Profile, promises: Promises) -> tuple[str | None, str]:
 
     >>> noise_tags(PROFILES["robust"], Promises())
     ('none', 'none')
-    >>> noise_tags(PROFILES["quick"], Promises(noise=NoiseLevels(range=0.02, odometry=0.01)))
+    >>> noise_tags(PROFILES["quick"], Promises(noise="range=0.02,odometry=0.01"))
     (None, 'range=0.02,odometry=0.01')
     """
     levels = profile.levels(promises)
     checked = (levels or NoiseLevels()).tags() if profile.is_robustness_run else None
-    return checked, (promises.noise or NoiseLevels()).tags()
+    return checked, promises.noise or "none"

@@ -234,7 +234,7 @@ class Specification:
         flags = [f.name for f in fields(Promises) if isinstance(getattr(p, f.name), bool)]
         kept = [name for name in flags if getattr(p, name)]
         not_kept = [name for name in flags if not getattr(p, name)]
-        noise = (p.noise or NoiseLevels()).tags()
+        noise = p.noise or "none"
         return (
             f"(from {self.like}'s): converges in {classes}; {', '.join(kept) or 'nothing else'}; "
             f"not {', '.join(not_kept) or 'nothing'}; reference {p.reference or 'none'}; "
@@ -424,7 +424,7 @@ def _classes(value: object, source: str) -> frozenset[str]:
     return frozenset(value)
 
 
-def _noise(value: object, source: str) -> NoiseLevels | None:
+def _noise(value: object, source: str) -> str | None:
     where = _where(source, "promises.noise")
     if not isinstance(value, str):
         raise ParameterError(f'{where}: must be a string "KIND=LEVEL,..." or "none", got {value!r}')
@@ -432,7 +432,7 @@ def _noise(value: object, source: str) -> NoiseLevels | None:
         levels = NoiseLevels.parse(value)
     except IfgmRefError as err:
         raise ParameterError(f"{where}: {err}") from None
-    return levels if levels.on else None
+    return levels.tags() if levels.on else None
 
 
 def _readings(table: dict[str, Any], source: str) -> dict[str, str]:

@@ -13,7 +13,7 @@ integer, a string or bytes, 0.15 of a float's) draws a constant instead, half th
 found in the source of the *local* modules in ``sys.modules``: those outside
 ``site-packages`` and the standard library. Which modules are
 local depends on how this package was installed and on what the caller imported first, so the
-examples of one seed did too (the reference-conformance check drew 41,230 reference steps
+examples of one seed did too (the reference-agreement check drew 41,230 reference steps
 from the command line and 41,257 from the Python API, ``docs/oracle.md``). Hypothesis has no
 setting that turns the local constants off: the opt-out asked for in its issue #4365 (closed
 by a speed fix, without one) and #4627 (open) does not exist. Its *global* constants (the

@@ -112,7 +112,7 @@ def builtin_worlds() -> list[World]:
     return [resolve_world(name) for name in sorted(BUILTIN_WORLDS)]
 
 
-#: BARN's worlds replayed by reference conformance: the four kept with the tests
+#: BARN's worlds replayed by reference agreement: the four kept with the tests
 #: (``tests/worlds/barn``), from the bundled set; 245 is one where IFGM needs Bug1's round.
 BARN_SAMPLES = (1, 2, 4, 245)
 
@@ -120,6 +120,6 @@ BARN_SAMPLES = (1, 2, 4, 245)
 def reference_worlds() -> list[World]:
     """The built-in worlds and :data:`BARN_SAMPLES` (BARN's obstacle fields, with the
     Jackal-sized robot and its LiDAR: :mod:`ifgm_ref.io.barn`): the explicit examples of
-    reference conformance, run every time."""
+    reference agreement, run every time."""
     barn = [present(gazebo_task(f"barn:{n}"), "a BARN task").world for n in BARN_SAMPLES]
     return [*builtin_worlds(), *barn]

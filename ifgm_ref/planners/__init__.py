@@ -12,7 +12,6 @@ from dataclasses import dataclass, replace
 
 from ifgm_ref.core.errors import PlannerError
 from ifgm_ref.core.formulas import Scale
-from ifgm_ref.core.promises import REFERENCE_NOISE_LEVELS, Promised
 from ifgm_ref.core.protocol import Planner
 from ifgm_ref.planners.apf import APFPlanner
 from ifgm_ref.planners.bug1 import Bug1Planner
@@ -22,6 +21,7 @@ from ifgm_ref.planners.dwa import DWAPlanner
 from ifgm_ref.planners.fgm import FGMPlanner
 from ifgm_ref.planners.iba import IBAPlanner
 from ifgm_ref.planners.ifgm import IFGMPlanner
+from ifgm_ref.planners.promises import REFERENCE_NOISE_LEVELS, Promises
 from ifgm_ref.planners.straight import StraightPlanner
 from ifgm_ref.planners.tuning import ParamInfo, Tuning, parameter_infos
 
@@ -29,12 +29,12 @@ from ifgm_ref.planners.tuning import ParamInfo, Tuning, parameter_infos
 @dataclass(frozen=True)
 class PlannerInfo:
     """A registered planner: its factory, a one-line description, what it promises (declared
-    with it, so that no planner is without: :class:`~ifgm_ref.core.promises.Promised`) and its
+    with it, so that no planner is without: :class:`~ifgm_ref.planners.promises.Promises`) and its
     parameter classes."""
 
     factory: Callable[[], Planner]
     description: str
-    promises: Promised
+    promises: Promises
     tunings: tuple[type[Tuning], ...] = ()
 
     @property
@@ -52,14 +52,14 @@ class PlannerInfo:
 #: unreachable" reported, obstacles gone round rather than gaps taken. Bug1 and Bug2 miss too
 #: often under noise at any level tried, so they promise none (``docs/oracle.md``,
 #: "Robustness"); DistBug and IBA keep their promises under the reference levels.
-BOUNDARY = Promised(reports_unreachable=True, passes_wide_gaps=False, stops_in_time=True)
+BOUNDARY = Promises(reports_unreachable=True, passes_wide_gaps=False, stops_in_time=True)
 ROBUST_BOUNDARY = replace(BOUNDARY, noise=REFERENCE_NOISE_LEVELS)
 #: DWA's promises, what it kept under ``ifgm-ref oracle --planner dwa --profile brief``
 #: (``docs/oracle.md``, "What DWA promises, measured"): collision-freedom, scale invariance and
 #: stopping in time (its dynamic window keeps within the robot's braking); no convergence (it
 #: stalls even in open worlds, turning in place beside a post), no Case-1 gap, no "goal
 #: unreachable", no IFGM dead end, no noise levels.
-DWA_PROMISES = Promised(converges_in=frozenset(), passes_wide_gaps=False, stops_in_time=True)
+DWA_PROMISES = Promises(converges_in=frozenset(), passes_wide_gaps=False, stops_in_time=True)
 
 #: Every planner by its command-line name, with what it promises (paper Table 1 and section
 #: 5; FGM steers at the *widest* gap, which beside a wall is the open space past its end; IFGM
@@ -97,7 +97,7 @@ PLANNERS: dict[str, PlannerInfo] = {
         FGMPlanner,
         "Follow the Gap Method (Sezer & Gokasan 2012; section 2.2): steer through the widest "
         "gap; trapped by U and H shapes",
-        Promised(
+        Promises(
             converges_in=frozenset({"open", "symmetric"}),
             passes_wide_gaps=False,
             noise=REFERENCE_NOISE_LEVELS,
@@ -109,7 +109,7 @@ PLANNERS: dict[str, PlannerInfo] = {
         IFGMPlanner,
         "Intelligent Follow the Gap Method (section 4, Figure 3): FGM through wide gaps, IBA "
         "round the rest, 45-degree turns out of dead ends",
-        Promised(
+        Promises(
             noise=REFERENCE_NOISE_LEVELS,
             turns_at_dead_ends=True,
             reference="ifgm",
@@ -121,7 +121,7 @@ PLANNERS: dict[str, PlannerInfo] = {
         APFPlanner,
         "artificial potential field (Khatib 1986; Table 1): goal attracts, returns repel; "
         "trapped by U, H and symmetric obstacles",
-        Promised(converges_in=frozenset({"open"}), passes_wide_gaps=False, stops_in_time=True),
+        Promises(converges_in=frozenset({"open"}), passes_wide_gaps=False, stops_in_time=True),
         APFPlanner.tunings,
     ),
     "dwa": PlannerInfo(
@@ -134,16 +134,16 @@ PLANNERS: dict[str, PlannerInfo] = {
     "straight": PlannerInfo(
         StraightPlanner,
         "steer straight at the goal; no avoidance",
-        Promised(converges_in=frozenset(), collision_free=False, passes_wide_gaps=False),
+        Promises(converges_in=frozenset(), collision_free=False, passes_wide_gaps=False),
     ),
 }
 
 
-def declared_promises(factory: object) -> Promised | None:
+def declared_promises(factory: object) -> Promises | None:
     """What the planner factory ``factory`` declares it promises, or ``None`` if nothing.
 
     A factory declares it with a ``promises`` attribute (on a class: for every instance and
-    subclass), either a :class:`~ifgm_ref.core.promises.Promised` or the name of a registered
+    subclass), either a :class:`~ifgm_ref.planners.promises.Promises` or the name of a registered
     planner whose promises it keeps. A registered planner's class declares the promises it is
     registered with, and so does any subclass of it (the oracle's IFGM variants and mutants,
     a port built on the reference): the registration nearest in its method resolution order.
@@ -158,13 +158,13 @@ def declared_promises(factory: object) -> Promised | None:
     True
     """
     promises = getattr(factory, "promises", None)
-    if isinstance(promises, Promised):
+    if isinstance(promises, Promises):
         return promises
     if isinstance(promises, str):
         return promises_named(promises)
     if promises is not None:
         raise PlannerError(
-            f"{factory!r}.promises: must be a Promised or a planner name, got {promises!r}"
+            f"{factory!r}.promises: must be a Promises or a planner name, got {promises!r}"
         )
     registered = {info.factory: info.promises for info in PLANNERS.values()}
     for base in factory.__mro__ if isinstance(factory, type) else ():
@@ -173,7 +173,7 @@ def declared_promises(factory: object) -> Promised | None:
     return None
 
 
-def promises_named(name: str) -> Promised:
+def promises_named(name: str) -> Promises:
     """What the registered planner ``name`` promises.
 
     >>> promises_named("apf").converges_in

@@ -40,7 +40,7 @@ from ifgm_ref.paper.percepts.memory import PerceptMemory
 from ifgm_ref.planners.circuit import Circuit
 from ifgm_ref.planners.edge_following import FollowSide, follow_heading, turn_speed
 from ifgm_ref.planners.governor import BrakingGovernor
-from ifgm_ref.planners.sight import Body, BoundaryParams, Sight, goal_bearing
+from ifgm_ref.planners.sight import BoundaryParams, Episode, Sight, goal_bearing
 from ifgm_ref.planners.tuning import Tuning, check_names, parameter_names
 
 __all__ = [
@@ -116,9 +116,9 @@ class EdgeFollower:
 def edge_heading(sight: Sight, side: FollowSide) -> float | None:
     """The heading that follows the nearest remembered edge, kept on ``side``; ``None`` if
     no edge is left."""
-    pose, body = sight.pose, sight.body
+    pose, episode = sight.pose, sight.episode
     return follow_heading(
-        (pose.x, pose.y), sight.points, side, standoff=body.standoff, gain=1.0 / body.radius
+        (pose.x, pose.y), sight.points, side, standoff=episode.standoff, gain=1.0 / episode.radius
     )
 
 
@@ -162,18 +162,18 @@ def keep_clear(command: Command, sight: Sight) -> Command:
     """
     if command.speed <= 0.0 or command.stop is not None:
         return command
-    pose, body, origin = sight.pose, sight.body, (sight.pose.x, sight.pose.y)
+    pose, episode, origin = sight.pose, sight.episode, (sight.pose.x, sight.pose.y)
     for k in range(CLEAR_STEPS + 1):
         for sign in (1, -1) if k else (1,):
             heading = wrap_angle(command.heading + sign * k * CLEAR_STEP)
             error = wrap_angle(heading - pose.theta)
-            speed = min(command.speed, turn_speed(error, body.speed) if k else body.speed)
-            turn = max(-body.turn_limit, min(body.turn_limit, error))
+            speed = min(command.speed, turn_speed(error, episode.speed) if k else episode.speed)
+            turn = max(-episode.turn_limit, min(episode.turn_limit, error))
             direction = pose.theta + turn
             free = disc_travel(
-                sight.points, origin, direction, body.half_width, relative=sight.offsets
+                sight.points, origin, direction, episode.half_width, relative=sight.offsets
             )
-            if free >= speed * body.dt:
+            if free >= speed * episode.dt:
                 return command if k == 0 else replace(command, heading=heading, speed=speed)
     return replace(command, speed=0.0)
 
@@ -189,11 +189,13 @@ def unreachable(sight: Sight, branch: str) -> Command:
     )
 
 
-def steer(heading: float, pose: Pose, body: Body, behaviour: Behaviour, branch: str) -> Command:
+def steer(
+    heading: float, pose: Pose, episode: Episode, behaviour: Behaviour, branch: str
+) -> Command:
     """Turn towards ``heading``, slowing with the turn still to go."""
     return Command(
         heading,
-        turn_speed(wrap_angle(heading - pose.theta), body.speed),
+        turn_speed(wrap_angle(heading - pose.theta), episode.speed),
         behaviour=behaviour,
         branch=branch,
     )
@@ -217,7 +219,7 @@ class BoundaryPlanner:
         Bug1's round of the followed obstacle, a value replaced as the round goes on.
     memory : PerceptMemory
         The obstacle points of the last ``memory_horizon`` seconds.
-    body : Body
+    episode : Episode
         The robot and the episode.
     """
 
@@ -240,7 +242,7 @@ class BoundaryPlanner:
         (unknown names are an error)."""
         check_names(params.params, self.parameters, self.name)
         tuning = BoundaryParams.for_episode(params)
-        self.body = Body.of(goal, params, tuning)
+        self.episode = Episode.of(goal, params, tuning)
         self.memory = PerceptMemory(tuning.memory_horizon, params.dt)
         self.follower.reset()
         self.rule.reset(start, goal, params)
@@ -276,7 +278,7 @@ class BoundaryPlanner:
             self.circuit = circuit = circuit.advanced(sight)
             if not circuit.at_q(sight):
                 return steer(
-                    circuit.heading_to_q(sight), sight.pose, self.body,
+                    circuit.heading_to_q(sight), sight.pose, self.episode,
                     Behaviour.OBSTACLE_AVOIDANCE, "follow_to_q",
                 )  # fmt: skip
             self.circuit = circuit.left_at_q()
@@ -294,19 +296,19 @@ class BoundaryPlanner:
     def observe(self, observation: Observation) -> Sight:
         """Remember the scan, as far as the paper's sensor sees (``view_range``); return this
         step's sight of the goal."""
-        scan = observation.scan.limited(self.body.tuning.view_range)
+        scan = observation.scan.limited(self.episode.tuning.view_range)
         self.memory.add(observation.t, observation.pose, scan)
         return Sight(
-            observation.pose, self.body, self.memory.points, self.goal_bearing(observation.pose)
+            observation.pose, self.episode, self.memory.points, self.goal_bearing(observation.pose)
         )
 
     def goal_bearing(self, pose: Pose) -> float:
         """World-frame direction from the robot to the goal, radians (:func:`goal_bearing`)."""
-        return goal_bearing(pose, self.body.goal)
+        return goal_bearing(pose, self.episode.goal)
 
     def move_to_goal(self, sight: Sight, branch: str) -> Command:
         """Head for the goal on the regenerated reference path."""
-        return steer(sight.bearing, sight.pose, self.body, Behaviour.MOVE_TO_GOAL, branch)
+        return steer(sight.bearing, sight.pose, self.episode, Behaviour.MOVE_TO_GOAL, branch)
 
     def follow(self, sight: Sight, branch: str) -> Command:
         """Follow the nearest remembered edge; move to goal if the edge is forgotten."""
@@ -314,4 +316,4 @@ class BoundaryPlanner:
         if heading is None:  # the edge is forgotten: the obstacle is behind us
             self.follower.following = False
             return self.move_to_goal(sight, "edge_lost")
-        return steer(heading, sight.pose, self.body, Behaviour.OBSTACLE_AVOIDANCE, branch)
+        return steer(heading, sight.pose, self.episode, Behaviour.OBSTACLE_AVOIDANCE, branch)

@@ -159,7 +159,7 @@ class Circuit:
         if self.last is not None:
             travelled += distance(self.last, here)
         trail = self.trail
-        spacing = TRAIL_SPACING_FRACTION * sight.body.tuning.return_radius
+        spacing = TRAIL_SPACING_FRACTION * sight.episode.tuning.return_radius
         if len(trail) and travelled < trail[-1, _TRAVELLED] + spacing:
             return replace(self, travelled=travelled, last=here)
         pose = sight.pose
@@ -173,7 +173,7 @@ class Circuit:
         :data:`SAME_WAY`), at least ``min_loop`` driven since; of several, the earliest."""
         if self.phase is not CircuitPhase.FIRST_PASS:
             return None
-        tuning = sight.body.tuning
+        tuning = sight.episode.tuning
         trail = self.trail
         back = self.travelled - tuning.min_loop
         old = int(np.searchsorted(trail[:, _TRAVELLED], back, "right"))
@@ -207,14 +207,14 @@ class Circuit:
             cursor=at,
             q_index=at + best,
         )
-        if encloses(loop[:, :2], sight.body.goal, side):
+        if encloses(loop[:, :2], sight.episode.goal, side):
             return closed, False
-        return closed, q_distance < self.left_q - sight.body.speed * sight.body.dt
+        return closed, q_distance < self.left_q - sight.episode.speed * sight.episode.dt
 
     def advanced(self, sight: Sight) -> Circuit:
         """On to Q: the :attr:`cursor` moved past the trail points, short of Q, that lie
         within ``return_radius`` of the robot."""
-        pose, reach = sight.pose, sight.body.tuning.return_radius
+        pose, reach = sight.pose, sight.episode.tuning.return_radius
         trail, cursor = self.trail, self.cursor
         while cursor < self.q_index and (
             math.hypot(trail[cursor, _X] - pose.x, trail[cursor, _Y] - pose.y) <= reach
@@ -230,7 +230,7 @@ class Circuit:
     def at_q(self, sight: Sight) -> bool:
         """Whether the robot, on its way, has come to Q: every trail point before Q passed,
         and Q within half a ``return_radius`` (the trail's spacing)."""
-        spacing = TRAIL_SPACING_FRACTION * sight.body.tuning.return_radius
+        spacing = TRAIL_SPACING_FRACTION * sight.episode.tuning.return_radius
         return (
             self.cursor >= self.q_index and distance(sight.pose.position, self.q_point) <= spacing
         )

@@ -81,7 +81,7 @@ class DistBugRule(LeaveRule):
 
     def on_hit(self, sight: Sight, follower: EdgeFollower) -> None:
         """A new obstacle: ``d_min`` starts at d(H, T)."""
-        self.d_min = distance(follower.hit_point, sight.body.goal)
+        self.d_min = distance(follower.hit_point, sight.episode.goal)
 
     def note(self, sight: Sight) -> None:
         """Count this step's distance to the goal into ``d_min``."""
@@ -105,10 +105,10 @@ class DistBugRule(LeaveRule):
             return 0.0
         d = sight.goal_distance
         free = sight.goal_free_length
-        seen = sight.body.tuning.view_range  # the planner knows nothing beyond it
+        seen = sight.episode.tuning.view_range  # the planner knows nothing beyond it
         if free >= d and d <= seen:
             return d
-        return max(0.0, min(free, seen) - sight.body.encounter)
+        return max(0.0, min(free, seen) - sight.episode.encounter)
 
 
 def makes_progress(sight: Sight, d_min: float, step_length: float) -> bool:

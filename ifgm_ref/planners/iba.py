@@ -97,7 +97,7 @@ class IBARule(DistBugRule):
         farther from the goal than it has been; measured from there, the next leave would
         count a return as progress, and the robot could circle an enclosure or swap between
         two walls for ever (BARN worlds; errata row 31)."""
-        self.d_min = yardstick_at_hit(self.d_min, follower.hit_point, sight.body.goal)
+        self.d_min = yardstick_at_hit(self.d_min, follower.hit_point, sight.episode.goal)
 
     @traces("iba.leave_free_path", "s3.clear_path")
     def update(self, sight: Sight, follower: EdgeFollower) -> bool:
@@ -127,7 +127,7 @@ def free_path_leads_on(sight: Sight, d_min: float) -> bool:
     at least as near the goal as it has been in this episode (``d_min``)."""
     if not sight.path_free():
         return False
-    view_range = sight.body.tuning.view_range
+    view_range = sight.episode.tuning.view_range
     return sight.goal_distance - min(sight.goal_free_length, view_range) <= d_min
 
 

@@ -1,4 +1,4 @@
-"""What a boundary follower knows at one step: its body and episode, and its sight of the goal.
+"""What a boundary follower knows at one step: its robot and episode, and its sight of the goal.
 
 Section 4.1 of the paper: "the robot continuously monitors the obstacles in the path toward
 destination during edge detection". Every rule of the Bug family, IBA's and IFGM's asks the
@@ -75,7 +75,7 @@ class BoundaryParams(Tuning):
 
 
 @dataclass(frozen=True)
-class Body:
+class Episode:
     """The robot and its episode as a boundary follower plans with them, fixed at reset.
 
     Attributes
@@ -104,8 +104,8 @@ class Body:
     tuning: BoundaryParams
 
     @classmethod
-    def of(cls, goal: Point, params: EpisodeParams, tuning: BoundaryParams) -> Body:
-        """The body of an episode towards ``goal``."""
+    def of(cls, goal: Point, params: EpisodeParams, tuning: BoundaryParams) -> Episode:
+        """The robot and episode of a run towards ``goal``."""
         return cls(
             goal=Point(*goal),
             radius=params.robot.radius,
@@ -157,7 +157,7 @@ class Sight:
     ----------
     pose : Pose
         Where the robot is.
-    body : Body
+    episode : Episode
         The robot and its episode.
     points : (n, 2) array
         The remembered obstacle points (:class:`~ifgm_ref.paper.percepts.memory.PerceptMemory`).
@@ -166,8 +166,8 @@ class Sight:
 
     Examples
     --------
-    >>> body = Body.of(Point(10.0, 0.0), EpisodeParams(), BoundaryParams.paper())
-    >>> sight = Sight(Pose(0.0, 0.0, 0.0), body, np.array([[4.0, 0.5]]), 0.0)
+    >>> episode = Episode.of(Point(10.0, 0.0), EpisodeParams(), BoundaryParams.paper())
+    >>> sight = Sight(Pose(0.0, 0.0, 0.0), episode, np.array([[4.0, 0.5]]), 0.0)
     >>> sight.goal_distance, sight.goal_free_length, sight.goal_blocked()
     (10.0, 4.0, False)
     >>> sight.goal_in_view(), sight.path_free()
@@ -176,13 +176,15 @@ class Sight:
     (True, False)
     """
 
-    def __init__(self, pose: Pose, body: Body, points: NDArray[np.float64], bearing: float) -> None:
+    def __init__(
+        self, pose: Pose, episode: Episode, points: NDArray[np.float64], bearing: float
+    ) -> None:
         self.pose = pose
-        self.body = body
+        self.episode = episode
         self.points = points
         self.bearing = bearing
         #: The distance to the goal.
-        self.goal_distance = distance(pose, body.goal)
+        self.goal_distance = distance(pose, episode.goal)
         self._free_length: float | None = None
         self._offsets: Offsets | None = None
         self._distances: NDArray[np.float64] | None = None
@@ -200,7 +202,7 @@ class Sight:
         """How far the robot-wide corridor towards the goal is free of remembered points
         (worked out at the first question)."""
         if self._free_length is None:
-            pose, half_width = self.pose, self.body.half_width
+            pose, half_width = self.pose, self.episode.half_width
             self._free_length = free_length(
                 self.points, (pose.x, pose.y), self.bearing, half_width, relative=self.offsets
             )
@@ -217,7 +219,7 @@ class Sight:
     def goal_blocked(self) -> bool:
         """Whether an obstacle stands in the corridor towards the goal, nearer than both the
         goal and the encounter distance ``standoff + hit_margin``."""
-        return self.goal_free_length < min(self.body.encounter, self.goal_distance)
+        return self.goal_free_length < min(self.episode.encounter, self.goal_distance)
 
     def nearest_ahead(self) -> bool:
         """Whether the nearest remembered point lies ahead on the way to the goal: on the
@@ -233,11 +235,11 @@ class Sight:
     def goal_approachable(self) -> bool:
         """Whether the robot's corridor-wide disc can move one step of travel
         (``speed * dt``) straight towards the goal."""
-        pose, body = self.pose, self.body
+        pose, episode = self.pose, self.episode
         travel = disc_travel(
-            self.points, (pose.x, pose.y), self.bearing, body.half_width, relative=self.offsets
+            self.points, (pose.x, pose.y), self.bearing, episode.half_width, relative=self.offsets
         )
-        return travel >= body.speed * body.dt
+        return travel >= episode.speed * episode.dt
 
     def meets_obstacle(self) -> bool:
         """Whether the robot meets an obstacle here: one blocks the corridor towards the goal
@@ -258,7 +260,7 @@ class Sight:
         The view is the field of view, but no wider than the paper's 135 degrees: a robot
         that "sees" its goal behind it would leave the edge for a goal it must first turn
         to, meet the same edge again and circle for ever (errata row 30)."""
-        half = min(self.body.fov / 2, PAPER_HALF_FOV)
+        half = min(self.episode.fov / 2, PAPER_HALF_FOV)
         return abs(wrap_angle(self.bearing - self.pose.theta)) <= half - IN_VIEW_MARGIN
 
     def path_free(self) -> bool:
@@ -267,5 +269,5 @@ class Sight:
         selected based on free path")."""
         if not self.goal_in_view():
             return False
-        needed = min(self.body.tuning.view_range, self.goal_distance)
+        needed = min(self.episode.tuning.view_range, self.goal_distance)
         return self.goal_free_length >= needed

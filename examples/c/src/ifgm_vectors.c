@@ -1,4 +1,4 @@
-/* ifgm_vectors: check the C port against the conformance vectors (docs/vectors-format.md).
+/* ifgm_vectors: check the C port against the test vectors (docs/vectors-format.md).
  *
  *     ifgm-ref vectors --out vectors.json
  *     ifgm_vectors vectors.json [--precision double|float32]

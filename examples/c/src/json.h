@@ -1,5 +1,5 @@
 /* A small JSON reader (RFC 8259) for the port's host programs: the JSON-lines protocol
- * (ifgm_json) and the conformance vectors (ifgm_vectors). The planners never include it.
+ * (ifgm_json) and the test vectors (ifgm_vectors). The planners never include it.
  *
  * Like jsmn, json_parse splits one text into tokens, in an array the caller provides: nothing
  * is allocated, and an array too small for the text is an error. A value's tokens are

@@ -1,4 +1,4 @@
-/* Checking the port against the conformance vectors (docs/vectors-format.md), as
+/* Checking the port against the test vectors (docs/vectors-format.md), as
  * ifgm_ref/oracle/vectors/check.py checks a Python implementation: the equation cases against
  * the functions of equations.h (vectors_equations.c), the reference traces against the
  * planners of planners.h (vectors_traces.c). Mismatches are printed on stdout in check.py's

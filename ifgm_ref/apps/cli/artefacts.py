@@ -1,5 +1,5 @@
 """``ifgm-ref figures``, ``ifgm-ref vectors`` and ``ifgm-ref trace-matrix``: files the
-project publishes (the paper's figures, the conformance vectors, the traceability matrix)."""
+project publishes (the paper's figures, the test vectors, the traceability matrix)."""
 
 from __future__ import annotations
 
@@ -40,7 +40,7 @@ def add_vectors(sub: Subcommands) -> None:
     vectors = sub.add_parser(
         "vectors",
         help="write equation test vectors and reference traces (JSON) for ports",
-        description="Write the conformance vectors (docs/vectors-format.md): inputs and "
+        description="Write the test vectors (docs/vectors-format.md): inputs and "
         "outputs of equations (1)-(4), literal and interpreted, and short IFGM and IBA "
         "reference traces, for implementations that cannot run Python.",
     )
@@ -49,7 +49,7 @@ def add_vectors(sub: Subcommands) -> None:
 
 
 def run_vectors(args: argparse.Namespace) -> int:
-    """Write the conformance vectors to ``args.out``."""
+    """Write the test vectors to ``args.out``."""
     from ifgm_ref.oracle.vectors import summarize, write_vectors
 
     output_folder("--out", args.out)

@@ -28,9 +28,9 @@ from ifgm_ref.core.errors import ImplementationError
 from ifgm_ref.core.params import SimParams
 from ifgm_ref.io.transport.wire import PROTOCOL_VERSION
 from ifgm_ref.io.worldfile import load_world
+from ifgm_ref.oracle.agreement import HEADING_TOL, POINT_TIE, SPEED_TOL, TIE
 from ifgm_ref.oracle.check_types import Check, CheckFailed, Kind, Recorder
 from ifgm_ref.oracle.checks import CHECKS
-from ifgm_ref.oracle.conformance import HEADING_TOL, POINT_TIE, SPEED_TOL, TIE
 from ifgm_ref.oracle.implementation import Implementation
 from ifgm_ref.oracle.stable_draws import global_constants_only
 from ifgm_ref.oracle.suite.cases import Case, read_cases, write_cases

@@ -3,7 +3,7 @@
 A reference-level case (``agrees_with_reference``) holds what the reference IFGM answered at
 every step of its episode in the case's world, as the JSON-lines protocol writes a command
 (:func:`~ifgm_ref.io.transport.wire.command_message`, without its ``type``), with the atoms it
-held and its nearest finite decisions' margins (:mod:`ifgm_ref.oracle.conformance`). The
+held and its nearest finite decisions' margins (:mod:`ifgm_ref.oracle.agreement`). The
 observations are not stored: driving the simulator with the recorded commands sees them
 again, exactly, because the simulator is deterministic; :func:`rebuilt` checks that the
 replay ended as recorded.
@@ -21,7 +21,7 @@ from ifgm_ref.core.pose import Point, Pose
 from ifgm_ref.core.protocol import Command, EpisodeParams, Observation
 from ifgm_ref.core.recording import RecordingPlanner
 from ifgm_ref.io.transport.wire import command_message, parse_command
-from ifgm_ref.oracle.conformance import ReferenceEpisode, reference_episode, tie_bound
+from ifgm_ref.oracle.agreement import ReferenceEpisode, reference_episode, tie_bound
 from ifgm_ref.paper.flowchart import Atoms
 from ifgm_ref.sim.simulator import simulate
 from ifgm_ref.sim.world import World
@@ -29,7 +29,7 @@ from ifgm_ref.sim.world import World
 __all__ = ["NEAREST", "rebuilt", "recorded"]
 
 #: How many of a step's nearest decisions are kept besides the ties: those a divergence's
-#: message shows (:func:`~ifgm_ref.oracle.conformance.divergence_message`).
+#: message shows (:func:`~ifgm_ref.oracle.agreement.divergence_message`).
 NEAREST = 4
 
 

@@ -29,9 +29,9 @@ from pathlib import Path
 from typing import Any
 
 from ifgm_ref.core.errors import ImplementationError
+from ifgm_ref.oracle.agreement import ReferenceEpisode
 from ifgm_ref.oracle.check_types import CheckFailed, Recorder
 from ifgm_ref.oracle.checks import CHECKS, agrees_with
-from ifgm_ref.oracle.conformance import ReferenceEpisode
 from ifgm_ref.oracle.counterexample import slug, write_evidence
 from ifgm_ref.oracle.crash import crash
 from ifgm_ref.oracle.implementation import Implementation

@@ -1,4 +1,4 @@
-"""Conformance vectors: equation test vectors and reference traces in one JSON file.
+"""Test vectors: equation test vectors and reference traces in one JSON file.
 
 For implementations that cannot run Python -- a microcontroller C port, say -- the oracle's
 checks are written down as data: ``ifgm-ref vectors --out vectors.json`` writes

@@ -142,7 +142,7 @@ def _trace_record(spec: TraceSpec) -> TraceRecord:
 
 
 def build_document() -> VectorsDocument:
-    """Build the conformance vectors as a typed document (:func:`build_vectors` as JSON)."""
+    """Build the test vectors as a typed document (:func:`build_vectors` as JSON)."""
     return VectorsDocument(
         generator=GENERATOR,
         units=UNITS,
@@ -154,7 +154,7 @@ def build_document() -> VectorsDocument:
 
 
 def build_vectors() -> dict[str, Any]:
-    """Build the conformance vectors (deterministic and JSON-ready: no NaN or infinity).
+    """Build the test vectors (deterministic and JSON-ready: no NaN or infinity).
 
     Returns
     -------

@@ -1,4 +1,4 @@
-"""IFGM's inputs to Figure 3: thresholds, state, one step's percepts, and :func:`read`, the
+"""IFGM's inputs to Figure 3: thresholds, state, one step's percepts, and :func:`read_atoms`, the
 pure function from percepts and state to the flowchart's atoms (section 4; errata row 18).
 """
 
@@ -151,7 +151,7 @@ class IFGMState:
 
 
 @dataclass(frozen=True)
-class Percepts:
+class StepInputs:
     """One step's percepts, each computed once, with what they are measured against.
 
     Attributes
@@ -188,7 +188,7 @@ class Percepts:
 
 
 class Threshold(NamedTuple):
-    """One atom of Figure 3 declared as a quantity against its threshold: :func:`read`
+    """One atom of Figure 3 declared as a quantity against its threshold: :func:`read_atoms`
     decides by :attr:`holds`, :func:`~ifgm_ref.planners.ifgm.margins.margins` measures
     :meth:`margin`.
 
@@ -241,8 +241,8 @@ def _held(threshold: Threshold | None) -> bool:
 
 
 @dataclass(frozen=True)
-class Reading:
-    """What :func:`read` makes of one step: the atoms, the thresholds they compare, and the
+class StepAtoms:
+    """What :func:`read_atoms` makes of one step: the atoms, the thresholds they compare, and the
     percepts behind them that the planner acts on or carries to the next step."""
 
     atoms: Atoms
@@ -304,7 +304,7 @@ def preemptor(
     return Point(float(point[0]), float(point[1]))
 
 
-def thresholds(percepts: Percepts, gap: Gap | None, short_look: bool) -> Thresholds:
+def thresholds(percepts: StepInputs, gap: Gap | None, short_look: bool) -> Thresholds:
     """The :class:`Thresholds` of ``percepts`` with the chosen ``gap``, looking short or not."""
     sight, params, view = percepts.sight, percepts.params, percepts.view
     free_ahead = sight.goal_free_length
@@ -321,14 +321,14 @@ def thresholds(percepts: Percepts, gap: Gap | None, short_look: bool) -> Thresho
         # -inf (a return nearer than range_min) returns too; nan (an error) does not
         enclosed=Threshold(
             float(view.ranges.max(initial=-math.inf)),
-            sight.body.tuning.view_range,
+            sight.episode.tuning.view_range,
             operator.le,
         ),
     )
 
 
 @traces("fig3.both_conditions", "fig3.case1", "fig3.case2", "fig3.dead_end")
-def read(percepts: Percepts, state: IFGMState) -> Reading:
+def read_atoms(percepts: StepInputs, state: IFGMState) -> StepAtoms:
     """The flowchart's atoms for ``percepts`` in ``state``, and the percepts behind them."""
     sight, params = percepts.sight, percepts.params
     pose, clusters = sight.pose, percepts.clusters
@@ -358,4 +358,4 @@ def read(percepts: Percepts, state: IFGMState) -> Reading:
         dead_end=found.front.holds and found.enclosed.holds and not gap_wide,
         preempt=other is not None,
     )
-    return Reading(atoms, found, gap, gap_mid, other, short_look)
+    return StepAtoms(atoms, found, gap, gap_mid, other, short_look)

@@ -3,8 +3,8 @@
 A port that follows the reference's readings may still decide otherwise where a decision
 sits on its threshold: a gap within rounding of ``d_th``, two gaps of equal width, two side
 beams equally open. :func:`margins` measures, for one step, the distance of every such
-quantity from the value that would flip it, so that the oracle's reference conformance
-(``agrees_with_reference``, :mod:`ifgm_ref.oracle.conformance`) can tell a port's tie from
+quantity from the value that would flip it, so that the oracle's reference agreement
+(``agrees_with_reference``, :mod:`ifgm_ref.oracle.agreement`) can tell a port's tie from
 a port's fault. Lengths are in robot radii and angles in radians, so that one tie tolerance
 serves every robot and unit (errata row 29's rule: no absolute lengths).
 """
@@ -23,7 +23,7 @@ from ifgm_ref.paper.percepts.clusters import Gap
 from ifgm_ref.paper.percepts.points import point_to_world
 from ifgm_ref.planners.distbug import DistBugRule
 from ifgm_ref.planners.iba import beam_openness
-from ifgm_ref.planners.ifgm.atoms import IFGMState, Percepts, Reading, finite_gap
+from ifgm_ref.planners.ifgm.atoms import IFGMState, StepAtoms, StepInputs, finite_gap
 from ifgm_ref.planners.ifgm.readings import DeadEndSide, GapChoice, GapReading, LeavingRule
 from ifgm_ref.planners.sight import IN_VIEW_MARGIN, Sight
 
@@ -54,16 +54,16 @@ DECISIONS: dict[str, str] = {
 
 
 def margins(
-    percepts: Percepts,
+    percepts: StepInputs,
     state: IFGMState,
-    reading: Reading,
+    step_atoms: StepAtoms,
     branch: Branch,
     *,
     apart: float,
     followed_before: Point | None,
 ) -> dict[str, float]:
     """The margin of every decision of :data:`DECISIONS` that a step consults on its way to
-    ``branch``, given its ``percepts``, the ``state`` they were read in and the ``reading``
+    ``branch``, given its ``percepts``, the ``state`` they were read in and the ``step_atoms``
     (radii or radians, never negative; the smallest is the nearest tie).
 
     Figure 3 consults the goal and the corridor at every step; the gap, the nearest obstacle
@@ -88,13 +88,13 @@ def margins(
     >>> {name: round(value, 3) for name, value in found.items()}
     {'at_goal': 59.368, 'blocked': inf}
     """
-    r, declared = percepts.sight.body.radius, reading.thresholds
+    r, declared = percepts.sight.episode.radius, step_atoms.thresholds
     found = {"at_goal": declared.at_goal.margin(r)}
     if declared.blocked is not None:  # not while looking short
         found["blocked"] = declared.blocked.margin(r)
-    atoms = reading.atoms
+    atoms = step_atoms.atoms
     if atoms.blocked and not atoms.avoiding and not atoms.turning:  # meeting an obstacle
-        found.update(_encounter(percepts, reading))
+        found.update(_encounter(percepts, step_atoms))
     readings = percepts.readings
     if branch in _TAKING_A_SIDE or (
         branch is Branch.DEAD_END_TURN
@@ -106,14 +106,14 @@ def margins(
         found.update(_widest_margin(percepts))
     elif state.gap_mid is not None:
         found.update(_kept_gap_margin(percepts, state.gap_mid))
-    if branch is Branch.CASE1_GAP and reading.gap is not None:
-        found.update(_gap_ends_margin(percepts, reading.gap, apart))
+    if branch is Branch.CASE1_GAP and step_atoms.gap is not None:
+        found.update(_gap_ends_margin(percepts, step_atoms.gap, apart))
     if state.following:
         found.update(_following(percepts, state, followed_before, apart))
     return found
 
 
-def _gap_ends_margin(percepts: Percepts, gap: Gap, apart: float) -> dict[str, float]:
+def _gap_ends_margin(percepts: StepInputs, gap: Gap, apart: float) -> dict[str, float]:
     """``gap_ends``: how much wider than ``gap`` the next closest pair of returns of its two
     obstacles is, among the pairs whose middle lies more than ``apart`` rad (seen from the
     robot) from ``gap``'s, in radii. Two parallel faces have many closest pairs: rounding
@@ -131,17 +131,17 @@ def _gap_ends_margin(percepts: Percepts, gap: Gap, apart: float) -> dict[str, fl
     elsewhere = np.linalg.norm(middles - middle, axis=2) > apart * float(np.hypot(*middle))
     if not elsewhere.any():
         return {}
-    return {"gap_ends": float(pairs[elsewhere].min() - gap.width) / percepts.sight.body.radius}
+    return {"gap_ends": float(pairs[elsewhere].min() - gap.width) / percepts.sight.episode.radius}
 
 
 def _following(
-    percepts: Percepts, state: IFGMState, before: Point | None, apart: float
+    percepts: StepInputs, state: IFGMState, before: Point | None, apart: float
 ) -> dict[str, float]:
     """The margins of the decisions taken while following an edge: Case-3's pre-emption, the
     followed point tracked from ``before`` (:func:`_tracking_margin`) and IBA's leaving
     rules."""
     sight, params, followed = percepts.sight, percepts.params, state.followed
-    r = sight.body.radius
+    r = sight.episode.radius
     found = {"leave": _leave_margin(percepts, state)}
     if followed is not None:
         found["nearest_point"] = _tracking_margin(sight, followed, before, params.jump, apart) / r
@@ -151,19 +151,19 @@ def _following(
     return found
 
 
-def _leave_margin(percepts: Percepts, state: IFGMState) -> float:
+def _leave_margin(percepts: StepInputs, state: IFGMState) -> float:
     """The nearest of IBA's leaving rules to going the other way
     (:func:`~ifgm_ref.planners.iba.leaves`): the goal's bearing against the edge of the view
     (rad); with the goal in view, in radii, the corridor towards it against the length a free
     path needs, the distance that path leads to against ``d_min``, and, where the progress
     rule is on, DistBug's reach against 0 and against ``d_min - Step``."""
     sight = percepts.sight
-    edge = min(sight.body.fov / 2, PAPER_HALF_FOV) - IN_VIEW_MARGIN
+    edge = min(sight.episode.fov / 2, PAPER_HALF_FOV) - IN_VIEW_MARGIN
     off = abs(wrap_angle(sight.bearing - sight.pose.theta))
     if off > edge:  # out of view: no rule can leave
         return off - edge
     d, free = sight.goal_distance, sight.goal_free_length
-    view_range = sight.body.tuning.view_range
+    view_range = sight.episode.tuning.view_range
     lengths = [
         finite_gap(free, min(view_range, d)),
         finite_gap(d - min(free, view_range), state.d_min),
@@ -172,7 +172,7 @@ def _leave_margin(percepts: Percepts, state: IFGMState) -> float:
     if progress and not state.escaped:
         reach = d - DistBugRule.free_range(sight)
         lengths += [abs(reach), finite_gap(reach, state.d_min - percepts.step_length)]
-    return min(edge - off, min(lengths) / sight.body.radius)
+    return min(edge - off, min(lengths) / sight.episode.radius)
 
 
 def _tracking_margin(
@@ -212,10 +212,10 @@ _TAKING_A_SIDE = frozenset(
 )
 
 
-def _encounter(percepts: Percepts, reading: Reading) -> dict[str, float]:
+def _encounter(percepts: StepInputs, step_atoms: StepAtoms) -> dict[str, float]:
     """The margins of the decisions taken on meeting an obstacle: too close, one-sided, the
     gap, the dead end."""
-    r, declared = percepts.sight.body.radius, reading.thresholds
+    r, declared = percepts.sight.episode.radius, step_atoms.thresholds
     found: dict[str, float] = {}
     if declared.close is not None:
         found["close"] = declared.close.margin(r)
@@ -228,7 +228,7 @@ def _encounter(percepts: Percepts, reading: Reading) -> dict[str, float]:
     return found
 
 
-def _kept_gap_margin(percepts: Percepts, previous: Point) -> dict[str, float]:
+def _kept_gap_margin(percepts: StepInputs, previous: Point) -> dict[str, float]:
     """``kept_gap``: how near :func:`~ifgm_ref.planners.ifgm.atoms.chosen_gap`'s hold on the
     last step's gap (middle ``previous``) was to taking another, in radii: each gap's middle
     against ``jump`` from ``previous`` and, for those within it, its width against ``d_th``;
@@ -245,23 +245,23 @@ def _kept_gap_margin(percepts: Percepts, previous: Point) -> dict[str, float]:
     if len(near) > 1:
         first, second = sorted(near)[:2]
         found.append(second - first)
-    return {"kept_gap": min(found) / percepts.sight.body.radius} if found else {}
+    return {"kept_gap": min(found) / percepts.sight.episode.radius} if found else {}
 
 
-def _widest_margin(percepts: Percepts) -> dict[str, float]:
+def _widest_margin(percepts: StepInputs) -> dict[str, float]:
     """``widest_gap``: how much wider the widest gap is than the next widest, in radii (no
     margin with fewer than two gaps)."""
     widths = sorted((g.width for g in percepts.gaps), reverse=True)
     if len(widths) < 2:
         return {}
-    return {"widest_gap": (widths[0] - widths[1]) / percepts.sight.body.radius}
+    return {"widest_gap": (widths[0] - widths[1]) / percepts.sight.episode.radius}
 
 
-def _side_margin(percepts: Percepts) -> float:
+def _side_margin(percepts: StepInputs) -> float:
     """The freer side's margin: the beams' difference in openness, in radii; where they are
     equal, the goal's bearing off the heading, whose sign decides."""
     sight, view = percepts.sight, percepts.view
     left, right = beam_openness(view, Beam.LEFT), beam_openness(view, Beam.RIGHT)
     if not math.isclose(left, right, rel_tol=1e-9):
-        return abs(left - right) / sight.body.radius
+        return abs(left - right) / sight.episode.radius
     return abs(wrap_angle(sight.bearing - sight.pose.theta))

@@ -23,7 +23,7 @@ alone picks the branch, and this module carries it out:
 A step is four parts, and the state (:class:`~ifgm_ref.planners.ifgm.atoms.IFGMState`, one
 immutable record) is written in one place, :meth:`IFGMPlanner._decide`:
 :meth:`~IFGMPlanner.perceive` (the percepts, and the state as they update it), the atoms
-(:func:`~ifgm_ref.planners.ifgm.atoms.read`, pure), the branch
+(:func:`~ifgm_ref.planners.ifgm.atoms.read_atoms`, pure), the branch
 (:func:`~ifgm_ref.paper.flowchart.decide`), and :meth:`~IFGMPlanner.transition`, one ``match``
 over the branch that returns the next state and the command (``docs/ifgm-state.md``).
 
@@ -62,12 +62,12 @@ from ifgm_ref.planners.ifgm.atoms import (
     IFGMParams,
     IFGMState,
     Mode,
-    Percepts,
-    Reading,
-    read,
+    StepAtoms,
+    StepInputs,
+    read_atoms,
 )
 from ifgm_ref.planners.ifgm.readings import DeadEndSide, LeavingRule, Readings
-from ifgm_ref.planners.sight import Body, BoundaryParams, Sight, goal_bearing
+from ifgm_ref.planners.sight import BoundaryParams, Episode, Sight, goal_bearing
 from ifgm_ref.planners.tuning import Tuning, check_names, parameter_names
 
 __all__ = ["DEAD_END_MAX_STEPS", "DEAD_END_STEP", "IFGMParams", "IFGMPlanner"]
@@ -119,9 +119,9 @@ class IFGMPlanner:
         The thresholds and weights of this episode.
     last_branch : Branch or None
         The branch :func:`~ifgm_ref.paper.flowchart.decide` chose for ``last_atoms``.
-    last_seen : (Percepts, IFGMState, Reading) or None
+    last_seen : (StepInputs, IFGMState, StepAtoms) or None
         The last step's percepts, the state they were read in, and what
-        :func:`~ifgm_ref.planners.ifgm.atoms.read` made of them
+        :func:`~ifgm_ref.planners.ifgm.atoms.read_atoms` made of them
         (:func:`~ifgm_ref.planners.ifgm.margins.margins` measures its ties).
     """
 
@@ -133,7 +133,7 @@ class IFGMPlanner:
         self.readings = Readings() if readings is None else readings
         self.governor = BrakingGovernor()
         self.last_branch: Branch | None = None
-        self.last_seen: tuple[Percepts, IFGMState, Reading] | None = None
+        self.last_seen: tuple[StepInputs, IFGMState, StepAtoms] | None = None
         self.reset(Pose(0.0, 0.0, 0.0), Point(0.0, 0.0), EpisodeParams())  # until reset
 
     # -- read-only views for observers ------------------------------------------------------
@@ -151,7 +151,7 @@ class IFGMPlanner:
     @property
     def goal(self) -> Point:
         """The destination."""
-        return self.body.goal
+        return self.episode.goal
 
     @property
     def d_th(self) -> float:
@@ -204,7 +204,7 @@ class IFGMPlanner:
         """Start in *move to goal*; derive and validate the thresholds."""
         check_names(params.params, self.parameters, self.name)
         tuning = BoundaryParams.for_episode(params)
-        self.body = Body.of(goal, params, tuning)
+        self.episode = Episode.of(goal, params, tuning)
         self.memory = PerceptMemory(tuning.memory_horizon, params.dt)
         self.step_length = DistBugParams.for_episode(params).step_length
         self.governor.reset(params)
@@ -241,22 +241,26 @@ class IFGMPlanner:
         """IFGM's decision for ``observation`` before the clearance filter."""
         return self._decide(observation)[0]
 
-    def _decide(self, observation: Observation) -> tuple[Command, Percepts]:
+    def _decide(self, observation: Observation) -> tuple[Command, StepInputs]:
         """One step: perceive, read the atoms, let Figure 3 pick the branch, carry it out.
         The only place the state is written after :meth:`reset`."""
         read_in, percepts = self.perceive(self.state, observation)
-        reading = read(percepts, read_in)
-        branch = decide(reading.atoms)
-        state, command = self.transition(read_in, percepts, reading, branch)
-        self.state, self.last_branch, self.last_seen = state, branch, (percepts, read_in, reading)
+        step_atoms = read_atoms(percepts, read_in)
+        branch = decide(step_atoms.atoms)
+        state, command = self.transition(read_in, percepts, step_atoms, branch)
+        self.state, self.last_branch, self.last_seen = (
+            state,
+            branch,
+            (percepts, read_in, step_atoms),
+        )
         return command, percepts
 
     def goal_bearing(self, pose: Pose) -> float:
         """The destination angle theta_d of eq. (3), world frame (:func:`goal_bearing`)."""
-        return goal_bearing(pose, self.body.goal)
+        return goal_bearing(pose, self.episode.goal)
 
     # -- percepts ---------------------------------------------------------------------------
-    def perceive(self, state: IFGMState, observation: Observation) -> tuple[IFGMState, Percepts]:
+    def perceive(self, state: IFGMState, observation: Observation) -> tuple[IFGMState, StepInputs]:
         """This step's percepts, each computed once, and ``state`` as they update it.
 
         The whole field of view is remembered, for edge following; Figure 3 reads the paper's
@@ -264,13 +268,13 @@ class IFGMPlanner:
         While following, the followed point is tracked along its edge, ``d_min`` notes the
         distance to the goal, and Bug1's round and IBA's leaving rules are asked
         (:meth:`advance_round`)."""
-        pose, view_range = observation.pose, self.body.tuning.view_range
+        pose, view_range = observation.pose, self.episode.tuning.view_range
         scan = observation.scan.limited(view_range)
         points = scan_points(scan)
         self.memory.add_points(observation.t, to_world(points.xy, pose))
         view = observation.scan.window().limited(view_range)
         clusters = cluster_points(points if view is scan else scan_points(view), self.ifgm.jump)
-        sight = Sight(pose, self.body, self.memory.points, self.goal_bearing(pose))
+        sight = Sight(pose, self.episode, self.memory.points, self.goal_bearing(pose))
         state = replace(state, circuit=state.circuit.noted(sight, following=state.following))
         may_leave = False
         if state.following:
@@ -278,7 +282,7 @@ class IFGMPlanner:
             state = replace(state, followed=followed, d_min=min(state.d_min, sight.goal_distance))
             state, may_leave = self.advance_round(state, sight)
         gaps = gaps_between(clusters, reading=self.readings.gap_points)
-        percepts = Percepts(
+        percepts = StepInputs(
             sight, view, clusters, gaps, may_leave, self.ifgm, self.goal_tolerance, self.readings,
             self.step_length,
         )  # fmt: skip
@@ -315,22 +319,22 @@ class IFGMPlanner:
     # -- the planner ------------------------------------------------------------------------
     @traces("fig3.move_to_goal", "fig3.regenerate", "fig3.case2", "fig3.case3")
     def transition(
-        self, state: IFGMState, percepts: Percepts, reading: Reading, branch: Branch
+        self, state: IFGMState, percepts: StepInputs, step_atoms: StepAtoms, branch: Branch
     ) -> tuple[IFGMState, Command]:
         """Carry out Figure 3's ``branch``: the next state, which keeps the gap chosen and
-        the look of ``reading``, and this step's command."""
-        if (reading.gap_mid, reading.short_look) != (state.gap_mid, state.short_look):
-            state = replace(state, gap_mid=reading.gap_mid, short_look=reading.short_look)
+        the look of ``step_atoms``, and this step's command."""
+        if (step_atoms.gap_mid, step_atoms.short_look) != (state.gap_mid, state.short_look):
+            state = replace(state, gap_mid=step_atoms.gap_mid, short_look=step_atoms.short_look)
         sight = percepts.sight
         pose, bearing = sight.pose, sight.bearing
         match branch:
             case Branch.GOAL_REACHED:
-                speed = min(self.body.speed, sight.goal_distance / self.body.dt)
+                speed = min(self.episode.speed, sight.goal_distance / self.episode.dt)
                 return state, Command(bearing, speed, behaviour=TO_GOAL, branch=branch)
             case Branch.MOVE_TO_GOAL:
                 if state.mode is not Mode.MOVE_TO_GOAL:
                     state = replace(state, mode=Mode.MOVE_TO_GOAL)
-                return state, steer(bearing, pose, self.body, TO_GOAL, branch)
+                return state, steer(bearing, pose, self.episode, TO_GOAL, branch)
             case Branch.PATH_REGENERATED:
                 # Left by the progress rule, with an obstacle still ahead: meet it at IBA's
                 # short encounter distance, not d_look (the followed one is still the nearest,
@@ -342,12 +346,12 @@ class IFGMPlanner:
                     state, mode=Mode.MOVE_TO_GOAL, short_look=short_look, escaped=False,
                     followed=None, stack=(),
                 )  # fmt: skip
-                return state, steer(bearing, pose, self.body, TO_GOAL, branch)
+                return state, steer(bearing, pose, self.episode, TO_GOAL, branch)
             case Branch.CASE1_GAP:
-                gap = present(reading.gap, "the gap Case-1 steers through")
+                gap = present(step_atoms.gap, "the gap Case-1 steers through")
                 heading = self.gap_heading(pose, gap)
                 state = replace(state, mode=Mode.THROUGH_GAP)
-                return state, steer(heading, pose, self.body, AVOIDING, branch)
+                return state, steer(heading, pose, self.episode, AVOIDING, branch)
             case Branch.DEAD_END_TURN:
                 return self.dead_end(state, percepts)
             case Branch.CASE3_PREEMPT:  # a nearer obstacle first; the followed one waits
@@ -355,7 +359,7 @@ class IFGMPlanner:
                 state = replace(
                     state,
                     stack=(*state.stack, (followed, state.side)),
-                    followed=present(reading.preemptor, "Case-3's obstacle of most impact"),
+                    followed=present(step_atoms.preemptor, "Case-3's obstacle of most impact"),
                     side=freer_side(percepts.view, pose, bearing),
                 )
             case Branch.FOLLOW_EDGE:
@@ -379,12 +383,12 @@ class IFGMPlanner:
             heading=pose.theta,
         )
 
-    def _start_following(self, state: IFGMState, percepts: Percepts) -> IFGMState:
+    def _start_following(self, state: IFGMState, percepts: StepInputs) -> IFGMState:
         """IBA takes over: follow the nearest obstacle on the freer side (or the side a round
         of Bug1's left for it), nothing pre-empted; ``d_min`` counts the hit point."""
         sight = percepts.sight
         side = state.turn_other_way or freer_side(percepts.view, sight.pose, sight.bearing)
-        d_min = yardstick_at_hit(state.d_min, sight.pose.position, sight.body.goal)
+        d_min = yardstick_at_hit(state.d_min, sight.pose.position, sight.episode.goal)
         circuit = state.circuit
         return replace(
             state,
@@ -410,8 +414,8 @@ class IFGMPlanner:
             heading = edge_heading(sight, state.side)
         if heading is None:  # the edge is forgotten: the obstacle is behind us
             state = replace(state, mode=Mode.MOVE_TO_GOAL)
-            return state, steer(sight.bearing, sight.pose, self.body, TO_GOAL, branch)
-        return state, steer(heading, sight.pose, self.body, AVOIDING, branch)
+            return state, steer(sight.bearing, sight.pose, self.episode, TO_GOAL, branch)
+        return state, steer(heading, sight.pose, self.episode, AVOIDING, branch)
 
     def _resume_if_back(self, state: IFGMState, sight: Sight) -> IFGMState:
         """Case-3 recursion: once the pre-empting obstacle is no longer the nearest, resume
@@ -428,7 +432,7 @@ class IFGMPlanner:
         return state
 
     @traces("fig3.dead_end", "s5.ifgm_u_h")
-    def dead_end(self, state: IFGMState, percepts: Percepts) -> tuple[IFGMState, Command]:
+    def dead_end(self, state: IFGMState, percepts: StepInputs) -> tuple[IFGMState, Command]:
         """Figure 3's dead end, in its three phases (each its own label): turn in 45-degree
         steps until the way ahead is free (``dead_end_turn``); go that way to the end of the
         wall (``dead_end_escape``); then hand over to IBA, following the wall round from
@@ -443,9 +447,9 @@ class IFGMPlanner:
         turning = turn.escape_from is None
         if turning and abs(wrap_angle(pose.theta - target)) > self.ifgm.turn_done:
             return state, self._turn_command(target)
-        ahead = free_length(sight.points, (pose.x, pose.y), pose.theta, self.body.half_width)
+        ahead = free_length(sight.points, (pose.x, pose.y), pose.theta, self.episode.half_width)
         if turning:
-            if ahead < self.body.tuning.view_range and turn.steps < DEAD_END_MAX_STEPS:
+            if ahead < self.episode.tuning.view_range and turn.steps < DEAD_END_MAX_STEPS:
                 turn = replace(turn, steps=turn.steps + 1)
                 target = wrap_angle(turn.start + turn.sign * turn.steps * DEAD_END_STEP)
                 return replace(state, turn=turn), self._turn_command(target)
@@ -459,11 +463,11 @@ class IFGMPlanner:
             state = replace(state, turn=replace(turn, walled=walled))
         if (
             distance(pose, escape_from) < self.ifgm.d_look
-            and ahead > self.body.encounter
+            and ahead > self.episode.encounter
             and not wall_ended
         ):
             return state, Command(
-                target, self.body.speed, behaviour=AVOIDING, branch=Branch.DEAD_END_ESCAPE
+                target, self.episode.speed, behaviour=AVOIDING, branch=Branch.DEAD_END_ESCAPE
             )
         # Escaped: follow the nearest wall round from outside (IBA), then regenerate the path.
         state = replace(self._start_following(state, percepts), escaped=True)
@@ -473,7 +477,7 @@ class IFGMPlanner:
             state = replace(state, side=FollowSide.LEFT if rel > 0.0 else FollowSide.RIGHT)
         return self._follow(state, sight, Branch.DEAD_END_HANDOVER)
 
-    def _dead_end_sign(self, percepts: Percepts) -> int:
+    def _dead_end_sign(self, percepts: StepInputs) -> int:
         """The way the dead end turns, +1 counter-clockwise: :attr:`Readings.dead_end_side`,
         by default towards the freer side beam (keeping the wall on the right, turning left)."""
         way = self.readings.dead_end_side

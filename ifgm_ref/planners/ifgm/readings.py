@@ -3,8 +3,8 @@
 Where the paper is silent or ambiguous the errata table records the reading we run
 (``docs/errata.md``). Some of those choices are free: another reading is as true to the
 text, and a port may take it. For each of these the reference IFGM runs any of the readings
-listed here, chosen by :class:`Readings` (ours by default), so that reference conformance
-(``agrees_with_reference``, :mod:`ifgm_ref.oracle.conformance`) can compare a port with the
+listed here, chosen by :class:`Readings` (ours by default), so that reference agreement
+(``agrees_with_reference``, :mod:`ifgm_ref.oracle.agreement`) can compare a port with the
 reading it declares (``ifgm-ref oracle --reading NAME=VALUE``).
 
 The names are a closed list, :data:`OPEN_READINGS`: a name not on it is a mistake, said at

@@ -1,4 +1,4 @@
-"""The reference level of the oracle (ifgm_ref.oracle.conformance, issue 26): the reference and
+"""The reference level of the oracle (ifgm_ref.oracle.agreement, issue 26): the reference and
 its faithful ports agree with it step by step, every broken variant diverges at the step
 where it first differs, and a tie ends the comparison only where a decision was on its
 threshold."""
@@ -18,10 +18,8 @@ from ifgm_ref.core.params import SimParams
 from ifgm_ref.core.pose import Point, Pose
 from ifgm_ref.core.protocol import EpisodeParams
 from ifgm_ref.io.scenarios import BUILTIN_WORLDS, resolve_world
-from ifgm_ref.oracle import conformance
-from ifgm_ref.oracle.braking import with_dynamics
-from ifgm_ref.oracle.checks import checks_at
-from ifgm_ref.oracle.conformance import (
+from ifgm_ref.oracle import agreement
+from ifgm_ref.oracle.agreement import (
     HEADING_TOL,
     Comparison,
     ReferenceEpisode,
@@ -29,6 +27,8 @@ from ifgm_ref.oracle.conformance import (
     divergence_message,
     reference_episode,
 )
+from ifgm_ref.oracle.braking import with_dynamics
+from ifgm_ref.oracle.checks import checks_at
 from ifgm_ref.oracle.implementation import Implementation, promises_of
 from ifgm_ref.oracle.mutants import MUTANTS
 from ifgm_ref.oracle.runner import check_planner
@@ -36,7 +36,7 @@ from ifgm_ref.oracle.strategies import BARN_SAMPLES, SOLVABLE_CLASSES, reference
 from ifgm_ref.oracle.variants import VARIANTS
 from ifgm_ref.planners.ifgm.margins import DECISIONS, _tracking_margin
 from ifgm_ref.planners.ifgm.planner import IFGMPlanner, nearest_remembered
-from ifgm_ref.planners.sight import Body, BoundaryParams, Sight
+from ifgm_ref.planners.sight import BoundaryParams, Episode, Sight
 from ifgm_ref.sim.convergence import time_bound
 from ifgm_ref.sim.worldgen.classes import random_world
 
@@ -85,7 +85,7 @@ def test_a_tie_the_other_way_ends_the_comparison_where_a_decision_was_on_its_thr
     """Between two posts on the line, mirrored, the other of two equal gaps is taken: a tie
     (equal widths, margin 0), not a divergence; with no tolerance for ties it would be one."""
     found = _compare("ifgm_ref.oracle.variants:OppositeTies", "posts_wide")
-    assert found.tie is not None and found.tie[1] <= conformance.TIE, found
+    assert found.tie is not None and found.tie[1] <= agreement.TIE, found
     assert found.tie[0] in DECISIONS
     assert found.differs is not None and found.differs.heading > HEADING_TOL
 
@@ -93,7 +93,7 @@ def test_a_tie_the_other_way_ends_the_comparison_where_a_decision_was_on_its_thr
 def test_without_the_tie_tolerance_the_same_flip_is_a_divergence(
     monkeypatch: pytest.MonkeyPatch,
 ) -> None:
-    monkeypatch.setattr(conformance, "TIE", -1.0)
+    monkeypatch.setattr(agreement, "TIE", -1.0)
     assert _compare("ifgm_ref.oracle.variants:OppositeTies", "posts_wide").diverged
 
 
@@ -123,11 +123,11 @@ def test_the_followed_points_margin_is_that_of_tracking_it_from_the_last_one() -
     neighbour a hair away in bearing is no other choice at all."""
     before, a, b, c = Point(2.0, 1.0), Point(2.0, 1.1), Point(2.0, 1.3), Point(1.45, 1.0)
     neighbour = Point(2.0005, 1.1)
-    body = Body.of(Point(10.0, 0.0), EpisodeParams(), BoundaryParams.paper())
+    episode = Episode.of(Point(10.0, 0.0), EpisodeParams(), BoundaryParams.paper())
     pose = Pose(0.0, 0.0, 0.0)
 
     def margin(*points: Point) -> float:
-        sight = Sight(pose, body, np.array(points, dtype=float), 0.0)
+        sight = Sight(pose, episode, np.array(points, dtype=float), 0.0)
         return _tracking_margin(sight, a, before, 0.5, HEADING_TOL)
 
     assert margin(a, neighbour, b) == pytest.approx(math.hypot(*b) - math.hypot(*a))
@@ -148,14 +148,14 @@ def test_an_edge_followed_by_another_rule_diverges_though_every_wall_step_is_nea
     monkeypatch: pytest.MonkeyPatch,
 ) -> None:
     """Along a wall the next point that is another choice lies only ``d delta**2 / 2``
-    farther: under :data:`~conformance.TIE` every step would be a tie and excuse a port that
+    farther: under :data:`~agreement.TIE` every step would be a tie and excuse a port that
     tracks the edge otherwise. The followed point's own bound, the rounding, does not."""
     impl = Implementation(_Untracked, "untracked", promises_of("ifgm"))
     found = compare(impl, episode("fig7b"), "fig7b")
     assert found.diverged and found.differs is not None, found
-    window = episode("fig7b").margins[found.differs.step - conformance.LOOKBACK :][:3]
-    assert 0.0 < min(m.get("nearest_point", math.inf) for m in window) <= conformance.TIE
-    monkeypatch.setattr(conformance, "POINT_TIE", conformance.TIE)
+    window = episode("fig7b").margins[found.differs.step - agreement.LOOKBACK :][:3]
+    assert 0.0 < min(m.get("nearest_point", math.inf) for m in window) <= agreement.TIE
+    monkeypatch.setattr(agreement, "POINT_TIE", agreement.TIE)
     again = compare(impl, episode("fig7b"), "fig7b")
     assert again.tie is not None and again.tie[0] == "nearest_point", again
 

@@ -1,4 +1,4 @@
-"""Reference conformance: does an implementation take the reference's decisions, step by step?
+"""Reference agreement: does an implementation take the reference's decisions, step by step?
 
 The paper's properties (:mod:`ifgm_ref.oracle.checks`) hold for any valid reading of the
 paper. This second level asks more of a port that follows ours: handed the observations the
