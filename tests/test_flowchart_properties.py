@@ -486,7 +486,7 @@ def test_case2_follows_the_edge_on_the_freer_side(observation: Observation) -> N
     ``AT_THE_MARGIN``)."""
     planner = IFGMPlanner()
     planner.reset(observation.pose, observation.goal, EPISODE)
-    command = planner.act(observation)
+    command = planner.advance(observation)
     assume(command.branch in IBA_STARTS)
     choice = freer_follow_side(observation.scan, observation.pose, observation.goal)
     assume(choice is not None)

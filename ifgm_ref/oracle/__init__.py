@@ -46,9 +46,10 @@ if TYPE_CHECKING:  # annotations only: importing the package loads none of the o
     from typing import Any
 
     from ifgm_ref.core.protocol import Planner
-    from ifgm_ref.oracle.implementation import Implementation, Promises
+    from ifgm_ref.oracle.implementation import Implementation
     from ifgm_ref.oracle.profiles import Profile
     from ifgm_ref.oracle.runner import CheckResult, Report, Status
+    from ifgm_ref.planners.promises import Promises
 
 __all__ = ["CheckResult", "Profile", "Promises", "Report", "Status", "check"]
 
@@ -56,7 +57,7 @@ __all__ = ["CheckResult", "Profile", "Promises", "Report", "Status", "check"]
 _HOMES = {
     "CheckResult": "ifgm_ref.oracle.runner",
     "Profile": "ifgm_ref.oracle.profiles",
-    "Promises": "ifgm_ref.oracle.implementation",
+    "Promises": "ifgm_ref.planners.promises",
     "Report": "ifgm_ref.oracle.runner",
     "Status": "ifgm_ref.oracle.runner",
 }

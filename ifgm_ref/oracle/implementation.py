@@ -30,7 +30,6 @@ __all__ = [
     "PROMISES",
     "REFERENCE_NOISE",
     "Implementation",
-    "Promises",
     "promises_of",
 ]
 

@@ -192,7 +192,7 @@ class Threshold(NamedTuple):
     decides by :attr:`holds`, :func:`~ifgm_ref.planners.ifgm.margins.margins` measures
     :meth:`margin`.
 
-    Attributes
+    Parameters
     ----------
     quantity : float
         The percept, a length (``-inf``: a return nearer than ``range_min``; ``+inf``: none).

@@ -231,14 +231,15 @@ class IFGMPlanner:
         self.last_seen = None
 
     def step(self, observation: Observation) -> Command:
-        """Decide (:meth:`act`), then never drive into a remembered obstacle (the clearance
+        """Decide (:meth:`advance`), then never drive into a remembered obstacle (the clearance
         filter, :func:`~ifgm_ref.planners.boundary.keep_clear`), and stop in time (the braking
         governor, :mod:`~ifgm_ref.planners.governor`)."""
         command, percepts = self._decide(observation)
         return self.governor(keep_clear(command, percepts.sight), observation)
 
-    def act(self, observation: Observation) -> Command:
-        """IFGM's decision for ``observation`` before the clearance filter."""
+    def advance(self, observation: Observation) -> Command:
+        """Advance the state one step on ``observation``; IFGM's command before the clearance
+        filter."""
         return self._decide(observation)[0]
 
     def _decide(self, observation: Observation) -> tuple[Command, StepInputs]:
