@@ -225,7 +225,6 @@ ORACLE_LAYERS = (
     (
         "ifgm_ref.oracle.suite",  # the suite's package (a docstring)
         "ifgm_ref.oracle.stable_draws",
-        "ifgm_ref.oracle.crash",
         "ifgm_ref.oracle.workers",
         "ifgm_ref.oracle.implementation",
         "ifgm_ref.oracle.check_types",

@@ -54,6 +54,7 @@ MOVED = {
     "ifgm_ref.laserscan": "ifgm_ref.core.laserscan",
     "ifgm_ref.noise": "ifgm_ref.sim.noise",
     "ifgm_ref.oracle.conformance": "ifgm_ref.oracle.agreement",
+    "ifgm_ref.oracle.crash": "ifgm_ref.oracle.counterexample",
     "ifgm_ref.outputs": "ifgm_ref.core.outputs",
     "ifgm_ref.params": "ifgm_ref.core.params",
     "ifgm_ref.percepts": "ifgm_ref.paper.percepts",

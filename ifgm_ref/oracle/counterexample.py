@@ -1,6 +1,8 @@
-"""A failing check's counterexample on disk: world files, traces, plots and ``report.md``.
+"""What a verdict other than a pass says and leaves: a crash in one line, and a failing
+check's counterexample on disk (world files, traces, plots and ``report.md``).
 
-:func:`write_evidence` writes what a failing example left behind
+:func:`crash` names an unexpected exception and where it was raised (an ``error`` verdict's
+message); :func:`write_evidence` writes what a failing example left behind
 (:class:`~ifgm_ref.oracle.check_types.Evidence`) into one folder per check, with the commands
 that replay it on the same engine, body, time step and goal tolerance (``ifgm-ref simulate``).
 """
@@ -8,7 +10,9 @@ that replay it on the same engine, body, time step and goal tolerance (``ifgm-re
 from __future__ import annotations
 
 import re
+import traceback
 from pathlib import Path
+from types import TracebackType
 from typing import Any
 
 from ifgm_ref.core.outputs import written
@@ -17,7 +21,7 @@ from ifgm_ref.io.worldfile import save_world
 from ifgm_ref.oracle.check_types import Check, Evidence
 from ifgm_ref.oracle.implementation import Implementation
 
-__all__ = ["slug", "write_evidence"]
+__all__ = ["crash", "slug", "write_evidence"]
 
 
 def slug(text: str) -> str:
@@ -75,3 +79,38 @@ def _plot(world: Any, run: Any, path: Path, mark: int | None, engine: str) -> No
     figure = plot_run(world, run.trace, run.result, colour_by=colour_by, mark=mark, engine=engine)
     with written(path, announce=False) as partial:
         save_figure(figure, partial)
+
+
+def crash(err: BaseException, *, outer: TracebackType | None = None) -> str:
+    """Name an unexpected exception and where it was raised, in one line.
+
+    ``Type: message at file:line``: the innermost frame of its traceback (or of ``outer``, for
+    an exception never raised itself, such as a member of a group built in place), the path
+    relative to the folder that holds ``ifgm_ref``, or to the working folder. A group lists
+    its exceptions.
+
+    >>> try:
+    ...     [][0]
+    ... except IndexError as err:
+    ...     print(crash(err))  # doctest: +ELLIPSIS
+    IndexError: list index out of range at <doctest ...>:2
+    """
+    where = err.__traceback__ or outer
+    if isinstance(err, BaseExceptionGroup):
+        inner = "; ".join(crash(e, outer=where) for e in err.exceptions)
+        return f"{type(err).__name__} of {len(err.exceptions)}: {inner}"
+    first_line = next(iter(str(err).splitlines()), "")
+    text = f"{type(err).__name__}: {first_line}"
+    frames = traceback.extract_tb(where)
+    if frames:
+        text += f" at {_short_path(frames[-1].filename)}:{frames[-1].lineno}"
+    return text
+
+
+def _short_path(filename: str) -> str:
+    """``filename`` relative to the folder holding this package, or to the working folder."""
+    path = Path(filename)
+    for root in (Path(__file__).resolve().parents[2], Path.cwd()):
+        if path.is_relative_to(root):
+            return path.relative_to(root).as_posix()
+    return filename

@@ -40,8 +40,7 @@ from ifgm_ref.oracle.check_types import (
     levels_up_to,
 )
 from ifgm_ref.oracle.checks import CHECKS
-from ifgm_ref.oracle.counterexample import slug, write_evidence
-from ifgm_ref.oracle.crash import crash
+from ifgm_ref.oracle.counterexample import crash, slug, write_evidence
 from ifgm_ref.oracle.implementation import Implementation, Promises, promises_for
 from ifgm_ref.oracle.profiles import (
     Profile,

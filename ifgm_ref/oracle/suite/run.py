@@ -32,8 +32,7 @@ from ifgm_ref.core.errors import ImplementationError
 from ifgm_ref.oracle.agreement import ReferenceEpisode
 from ifgm_ref.oracle.check_types import CheckFailed, Recorder
 from ifgm_ref.oracle.checks import CHECKS, agrees_with
-from ifgm_ref.oracle.counterexample import slug, write_evidence
-from ifgm_ref.oracle.crash import crash
+from ifgm_ref.oracle.counterexample import crash, slug, write_evidence
 from ifgm_ref.oracle.implementation import Implementation
 from ifgm_ref.oracle.suite.cases import Case
 from ifgm_ref.oracle.suite.recorded import rebuilt
