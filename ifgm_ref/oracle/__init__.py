@@ -99,8 +99,8 @@ def check(
         How hard to look: examples per check (50, 200, 1000; ``robust``: 50 under the noise
         the planner promises; ``brief``: 10).
     promises : Promises or str, optional
-        What it promises (the checks that apply), or a built-in planner's name (default: a
-        built-in's own, else IFGM's).
+        What it promises (the checks that apply), or a built-in planner's name (default: what
+        the planner declares, a built-in's own; a program's, IFGM's; anything else must say).
     checks : iterable of str, optional
         Run only these checks (default: every one that applies).
     expected_failed_checks : mapping of str to str, optional
