@@ -50,6 +50,15 @@ def test_dwa_is_held_to_its_own_promises_not_ifgms() -> None:
     assert result.status is Status.NOT_APPLICABLE, result.message
 
 
+def test_dwa_declines_rigid_motion_invariance_and_every_other_planner_promises_it() -> None:
+    """DWA's costmap is aligned with the world's axes: it fails the check (measured,
+    docs/oracle.md) and does not promise it; the check is then not applicable to it."""
+    assert {name for name, p in PROMISES.items() if not p.rigid_motion_invariant} == {"dwa"}
+    (result,) = check_planner("dwa", checks=["rigid_motion_invariant"], artifacts=None).results
+    assert result.status is Status.NOT_APPLICABLE
+    assert result.message == "it does not promise rigid-motion invariance"
+
+
 def test_an_unknown_module_must_be_told_what_it_promises(tmp_path: Path) -> None:
     (tmp_path / "my_port.py").write_text(PORT)
     done = run_cli("oracle", "--planner", "my_port:make", "--check", "collision_free", cwd=tmp_path)

@@ -451,6 +451,12 @@ def _scale_applies(impl: Implementation) -> str | None:
     return None if impl.promises.scale_invariant else "it does not promise scale invariance"
 
 
+def _rigid_applies(impl: Implementation) -> str | None:
+    if impl.promises.rigid_motion_invariant:
+        return None
+    return "it does not promise rigid-motion invariance"
+
+
 def _gaps_apply(impl: Implementation) -> str | None:
     return None if impl.promises.passes_wide_gaps else "it does not promise to use gaps"
 
@@ -497,7 +503,7 @@ CHECKS: dict[str, Check] = {
             Kind.SIMULATION,
             lambda impl: st.tuples(_promised_worlds(impl), placements()),
             _invariance_test,
-            _always,
+            _rigid_applies,
             meets=MOVING,
         ),
         Check(

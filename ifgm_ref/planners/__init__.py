@@ -58,8 +58,14 @@ ROBUST_BOUNDARY = replace(BOUNDARY, noise=REFERENCE_NOISE_LEVELS)
 #: (``docs/oracle.md``, "What DWA promises, measured"): collision-freedom, scale invariance and
 #: stopping in time (its dynamic window keeps within the robot's braking); no convergence (it
 #: stalls even in open worlds, turning in place beside a post), no Case-1 gap, no "goal
-#: unreachable", no IFGM dead end, no noise levels.
-DWA_PROMISES = Promises(converges_in=frozenset(), passes_wide_gaps=False, stops_in_time=True)
+#: unreachable", no IFGM dead end, no noise levels, and no rigid-motion invariance (its
+#: costmap's cells are aligned with the world's axes: a rotated problem rasterizes otherwise).
+DWA_PROMISES = Promises(
+    converges_in=frozenset(),
+    passes_wide_gaps=False,
+    rigid_motion_invariant=False,
+    stops_in_time=True,
+)
 
 #: Every planner by its command-line name, with what it promises (paper Table 1 and section
 #: 5; FGM steers at the *widest* gap, which beside a wall is the open space past its end; IFGM

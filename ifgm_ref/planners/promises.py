@@ -58,6 +58,10 @@ class Promises:
         ranges, the goal tolerance) scales its trajectory by ``k`` (the ``scale_invariant``
         check; :mod:`ifgm_ref.oracle.metamorphic`). Every planner here promises it: their
         parameters are formulas in the robot and the sensor (:mod:`ifgm_ref.planners.tuning`).
+    rigid_motion_invariant : bool, default True
+        Whether rotating and translating the problem moves its trajectory the same way (the
+        ``rigid_motion_invariant`` check). Every planner here promises it but DWA, whose
+        costmap's cells are aligned with the world's axes (``docs/oracle.md``).
     noise : str or None, default None
         The noise levels at which it keeps these promises, as ``--noise`` takes them
         (``"range=0.02,dropout=0.05"``; :meth:`ifgm_ref.sim.noise.NoiseLevels.parse`; an
@@ -92,6 +96,7 @@ class Promises:
     collision_free: bool = True
     passes_wide_gaps: bool = True
     scale_invariant: bool = True
+    rigid_motion_invariant: bool = True
     noise: str | None = None
     turns_at_dead_ends: bool = False
     reference: str | None = None
