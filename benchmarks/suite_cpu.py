@@ -3,11 +3,14 @@
 Runs the README's test command (``python3 -m pytest``, with any arguments given after
 ``--``) with this module as a plugin in every worker, which records for each test its wall
 time, its own processor time and that of the processes it waited for (a notebook's kernel,
-the site's Sphinx, an ``ifgm-ref`` command). The run is bound by processor time when the
-waiting column is small: two workers on two cores then take about half the processor time,
+the site's Sphinx, an ``ifgm-ref`` command). A test's waiting is its wall time beyond the
+processor time: with as many workers as processors that is the test's own waiting (a timeout,
+a sleeping program); with more workers (``-n auto`` starts one more, tests/conftest.py) it
+also holds the time the worker waited for a processor. The run is bound by processor time
+when the waiting is small: two workers on two cores then take about half the processor time,
 whatever the order of the tests (docs/testing.md)::
 
-    python benchmarks/suite_cpu.py
+    python benchmarks/suite_cpu.py -- -n 2
     python benchmarks/suite_cpu.py --top 15 -- tests/test_oracle.py
 
 A test's children are counted when it waits for them; a process pool's workers count for the
