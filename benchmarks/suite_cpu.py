@@ -30,6 +30,7 @@ import time
 from collections import defaultdict
 from collections.abc import Generator
 from pathlib import Path
+from typing import NamedTuple
 
 import pytest
 
@@ -58,19 +59,35 @@ def pytest_runtest_protocol(item: pytest.Item) -> Generator[None, None, None]:
         out.write(json.dumps(line) + "\n")
 
 
-def by_file(lines: list[dict[str, float | str]]) -> dict[str, list[float]]:
-    """Per test file: wall, own, children, waiting (wall beyond processor time), tests."""
-    files: dict[str, list[float]] = defaultdict(lambda: [0.0, 0.0, 0.0, 0.0, 0.0])
-    for line in lines:
-        row = files[str(line["id"]).split("::")[0]]
-        wall, own, children = float(line["wall"]), float(line["own"]), float(line["children"])
-        for k, value in enumerate((wall, own, children, max(0.0, wall - own - children), 1)):
-            row[k] += value
+class Timed(NamedTuple):
+    """One test's times, s: wall, its own processor time, its children's."""
+
+    id: str
+    wall: float
+    own: float
+    children: float
+
+    @property
+    def cpu(self) -> float:
+        """Processor time, the test's and its children's."""
+        return self.own + self.children
+
+    @property
+    def waiting(self) -> float:
+        """Wall time beyond the processor time."""
+        return max(0.0, self.wall - self.cpu)
+
+
+def by_file(tests: list[Timed]) -> dict[str, list[Timed]]:
+    """The tests of each test file (or module, for the doctests)."""
+    files: dict[str, list[Timed]] = defaultdict(list)
+    for test in tests:
+        files[test.id.split("::")[0]].append(test)
     return files
 
 
 def main() -> None:
-    """Run the tests with the plugin, then print the table by file and the slowest tests."""
+    """Run the tests with the plugin, then print the table by file and the costliest tests."""
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--top", type=int, default=25, help="rows of each table (25)")
     parser.add_argument("pytest_args", nargs="*", help="after --: arguments for pytest")
@@ -82,20 +99,23 @@ def main() -> None:
         began = time.perf_counter()
         done = subprocess.run([*command, *args.pytest_args], cwd=ROOT, env=env, check=False)
         wall = time.perf_counter() - began
-        lines = [json.loads(text) for f in Path(folder).glob("*.jsonl") for text in f.open()]
-    files = by_file(lines)
-    cpu = sum(row[1] + row[2] for row in files.values())
-    waiting = sum(row[3] for row in files.values())
-    print(f"\npytest exited {done.returncode} after {wall:.0f} s wall; {len(lines)} tests took "
-          f"{cpu:.0f} s of processor time and waited {waiting:.0f} s")  # fmt: skip
+        tests = [
+            Timed(**json.loads(text)) for f in Path(folder).glob("*.jsonl") for text in f.open()
+        ]
+    print(f"\npytest exited {done.returncode} after {wall:.0f} s wall; {len(tests)} tests took "
+          f"{sum(t.cpu for t in tests):.0f} s of processor time and waited "
+          f"{sum(t.waiting for t in tests):.0f} s")  # fmt: skip
     print(f"\n{'cpu s':>7} {'own':>6} {'child':>6} {'wait':>6} {'tests':>5}  file")
-    ranked = sorted(files.items(), key=lambda kv: -(kv[1][1] + kv[1][2]))
-    for name, (_, own, children, wait, count) in ranked[: args.top]:
-        print(f"{own + children:7.1f} {own:6.1f} {children:6.1f} {wait:6.1f} {count:5.0f}  {name}")
+    files = sorted(by_file(tests).items(), key=lambda kv: -sum(t.cpu for t in kv[1]))
+    for name, mine in files[: args.top]:
+        own, children = sum(t.own for t in mine), sum(t.children for t in mine)
+        wait = sum(t.waiting for t in mine)
+        print(
+            f"{own + children:7.1f} {own:6.1f} {children:6.1f} {wait:6.1f} {len(mine):5d}  {name}"
+        )
     print(f"\n{'cpu s':>7} {'wait':>6}  test")
-    for line in sorted(lines, key=lambda x: -(x["own"] + x["children"]))[: args.top]:
-        wait = max(0.0, line["wall"] - line["own"] - line["children"])
-        print(f"{line['own'] + line['children']:7.1f} {wait:6.1f}  {line['id']}")
+    for test in sorted(tests, key=lambda t: -t.cpu)[: args.top]:
+        print(f"{test.cpu:7.1f} {test.waiting:6.1f}  {test.id}")
     sys.exit(done.returncode)
 
 
