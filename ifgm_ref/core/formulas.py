@@ -24,26 +24,42 @@ Units follow from the symbols: a *length* is homogeneous of degree 1 in ``r``, `
 ``k``), a *time*, *angle* or *number* of degree 0; ``proofs/scale.py`` proves it of every
 declared formula.
 
-Formulas are written in sympy's syntax (``Max``, ``Min``, ``pi``) and evaluated with
-:func:`sympy.lambdify`: the string shown to the reader is the code that runs. This module
-sits below the planners and the simulator, which both use it.
+Formulas are written in sympy's syntax (``Max``, ``Min``, ``pi``) and run as the Python code
+:func:`sympy.lambdify` prints for them (``modules="math"``). Every formula the package declares
+(:func:`declare`) has that code pinned in :mod:`ifgm_ref.core.lambdified`, which
+``tests/test_formulas.py`` checks against the installed sympy: a process that runs a planner
+does not import sympy, and a sympy release that prints a formula otherwise cannot move a
+threshold unnoticed. A formula not in the table is printed by sympy at its first use. This
+module sits below the planners and the simulator, which both use it.
 """
 
 from __future__ import annotations
 
 import functools
+import math
 from collections.abc import Callable
 from enum import StrEnum
-from typing import TYPE_CHECKING, NamedTuple
-
-import sympy
+from typing import TYPE_CHECKING, Any, NamedTuple
 
 from ifgm_ref.core.errors import ParameterError
+from ifgm_ref.core.lambdified import LAMBDIFIED
 
 if TYPE_CHECKING:
+    import sympy
+
     from ifgm_ref.core.protocol import EpisodeParams
 
-__all__ = ["LENGTH_SYMBOLS", "SYMBOLS", "Scale", "Unit", "evaluate", "formula_expr"]
+__all__ = [
+    "LENGTH_SYMBOLS",
+    "SYMBOL_NAMES",
+    "Scale",
+    "Unit",
+    "declare",
+    "declared",
+    "evaluate",
+    "formula_expr",
+    "lambdified_code",
+]
 
 
 class Unit(StrEnum):
@@ -110,15 +126,34 @@ class Scale(NamedTuple):
         return cls.of(EpisodeParams())
 
 
-#: The formula symbols, in :class:`Scale`'s order; lengths are declared positive.
-SYMBOLS: tuple[sympy.Symbol, ...] = sympy.symbols("r v w dt R res fov", positive=True)
+#: The names of the formula symbols, in :class:`Scale`'s order.
+SYMBOL_NAMES: tuple[str, ...] = Scale._fields
 #: The symbols that carry a length (``v`` is a length per second).
 LENGTH_SYMBOLS: frozenset[str] = frozenset({"r", "v", "R"})
+
+#: Every formula declared so far (:func:`declare`), in the order of declaration.
+_DECLARED: dict[str, None] = {}
+
+
+@functools.cache
+def _symbols() -> tuple[sympy.Symbol, ...]:
+    import sympy
+
+    return sympy.symbols(" ".join(SYMBOL_NAMES), positive=True)  # type: ignore[no-any-return]
+
+
+def __getattr__(name: str) -> Any:
+    """``SYMBOLS``: the formula symbols as sympy symbols, in :class:`Scale`'s order, lengths
+    declared positive (made at first use, so that importing this module does not import
+    sympy)."""
+    if name == "SYMBOLS":
+        return _symbols()
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 @functools.cache
 def formula_expr(formula: str) -> sympy.Expr:
-    """A formula as a sympy expression over :data:`SYMBOLS`; unknown names are an error.
+    """A formula as a sympy expression over ``SYMBOLS``; unknown names are an error.
 
     >>> formula_expr("Max(r, v/w)")
     Max(r, v/w)
@@ -127,7 +162,9 @@ def formula_expr(formula: str) -> sympy.Expr:
     ...
     ifgm_ref.core.errors.ParameterError: formula '2*d' uses d; a formula may use r, v, w, dt, ...
     """
-    names = {s.name: s for s in SYMBOLS}
+    import sympy
+
+    names = {s.name: s for s in _symbols()}
     expr = sympy.sympify(formula, locals=names)
     unknown = sorted(s.name for s in expr.free_symbols if s.name not in names)
     if unknown:
@@ -137,9 +174,50 @@ def formula_expr(formula: str) -> sympy.Expr:
     return expr
 
 
+def lambdified_code(formula: str) -> str:
+    """The Python expression :func:`sympy.lambdify` prints for ``formula`` over the symbols
+    (``modules="math"``): what :mod:`ifgm_ref.core.lambdified` pins.
+
+    >>> lambdified_code("2*r/4.4"), lambdified_code("Max(6*pi/w, 10*r/v, 20*dt)")
+    ('0.454545454545455*r', 'max(20*dt, 6*pi/w, 10*r/v)')
+    """
+    import inspect
+
+    import sympy
+
+    function = sympy.lambdify(_symbols(), formula_expr(formula), modules="math")
+    head, body = inspect.getsource(function).rstrip("\n").split("\n")
+    if head != f"def _lambdifygenerated({', '.join(SYMBOL_NAMES)}):" or not body.startswith(
+        "    return "
+    ):
+        raise ParameterError(f"formula {formula!r}: sympy printed more than one expression")
+    return body.removeprefix("    return ")
+
+
+def declare(formula: str) -> str:
+    """``formula``, checked (a bad one is a :class:`ParameterError` at import) and noted as one
+    the package evaluates (:func:`declared`).
+
+    >>> declare("v*dt") in declared()
+    True
+    """
+    if formula not in LAMBDIFIED:
+        formula_expr(formula)
+    _DECLARED[formula] = None
+    return formula
+
+
+def declared() -> tuple[str, ...]:
+    """Every formula declared so far, in the order of declaration: those of the modules
+    imported (the planners' parameters, the simulator's stall rules)."""
+    return tuple(_DECLARED)
+
+
 @functools.cache
 def _compiled(formula: str) -> Callable[..., float]:
-    return sympy.lambdify(SYMBOLS, formula_expr(formula), modules="math")  # type: ignore[no-any-return]
+    code = LAMBDIFIED.get(formula) or lambdified_code(formula)
+    compiled = eval(f"lambda {', '.join(SYMBOL_NAMES)}: {code}", dict(vars(math)))
+    return compiled  # type: ignore[no-any-return]
 
 
 def evaluate(formula: str, scale: Scale) -> float:

@@ -17,7 +17,7 @@ from dataclasses import dataclass, field, fields
 from typing import TYPE_CHECKING, Any, Self
 
 from ifgm_ref.core.errors import ParameterError
-from ifgm_ref.core.formulas import Scale, Unit, evaluate, formula_expr
+from ifgm_ref.core.formulas import Scale, Unit, declare, evaluate
 from ifgm_ref.core.validate import NON_NEGATIVE, POSITIVE, require, violation
 
 if TYPE_CHECKING:
@@ -29,8 +29,7 @@ def derived(formula: str, unit: Unit, *, zero: bool = False) -> Any:
 
     ``zero`` allows the value 0; otherwise every value must be > 0.
     """
-    formula_expr(formula)  # fail at import on a bad formula
-    return field(default=None, metadata={"formula": formula, "unit": unit, "zero": zero})
+    return field(default=None, metadata={"formula": declare(formula), "unit": unit, "zero": zero})
 
 
 @dataclass(frozen=True)

@@ -26,16 +26,16 @@ import math
 from collections import defaultdict
 from dataclasses import dataclass, field
 
-from ifgm_ref.core.formulas import Scale, evaluate
+from ifgm_ref.core.formulas import Scale, declare, evaluate
 from ifgm_ref.core.pose import PointLike, distance
 
 #: ``rho``, length: the radius of a place, the robot's radius ``r``.
-LAP_RADIUS = "r"
+LAP_RADIUS = declare("r")
 #: ``L``, length: the shortest lap, the circumference of the robot's disc.
-LAP_LENGTH = "2*pi*r"
+LAP_LENGTH = declare("2*pi*r")
 #: ``eps``, length: the least improvement of the best distance to the goal that counts as
 #: progress over the laps.
-LAP_PROGRESS = "v*dt"
+LAP_PROGRESS = declare("v*dt")
 
 
 @dataclass(frozen=True)

@@ -38,7 +38,7 @@ from enum import StrEnum
 from itertools import pairwise
 from typing import Any
 
-from ifgm_ref.core.formulas import Scale, evaluate
+from ifgm_ref.core.formulas import Scale, declare, evaluate
 from ifgm_ref.core.params import SimParams
 from ifgm_ref.core.pose import Pose, distance, wrap_angle
 from ifgm_ref.core.progress import progress_bar
@@ -65,7 +65,7 @@ class StopReason(StrEnum):
 
 #: The default stall time, s: a formula in the robot and the time step (reasons:
 #: ``docs/oracle.md``; :func:`ifgm_ref.core.formulas.evaluate` computes it).
-STALL_TIME = "Max(6*pi/w, 10*r/v, 20*dt)"
+STALL_TIME = declare("Max(6*pi/w, 10*r/v, 20*dt)")
 
 
 @dataclass(frozen=True)
