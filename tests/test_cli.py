@@ -7,6 +7,7 @@ only a process has (the entry point, its exit status, a closed pipe) start one
 
 from __future__ import annotations
 
+import argparse
 import contextlib
 import io
 import json
@@ -18,7 +19,7 @@ from pathlib import Path
 
 import pytest
 
-from ifgm_ref.apps.cli import EXIT_BROKEN_PIPE, main
+from ifgm_ref.apps.cli import EXIT_BROKEN_PIPE, SUBCOMMANDS, build_parser, main
 from ifgm_ref.io.scenarios import BUILTIN_WORLDS
 from ifgm_ref.io.worldfile import (
     EXPORT_DIGITS,
@@ -297,3 +298,37 @@ def test_an_output_folder_that_cannot_be_made_is_refused_before_the_run(tmp_path
         f"ifgm-ref: error: --animate {gif}: cannot make its folder {str(gif.parent)!r}: File exists"
     ]
     assert not plot.exists()
+
+
+def _subcommand_names(argv: list[str]) -> list[str]:
+    parser = build_parser(argv)
+    (sub,) = [a for a in parser._actions if isinstance(a, argparse._SubParsersAction)]
+    return list(sub.choices)
+
+
+def test_a_subcommand_is_parsed_by_its_own_parser_alone() -> None:
+    """``ifgm-ref serve ...`` builds the parser of ``serve`` alone; no subcommand, or one
+    misspelt, builds them all (the list ``--help`` and the error give)."""
+    assert _subcommand_names(["serve", "--planner", "ifgm"]) == ["serve"]
+    assert _subcommand_names(["--help"]) == list(SUBCOMMANDS)
+    assert _subcommand_names(["serv"]) == list(SUBCOMMANDS)
+
+
+def test_serve_starts_without_the_other_commands_imports() -> None:
+    """A port's test harness starts ``ifgm-ref serve`` for every run: the process loads
+    neither sympy (the formulas run from their table), nor the bag reader (``replay``), nor
+    Hypothesis (the oracle's drawing), nor matplotlib (``-X importtime`` lists what it
+    imported)."""
+    done = subprocess.run(
+        [sys.executable, "-X", "importtime", "-m", "ifgm_ref", "serve", "--planner", "ifgm"],
+        input="",
+        capture_output=True,
+        text=True,
+        timeout=60,
+        check=False,
+    )
+    assert "end of input after 0 line(s)" in done.stderr  # it started, and read its input
+    imported = re.findall(r"^import time:.*\| +([\w.]+)$", done.stderr, flags=re.M)
+    assert "ifgm_ref.planners.ifgm.planner" in imported
+    heavy = {"sympy", "rosbags", "hypothesis", "matplotlib"}
+    assert heavy.isdisjoint(name.split(".")[0] for name in imported)

@@ -21,6 +21,7 @@ import argparse
 import os
 import sys
 from collections.abc import Callable, Sequence
+from importlib import import_module
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -37,40 +38,37 @@ __all__ = ["EXIT_BROKEN_PIPE", "build_parser", "main"]
 EXIT_BROKEN_PIPE = 141
 
 
-def subcommands() -> tuple[Callable[[Subcommands], None], ...]:
-    """The subcommands' ``add_NAME`` functions, in the order ``ifgm-ref --help`` lists them
+#: Every subcommand, in the order ``ifgm-ref --help`` lists them: its module in this package
+#: and the module's function that adds its parser.
+SUBCOMMANDS: dict[str, tuple[str, str]] = {
+    "simulate": ("simulate", "add_simulate"),
+    "worlds": ("listings", "add_worlds"),
+    "figures": ("artefacts", "add_figures"),
+    "planners": ("listings", "add_planners"),
+    "vectors": ("artefacts", "add_vectors"),
+    "oracle": ("oracle", "add_oracle"),
+    "suite": ("suite", "add_suite"),
+    "report": ("report", "add_report"),
+    "bench": ("bench", "add_bench"),
+    "trace-matrix": ("artefacts", "add_trace_matrix"),
+    "serve": ("serve", "add_serve"),
+    "replay": ("replay", "add_replay"),
+    "docs": ("docs", "add_docs"),
+}
+
+
+def subcommands(names: Sequence[str] = tuple(SUBCOMMANDS)) -> list[Callable[[Subcommands], None]]:
+    """The ``add_NAME`` functions of the subcommands ``names`` (default all), in that order
     (imported here, not with this package, so that Ctrl-C during the imports is met by
     :func:`main`)."""
-    from ifgm_ref.apps.cli.artefacts import add_figures, add_trace_matrix, add_vectors
-    from ifgm_ref.apps.cli.bench import add_bench
-    from ifgm_ref.apps.cli.docs import add_docs
-    from ifgm_ref.apps.cli.listings import add_planners, add_worlds
-    from ifgm_ref.apps.cli.oracle import add_oracle
-    from ifgm_ref.apps.cli.replay import add_replay
-    from ifgm_ref.apps.cli.report import add_report
-    from ifgm_ref.apps.cli.serve import add_serve
-    from ifgm_ref.apps.cli.simulate import add_simulate
-    from ifgm_ref.apps.cli.suite import add_suite
-
-    return (
-        add_simulate,
-        add_worlds,
-        add_figures,
-        add_planners,
-        add_vectors,
-        add_oracle,
-        add_suite,
-        add_report,
-        add_bench,
-        add_trace_matrix,
-        add_serve,
-        add_replay,
-        add_docs,
-    )
+    adds = (SUBCOMMANDS[name] for name in names)
+    return [getattr(import_module(f"{__name__}.{module}"), add) for module, add in adds]
 
 
-def build_parser() -> argparse.ArgumentParser:
-    """The argument parser of ``ifgm-ref`` (all subcommands)."""
+def build_parser(argv: Sequence[str] | None = None) -> argparse.ArgumentParser:
+    """The argument parser of ``ifgm-ref``: when ``argv`` starts with a subcommand, with that
+    subcommand alone (it parses the rest; the others' modules, and what they import, are
+    not loaded), else with all of them (``ifgm-ref --help``, a misspelt subcommand)."""
     from ifgm_ref.apps.cli.common import Parser
 
     parser = Parser(
@@ -81,7 +79,8 @@ def build_parser() -> argparse.ArgumentParser:
     sub = parser.add_subparsers(
         dest="command", required=True, metavar="COMMAND", parser_class=Parser
     )
-    for add in subcommands():
+    named = [argv[0]] if argv and argv[0] in SUBCOMMANDS else list(SUBCOMMANDS)
+    for add in subcommands(named):
         add(sub)
     return parser
 
@@ -92,8 +91,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     try:
         try:
             with terminable():
-                args = build_parser().parse_args(argv)
-                args.argv = list(sys.argv[1:] if argv is None else argv)
+                given = list(sys.argv[1:] if argv is None else argv)
+                args = build_parser(given).parse_args(given)
+                args.argv = given
                 return int(args.func(args))
         except Exception as err:  # a library may turn Ctrl-C into an error of its own
             signum = received()
