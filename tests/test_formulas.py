@@ -3,9 +3,11 @@
 
 from __future__ import annotations
 
+import functools
 import subprocess
 import sys
 import textwrap
+from collections.abc import Callable
 
 import pytest
 import sympy
@@ -31,13 +33,16 @@ def test_the_committed_table_is_current() -> None:
     assert len(LAMBDIFIED) > 30
 
 
+@functools.cache
+def _lambdified(formula: str) -> Callable[..., float]:
+    return sympy.lambdify(formulas.SYMBOLS, formula_expr(formula), modules="math")
+
+
 @given(st.tuples(*[quantity] * len(SYMBOL_NAMES)).map(lambda values: Scale(*values)))
 def test_the_table_gives_lambdify_s_value_to_the_bit(scale: Scale) -> None:
     """The pinned code, run in :mod:`math`'s names, is the function sympy.lambdify makes."""
     for formula in LAMBDIFIED:
-        lambdified = sympy.lambdify(formulas.SYMBOLS, formula_expr(formula), modules="math")
-        expected = float(lambdified(*scale))
-        assert evaluate(formula, scale) == expected, formula
+        assert evaluate(formula, scale) == float(_lambdified(formula)(*scale)), formula
 
 
 def test_a_formula_not_in_the_table_is_printed_by_sympy() -> None:
