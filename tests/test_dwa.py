@@ -3,6 +3,7 @@ of its own scans, the grid plan, the dynamic window's scores, whole episodes."""
 
 from __future__ import annotations
 
+import collections
 import dataclasses
 import itertools
 import math
@@ -10,6 +11,8 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from hypothesis import given
+from hypothesis import strategies as st
 from numpy.typing import NDArray
 
 from ifgm_ref.core.laserscan import LaserScan
@@ -129,6 +132,55 @@ def test_the_mapgrid_wavefront_goes_round_blocked_cells() -> None:
     distance = wavefront(free, source)
     assert distance[4, 0] == 4 + 4 + 4  # right to column 4, down 4 rows, back left 4
     assert distance[2, 0] == free.size  # blocked: MapGrid's obstacle cost
+
+
+def _breadth_first(passable: NDArray[np.bool_], sources: NDArray[np.bool_]) -> NDArray[np.int32]:
+    """The 4-connected breadth-first distance from a queue, cell by cell: the definition."""
+    far = np.int32(passable.size)
+    distance = np.full(passable.shape, far, dtype=np.int32)
+    queue = collections.deque(zip(*np.nonzero(sources & passable), strict=True))
+    for cell in queue:
+        distance[cell] = 0
+    while queue:
+        i, j = queue.popleft()
+        for cell in ((i - 1, j), (i + 1, j), (i, j - 1), (i, j + 1)):
+            inside = 0 <= cell[0] < passable.shape[0] and 0 <= cell[1] < passable.shape[1]
+            if inside and passable[cell] and distance[cell] == far:
+                distance[cell] = distance[i, j] + 1
+                queue.append(cell)
+    return distance
+
+
+@st.composite
+def _grids(
+    draw: st.DrawFn,
+) -> tuple[NDArray[np.bool_], NDArray[np.bool_], tuple[slice, slice] | None]:
+    rows, cols = draw(st.integers(1, 12)), draw(st.integers(1, 12))
+    cells = st.lists(st.booleans(), min_size=rows * cols, max_size=rows * cols)
+    passable = np.array(draw(cells)).reshape(rows, cols)
+    sources = np.array(draw(cells)).reshape(rows, cols) & (draw(st.integers(0, 4)) == 0)
+    sources[draw(st.integers(0, rows - 1)), draw(st.integers(0, cols - 1))] = True
+    if draw(st.booleans()):
+        return passable, sources, None
+    r0, r1 = sorted(draw(st.lists(st.integers(0, rows), min_size=2, max_size=2)))
+    c0, c1 = sorted(draw(st.lists(st.integers(0, cols), min_size=2, max_size=2)))
+    return passable, sources, (slice(r0, r1), slice(c0, c1))
+
+
+@given(_grids())
+def test_the_wavefront_is_the_breadth_first_distance(
+    grid: tuple[NDArray[np.bool_], NDArray[np.bool_], tuple[slice, slice] | None],
+) -> None:
+    """Everywhere without a box; in the box asked about with one (beyond it a cell reads its
+    distance or, reached after the wave stopped, ``passable.size``)."""
+    passable, sources, box = grid
+    expected, got = _breadth_first(passable, sources), wavefront(passable, sources, box)
+    assert got.dtype == np.int32
+    if box is None:
+        assert got.tolist() == expected.tolist()
+        return
+    assert got[box].tolist() == expected[box].tolist()
+    assert ((got == expected) | (got == passable.size)).all()
 
 
 def _straight_plan_map(

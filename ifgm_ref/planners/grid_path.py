@@ -12,8 +12,8 @@ enter lethal or inscribed cells.
 ``COST_FACTOR`` 0.8 times the costmap cost per cell, lethal and inscribed cells blocked),
 8-connected, from cell centre to cell centre; navfn interpolates its potential and descends
 its gradient, which smooths the path but does not change where it goes round obstacles.
-:func:`wavefront` is MapGrid's breadth-first distance, numpy-vectorised one ring at a time,
-stopped once the cells asked about are settled.
+:func:`wavefront` is MapGrid's breadth-first distance, one ring at a time (numpy over the ring's
+cells), stopped once the cells asked about are settled.
 """
 
 from __future__ import annotations
@@ -140,16 +140,39 @@ def wavefront(
     >>> wavefront(free, goal).tolist()
     [[3, 4, 5, 4], [2, 12, 12, 3], [1, 0, 1, 2]]
     """
+    height, width = passable.shape
     far = np.int32(passable.size)
-    seen = sources & passable
     distance = np.full(passable.shape, far, dtype=np.int32)
-    distance[seen] = 0
-    ring = seen.copy()
-    box = wanted or (slice(None), slice(None))
-    walls = ~passable[box]
-    rows, cols = np.nonzero(seen)
-    if len(rows) == 0:
+    ring_rows, ring_cols = np.nonzero(sources & passable)
+    if len(ring_rows) == 0:
         return distance
+    # Flat indices into the grid with a blocked border round it: neighbours need no bounds
+    # check. ``open_`` marks the passable cells the wave has not reached.
+    stride = width + 2
+    padded = np.zeros((height + 2, stride), dtype=bool)
+    padded[1:-1, 1:-1] = passable
+    open_ = padded.ravel()
+    padded = np.zeros_like(padded)
+    padded[1:-1, 1:-1][wanted or (slice(None), slice(None))] = True
+    in_box = padded.ravel() & open_
+    reached = np.full(open_.shape, far, dtype=np.int32)
+    ring = (ring_rows + 1) * stride + ring_cols + 1
+    open_[ring] = False
+    reached[ring] = 0
+    left = int(np.count_nonzero(in_box & open_))  # passable cells of the box not yet reached
+    neighbours = np.array([-stride, stride, -1, 1])
+    step = 0
+    while left:
+        step += 1
+        ring = (ring[:, None] + neighbours).ravel()
+        ring = np.unique(ring[open_[ring]])
+        if len(ring) == 0:
+            break
+        open_[ring] = False
+        reached[ring] = step
+        left -= int(np.count_nonzero(in_box[ring]))
+    distance[:] = reached.reshape(height + 2, stride)[1:-1, 1:-1]
+    return distance
     height, width = passable.shape
     # The ring stays inside the sources' bounding box grown by one cell a step: work there.
     r0, r1, c0, c1 = int(rows.min()), int(rows.max()) + 1, int(cols.min()), int(cols.max()) + 1
