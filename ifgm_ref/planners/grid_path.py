@@ -173,24 +173,3 @@ def wavefront(
         left -= int(np.count_nonzero(in_box[ring]))
     distance[:] = reached.reshape(height + 2, stride)[1:-1, 1:-1]
     return distance
-    height, width = passable.shape
-    # The ring stays inside the sources' bounding box grown by one cell a step: work there.
-    r0, r1, c0, c1 = int(rows.min()), int(rows.max()) + 1, int(cols.min()), int(cols.max()) + 1
-    step = 0
-    while not (seen[box] | walls).all():
-        step += 1
-        r0, r1, c0, c1 = max(r0 - 1, 0), min(r1 + 1, height), max(c0 - 1, 0), min(c1 + 1, width)
-        old = ring[r0:r1, c0:c1]
-        grown = np.zeros_like(old)
-        grown[1:] |= old[:-1]
-        grown[:-1] |= old[1:]
-        grown[:, 1:] |= old[:, :-1]
-        grown[:, :-1] |= old[:, 1:]
-        grown &= passable[r0:r1, c0:c1]
-        grown &= ~seen[r0:r1, c0:c1]
-        if not grown.any():
-            break
-        ring[r0:r1, c0:c1] = grown
-        seen[r0:r1, c0:c1] |= grown
-        distance[r0:r1, c0:c1][grown] = step
-    return distance
