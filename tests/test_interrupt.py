@@ -183,14 +183,13 @@ def test_replay_keeps_whole_files(tmp_path: Path) -> None:
     )
     steps, plot = tmp_path / "steps.csv", tmp_path / "replay.png"
     args = ["replay", str(bag), "--planner", "fgm", "--steps", str(steps), "--plot", str(plot)]
-    stopped = interrupt(args, tmp_path, (1.2, 2.0))
+    # While it draws the plot (0.7 s of its 2 s on this machine), the steps written: a moment
+    # after its start is not one where it is busy on every machine, as a faster start-up showed.
+    stopped = interrupt(args, tmp_path, (0.05, 0.2), after=f"wrote {steps}")
     no_temporaries(tmp_path)
-    kept = sorted(p for p in tmp_path.iterdir() if p != bag)
-    _, _, listed = stopped.last.partition("; not written: ")  # none yet if stopped in start-up
-    missing = [Path(m) for m in listed.split(", ")] if listed else [steps, plot]
-    assert sorted([*kept, *missing]) == sorted([steps, plot]) and missing
-    if steps in kept:
-        assert steps.read_text().count("\n") > 1000  # every step, not part of them
+    assert sorted(p for p in tmp_path.iterdir() if p != bag) == [steps]
+    assert stopped.last.endswith(f"not written: {plot}")
+    assert steps.read_text().count("\n") > 1000  # every step, not part of them
 
 
 def test_docs_stops_sphinx_and_says_the_site_is_incomplete(tmp_path: Path) -> None:
