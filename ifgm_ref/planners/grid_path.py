@@ -149,12 +149,10 @@ def wavefront(
     # Flat indices into the grid with a blocked border round it: neighbours need no bounds
     # check. ``open_`` marks the passable cells the wave has not reached.
     stride = width + 2
-    padded = np.zeros((height + 2, stride), dtype=bool)
-    padded[1:-1, 1:-1] = passable
-    open_ = padded.ravel()
-    padded = np.zeros_like(padded)
-    padded[1:-1, 1:-1][wanted or (slice(None), slice(None))] = True
-    in_box = padded.ravel() & open_
+    open_ = _bordered(passable)
+    asked = np.zeros(passable.shape, dtype=bool)
+    asked[wanted or (slice(None), slice(None))] = True
+    in_box = _bordered(asked) & open_
     reached = np.full(open_.shape, far, dtype=np.int32)
     ring = (ring_rows + 1) * stride + ring_cols + 1
     open_[ring] = False
@@ -173,3 +171,10 @@ def wavefront(
         left -= int(np.count_nonzero(in_box[ring]))
     distance[:] = reached.reshape(height + 2, stride)[1:-1, 1:-1]
     return distance
+
+
+def _bordered(cells: NDArray[np.bool_]) -> NDArray[np.bool_]:
+    """``cells`` with a row and a column of ``False`` round them, flattened."""
+    bordered = np.zeros((cells.shape[0] + 2, cells.shape[1] + 2), dtype=bool)
+    bordered[1:-1, 1:-1] = cells
+    return bordered.ravel()
